@@ -1,0 +1,34 @@
+#!/usr/bin/env bash
+# Shared set-up for run.sh and test.sh: install what is missing, configure, build.
+# Usage: source scripts/setup.sh [build-dir] [extra cmake args...]
+set -euo pipefail
+
+SFM_PACKAGES=(build-essential cmake pkg-config libeigen3-dev libceres-dev libopencv-dev
+  libopencv-contrib-dev libgflags-dev libgoogle-glog-dev libgtest-dev libgmock-dev libbenchmark-dev)
+
+sfm_install_missing_packages() {
+  local missing=()
+  for package in "${SFM_PACKAGES[@]}"; do
+    dpkg-query -W -f='${Status}' "$package" 2>/dev/null | grep -q "install ok installed" || missing+=("$package")
+  done
+  [ ${#missing[@]} -eq 0 ] && return 0
+  if [ "$(id -u)" -eq 0 ]; then
+    echo "setup: installing ${missing[*]}" >&2
+    apt-get update -q >&2
+    DEBIAN_FRONTEND=noninteractive apt-get install -y -q --no-install-recommends "${missing[@]}" >&2
+  else
+    echo "setup: missing packages; run as root: apt-get install -y ${missing[*]}" >&2
+    exit 1
+  fi
+}
+
+sfm_configure_and_build() {
+  local build_dir=$1; shift
+  if [ ! -f "$build_dir/CMakeCache.txt" ]; then
+    cmake -S . -B "$build_dir" -DCMAKE_BUILD_TYPE=Release "$@" >&2
+  fi
+  cmake --build "$build_dir" -j"$(nproc)" >&2
+}
+
+cd "$(dirname "${BASH_SOURCE[0]}")/.."
+sfm_install_missing_packages

@@ -1,0 +1,21 @@
+// The junction_sfm pipeline as a library function, so tests can run it without a process:
+// read and validate the sequence, run each stage, write the SPEC section 3 outputs.
+#pragma once
+
+#include <string>
+
+#include "frontend/util/status.h"
+
+namespace sfm {
+
+struct PipelineOptions {
+  std::string sequence_dir;  // a SPEC section 1 sequence directory
+  std::string output_dir;    // created if needed; existing files of the same names are replaced
+  bool show_progress = true; // a progress line on stderr (only when stderr is a terminal)
+};
+
+// Runs everything. All input is read and validated before any output file is written, and each
+// output file is written atomically, so a failure never leaves a half-written file.
+Status RunPipeline(const PipelineOptions& options);
+
+}  // namespace sfm
