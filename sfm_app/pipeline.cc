@@ -76,8 +76,6 @@ Status RunPipeline(const PipelineOptions& options) {
   LOG(INFO) << "sequence " << options.sequence_dir << ": " << num_frames << " frames, "
             << sequence.calibration.camera.width << "x" << sequence.calibration.camera.height
             << (sequence.has_groundtruth ? ", with ground truth" : ", no ground truth");
-  SFM_RETURN_IF_ERROR(EnsureWritableDirectory(options.output_dir));
-
   Progress progress(options.show_progress);
   const Clock::time_point frontend_start = Clock::now();
   std::vector<cv::Mat> images(num_frames);
@@ -87,6 +85,7 @@ Status RunPipeline(const PipelineOptions& options) {
   }
   progress.Finish();
   times.frontend = SecondsSince(frontend_start);
+  SFM_RETURN_IF_ERROR(EnsureWritableDirectory(options.output_dir));
 
   // 2. Front end, matching, back end.
   ReportNotImplemented("junction detection", "junctions/");
