@@ -20,9 +20,14 @@ constexpr double kQuaternionNormTolerance = 1e-3;
 // change its last bits and break exact round trips, so only norms further off are corrected.
 constexpr double kRenormaliseAbove = 1e-14;
 
+// The shortest of %.15g..%.17g that reads back to the same double: exact round trips, and
+// "10.1" rather than "10.099999999999999" in files and messages.
 std::string FormatNumber(double value) {
   char buffer[32];
-  std::snprintf(buffer, sizeof(buffer), "%.17g", value);
+  for (int precision = 15; precision <= 17; ++precision) {
+    std::snprintf(buffer, sizeof(buffer), "%.*g", precision, value);
+    if (std::strtod(buffer, nullptr) == value) break;
+  }
   return buffer;
 }
 

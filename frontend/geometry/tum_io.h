@@ -19,7 +19,8 @@ struct StampedPose {
 // normalised when within), timestamps that do not increase, and a file with no pose.
 Status ReadTumTrajectory(const std::string& path, std::vector<StampedPose>* poses);
 
-// Formats poses as TUM text (full double precision), one line per pose, with a '#' header line.
+// Formats poses as TUM text, one line per pose, with a '#' header line. Each number is the shortest
+// text that reads back to the same double, so a write-read round trip is exact.
 std::string FormatTumTrajectory(const std::vector<StampedPose>& poses);
 
 // Writes the TUM text atomically (see frontend/util/atomic_file.h).

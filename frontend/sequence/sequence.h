@@ -49,10 +49,12 @@ constexpr double kTimestampTolerance = 1e-3;
 
 // Reads sequence.yaml. Fails, naming the file and the key, on a missing file, a missing key, a
 // key of the wrong shape or type, a non-finite value, non-positive sizes or focal lengths, and a
-// T_base_camera whose rotation part is not a rotation.
+// T_base_camera whose rotation part is not a rotation. A file without OpenCV's "%YAML:1.0" first
+// line is accepted (OpenCV 4.6 alone would reject it).
 Status ReadCalibration(const std::string& yaml_path, Calibration* calibration);
 
-// Writes sequence.yaml in the SPEC layout (cv::FileStorage YAML), atomically.
+// Writes sequence.yaml in the SPEC layout (cv::FileStorage YAML), atomically. The odometry noise
+// keys are written only when odometry_noise_given, so that reading the file back gives the same.
 Status WriteCalibration(const std::string& yaml_path, const Calibration& calibration);
 
 // Reads and validates a whole sequence directory: sequence.yaml, images.txt, odometry.txt and

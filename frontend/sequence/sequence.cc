@@ -1,0 +1,383 @@
+#include "frontend/sequence/sequence.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <sstream>
+
+#include <Eigen/LU>
+#include <glog/logging.h>
+#include <opencv2/core/eigen.hpp>
+#include <opencv2/imgcodecs.hpp>
+
+#include "frontend/geometry/tum_io.h"
+#include "frontend/util/atomic_file.h"
+
+namespace sfm {
+namespace {
+namespace fs = std::filesystem;
+
+// T_base_camera's rotation block must satisfy |R^T R - I| below this (files hold ~6+ digits).
+constexpr double kRotationTolerance = 1e-5;
+// Timestamps are read from decimal text, so a difference of exactly 1 ms may come out a hair over.
+constexpr double kTimestampSlack = 1e-9;
+
+// The shortest of %.15g..%.17g that reads back to the same double ("10.1", not "10.099999999999999").
+std::string FormatNumber(double value) {
+  char buffer[32];
+  for (int precision = 15; precision <= 17; ++precision) {
+    std::snprintf(buffer, sizeof(buffer), "%.*g", precision, value);
+    if (std::strtod(buffer, nullptr) == value) break;
+  }
+  return buffer;
+}
+
+// OpenCV's messages can span lines; ours must not.
+std::string OneLine(std::string text) {
+  std::replace(text.begin(), text.end(), '\n', ' ');
+  std::replace(text.begin(), text.end(), '\r', ' ');
+  while (!text.empty() && text.back() == ' ') text.pop_back();
+  return text;
+}
+
+bool ParseDouble(const std::string& token, double* value) {
+  errno = 0;
+  char* end = nullptr;
+  *value = std::strtod(token.c_str(), &end);
+  return end != token.c_str() && *end == '\0' && errno != ERANGE && std::isfinite(*value);
+}
+
+// Reads sequence.yaml's keys; cv::Exception from OpenCV propagates to ReadCalibration.
+class CalibrationReader {
+ public:
+  CalibrationReader(const std::string& path, const cv::FileStorage& storage) : path_(path), storage_(storage) {}
+
+  Status PositiveInt(const std::string& key, int* value) const {
+    const cv::FileNode node = storage_[key];
+    if (node.empty() || node.isNone()) return Missing(key);
+    if (!node.isInt()) return Error(key, "must be an integer");
+    *value = static_cast<int>(node);
+    if (*value <= 0) return Error(key, "must be positive, found " + std::to_string(*value));
+    return Status::Ok();
+  }
+
+  // An optional positive real; *present says whether the key was there.
+  Status OptionalPositiveReal(const std::string& key, double* value, bool* present) const {
+    const cv::FileNode node = storage_[key];
+    *present = !(node.empty() || node.isNone());
+    if (!*present) return Status::Ok();
+    if (!node.isReal() && !node.isInt()) return Error(key, "must be a number");
+    const double read = static_cast<double>(node);
+    if (!std::isfinite(read)) return Error(key, "is not finite (" + FormatNumber(read) + ")");
+    if (read <= 0) return Error(key, "must be positive, found " + FormatNumber(read));
+    *value = read;
+    return Status::Ok();
+  }
+
+  // A matrix of one of the allowed shapes (rows x cols), as CV_64F with finite entries.
+  Status Matrix(const std::string& key, const std::vector<std::pair<int, int>>& shapes, cv::Mat* matrix) const {
+    const std::string expected = std::to_string(shapes[0].first) + "x" + std::to_string(shapes[0].second);
+    const cv::FileNode node = storage_[key];
+    if (node.empty() || node.isNone()) return Missing(key);
+    if (!node.isMap() || node["rows"].empty() || node["cols"].empty() || node["data"].empty()) {
+      return Error(key, "must be a " + expected + " !!opencv-matrix (with rows, cols, dt, data)");
+    }
+    cv::Mat read;
+    try {
+      node >> read;
+    } catch (const cv::Exception& e) {
+      return Error(key, "is not a valid !!opencv-matrix (" + OneLine(e.err) + ")");
+    }
+    if (read.empty()) return Error(key, "must be a " + expected + " !!opencv-matrix, found an empty matrix");
+    if (read.channels() != 1) return Error(key, "must be a single-channel matrix");
+    const bool shape_ok = std::any_of(shapes.begin(), shapes.end(), [&](const std::pair<int, int>& s) {
+      return read.rows == s.first && read.cols == s.second;
+    });
+    if (!shape_ok) {
+      return Error(key, "must be " + expected + ", found " + std::to_string(read.rows) + "x" +
+                            std::to_string(read.cols));
+    }
+    read.convertTo(*matrix, CV_64F);
+    for (int r = 0; r < matrix->rows; ++r) {
+      for (int c = 0; c < matrix->cols; ++c) {
+        const double value = matrix->at<double>(r, c);
+        if (!std::isfinite(value)) {
+          return Error(key, "entry (" + std::to_string(r) + "," + std::to_string(c) + ") is not finite (" +
+                                FormatNumber(value) + ")");
+        }
+      }
+    }
+    return Status::Ok();
+  }
+
+  Status Error(const std::string& key, const std::string& problem) const {
+    return Status::Error(path_ + ": key '" + key + "' " + problem);
+  }
+
+ private:
+  Status Missing(const std::string& key) const {
+    return Status::Error(path_ + ": missing key '" + key + "'");
+  }
+
+  const std::string& path_;
+  const cv::FileStorage& storage_;
+};
+
+Status ReadCalibrationKeys(const std::string& path, const cv::FileStorage& storage, Calibration* calibration) {
+  const CalibrationReader reader(path, storage);
+  Camera& camera = calibration->camera;
+  SFM_RETURN_IF_ERROR(reader.PositiveInt("image_width", &camera.width));
+  SFM_RETURN_IF_ERROR(reader.PositiveInt("image_height", &camera.height));
+
+  cv::Mat K;
+  SFM_RETURN_IF_ERROR(reader.Matrix("camera_matrix", {{3, 3}}, &K));
+  if (K.at<double>(0, 1) != 0 || K.at<double>(1, 0) != 0 || K.at<double>(2, 0) != 0 ||
+      K.at<double>(2, 1) != 0 || K.at<double>(2, 2) != 1) {
+    return reader.Error("camera_matrix", "must have the form (fx 0 cx; 0 fy cy; 0 0 1): the camera model has no skew");
+  }
+  camera.fx = K.at<double>(0, 0);
+  camera.fy = K.at<double>(1, 1);
+  camera.cx = K.at<double>(0, 2);
+  camera.cy = K.at<double>(1, 2);
+  if (camera.fx <= 0 || camera.fy <= 0) {
+    return reader.Error("camera_matrix", "must have positive focal lengths, found fx " + FormatNumber(camera.fx) +
+                                             ", fy " + FormatNumber(camera.fy));
+  }
+
+  cv::Mat distortion;
+  // OpenCV's own calibration writes either orientation.
+  SFM_RETURN_IF_ERROR(reader.Matrix("distortion_coefficients", {{1, 5}, {5, 1}}, &distortion));
+  for (int i = 0; i < 5; ++i) camera.distortion[i] = distortion.at<double>(i);
+
+  cv::Mat T;
+  SFM_RETURN_IF_ERROR(reader.Matrix("T_base_camera", {{4, 4}}, &T));
+  Eigen::Matrix4d base_T_camera;
+  cv::cv2eigen(T, base_T_camera);
+  if ((base_T_camera.row(3) - Eigen::RowVector4d(0, 0, 0, 1)).norm() > kRotationTolerance) {
+    return reader.Error("T_base_camera", "must have last row 0 0 0 1");
+  }
+  const Eigen::Matrix3d R = base_T_camera.topLeftCorner<3, 3>();
+  const double orthogonality_error = (R.transpose() * R - Eigen::Matrix3d::Identity()).norm();
+  const double determinant = R.determinant();
+  if (orthogonality_error > kRotationTolerance || determinant <= 0) {
+    return reader.Error("T_base_camera", "rotation part is not a rotation (|R^T R - I| = " +
+                                             FormatNumber(orthogonality_error) + ", det R = " +
+                                             FormatNumber(determinant) + ")");
+  }
+  calibration->base_T_camera = Pose3::FromMatrix4(base_T_camera);
+
+  bool translation_given = false, rotation_given = false;
+  calibration->odometry_noise = OdometryNoise();
+  SFM_RETURN_IF_ERROR(reader.OptionalPositiveReal(
+      "odometry_translation_sigma", &calibration->odometry_noise.translation_sigma, &translation_given));
+  SFM_RETURN_IF_ERROR(reader.OptionalPositiveReal(
+      "odometry_rotation_sigma", &calibration->odometry_noise.rotation_sigma, &rotation_given));
+  calibration->odometry_noise_given = translation_given && rotation_given;
+  return Status::Ok();
+}
+
+// ":<line>: malformed YAML (<what>)" from an OpenCV parser exception. OpenCV 4.6 puts the parser's
+// "<file>(<line>): <what>" in Exception::func rather than ::err, so both are looked at.
+std::string DescribeYamlError(const cv::Exception& e, int lines_added) {
+  if (e.code == cv::Error::StsParseError) {
+    for (const std::string& text : {e.func, e.err}) {
+      const size_t open = text.find('('), close = text.find("): ");
+      if (open == std::string::npos || close == std::string::npos || close < open) continue;
+      const int line = std::atoi(text.substr(open + 1, close - open - 1).c_str()) - lines_added;
+      return ":" + std::to_string(line) + ": malformed YAML (" + OneLine(text.substr(close + 3)) + ")";
+    }
+  }
+  return ": malformed YAML (" + OneLine(e.err) + ")";
+}
+
+// Index of the pose nearest in time to `timestamp` within kTimestampTolerance, or -1.
+int NearestPose(const std::vector<StampedPose>& poses, double timestamp, double* nearest_difference) {
+  const auto after = std::lower_bound(poses.begin(), poses.end(), timestamp,
+                                      [](const StampedPose& p, double t) { return p.timestamp < t; });
+  int best = -1;
+  *nearest_difference = std::numeric_limits<double>::infinity();
+  for (auto it : {after - (after == poses.begin() ? 0 : 1), after}) {
+    if (it == poses.end()) continue;
+    const double difference = std::abs(it->timestamp - timestamp);
+    if (difference < *nearest_difference) {
+      *nearest_difference = difference;
+      best = static_cast<int>(it - poses.begin());
+    }
+  }
+  return *nearest_difference <= kTimestampTolerance + kTimestampSlack ? best : -1;
+}
+
+Status ReadImageList(const std::string& directory, const std::string& path, std::vector<Frame>* frames,
+                     std::vector<int>* line_numbers) {
+  std::ifstream in(path);
+  if (!in) return Status::Error(path + ": cannot open (" + std::strerror(errno) + ")");
+  std::string line;
+  int line_number = 0;
+  while (std::getline(in, line)) {
+    ++line_number;
+    const std::string where = path + ":" + std::to_string(line_number) + ": ";
+    const size_t comment = line.find('#');
+    if (comment != std::string::npos) line.resize(comment);
+    std::istringstream words(line);
+    std::string timestamp_text;
+    if (!(words >> timestamp_text)) continue;
+    std::string image_path;
+    std::getline(words >> std::ws, image_path);
+    while (!image_path.empty() && std::isspace(static_cast<unsigned char>(image_path.back()))) image_path.pop_back();
+    Frame frame;
+    if (!ParseDouble(timestamp_text, &frame.timestamp) || image_path.empty()) {
+      return Status::Error(where + "expected '<timestamp> <relative image path>', found '" + OneLine(line) + "'");
+    }
+    if (!frames->empty() && !(frame.timestamp > frames->back().timestamp)) {
+      return Status::Error(where + "timestamp " + FormatNumber(frame.timestamp) +
+                           " is not after the previous frame's " + FormatNumber(frames->back().timestamp) +
+                           " (frames must be in increasing time order)");
+    }
+    const fs::path image_file = fs::path(directory) / image_path;
+    std::error_code error;
+    if (!fs::is_regular_file(image_file, error)) {
+      return Status::Error(where + "image file " + image_file.string() + " does not exist");
+    }
+    frame.index = static_cast<int>(frames->size());
+    frame.image_path = image_path;
+    frames->push_back(frame);
+    line_numbers->push_back(line_number);
+  }
+  if (in.bad()) return Status::Error(path + ": read error (" + std::strerror(errno) + ")");
+  if (frames->empty()) return Status::Error(path + ": lists no image");
+  if (frames->size() < 2) {
+    return Status::Error(path + ": lists " + std::to_string(frames->size()) +
+                         " frame, at least 2 are needed");
+  }
+  return Status::Ok();
+}
+
+}  // namespace
+
+Status ReadCalibration(const std::string& yaml_path, Calibration* calibration) {
+  std::error_code error;
+  if (!fs::is_regular_file(yaml_path, error)) {
+    return Status::Error(yaml_path + ": calibration file does not exist");
+  }
+  std::ifstream in(yaml_path, std::ios::binary);
+  std::ostringstream contents;
+  contents << in.rdbuf();
+  if (!in) return Status::Error(yaml_path + ": cannot read (" + std::strerror(errno) + ")");
+  std::string text = contents.str();
+  if (text.find_first_not_of(" \t\r\n") == std::string::npos) return Status::Error(yaml_path + ": file is empty");
+  // OpenCV 4.6 rejects YAML without its "%YAML" directive; hand-written and PyYAML files lack it.
+  const bool header_added = text.rfind("%YAML", 0) != 0;
+  if (header_added) text = "%YAML:1.0\n" + text;
+  try {
+    const cv::FileStorage storage(text, cv::FileStorage::READ | cv::FileStorage::MEMORY);
+    if (!storage.isOpened()) return Status::Error(yaml_path + ": cannot be parsed as OpenCV YAML");
+    return ReadCalibrationKeys(yaml_path, storage, calibration);
+  } catch (const cv::Exception& e) {
+    return Status::Error(yaml_path + DescribeYamlError(e, header_added ? 1 : 0));
+  }
+}
+
+Status WriteCalibration(const std::string& yaml_path, const Calibration& calibration) {
+  const Camera& camera = calibration.camera;
+  std::string text;
+  try {
+    cv::FileStorage storage(".yaml", cv::FileStorage::WRITE | cv::FileStorage::MEMORY);
+    storage << "image_width" << camera.width;
+    storage << "image_height" << camera.height;
+    storage << "camera_matrix" << cv::Mat(cv::Matx33d(camera.fx, 0, camera.cx, 0, camera.fy, camera.cy, 0, 0, 1));
+    storage << "distortion_coefficients"
+            << cv::Mat(cv::Matx<double, 1, 5>(camera.distortion[0], camera.distortion[1], camera.distortion[2],
+                                              camera.distortion[3], camera.distortion[4]));
+    cv::Mat T;
+    cv::eigen2cv(Eigen::Matrix4d(calibration.base_T_camera.Matrix4()), T);
+    storage << "T_base_camera" << T;
+    if (calibration.odometry_noise_given) {
+      storage << "odometry_translation_sigma" << calibration.odometry_noise.translation_sigma;
+      storage << "odometry_rotation_sigma" << calibration.odometry_noise.rotation_sigma;
+    }
+    text = storage.releaseAndGetString();
+  } catch (const cv::Exception& e) {
+    return Status::Error(yaml_path + ": cannot format calibration (" + OneLine(e.err) + ")");
+  }
+  return WriteFileAtomically(yaml_path, text);
+}
+
+Status ReadSequence(const std::string& directory, Sequence* sequence) {
+  std::error_code error;
+  if (!fs::exists(directory, error)) return Status::Error(directory + ": sequence directory does not exist");
+  if (!fs::is_directory(directory, error)) return Status::Error(directory + ": is not a directory");
+
+  Sequence read;
+  read.directory = directory;
+  const fs::path root(directory);
+  SFM_RETURN_IF_ERROR(ReadCalibration((root / "sequence.yaml").string(), &read.calibration));
+
+  const std::string images_path = (root / "images.txt").string();
+  std::vector<int> line_numbers;
+  SFM_RETURN_IF_ERROR(ReadImageList(directory, images_path, &read.frames, &line_numbers));
+
+  const std::string odometry_path = (root / "odometry.txt").string();
+  std::vector<StampedPose> odometry;
+  SFM_RETURN_IF_ERROR(ReadTumTrajectory(odometry_path, &odometry));
+
+  const std::string groundtruth_path = (root / "groundtruth.txt").string();
+  std::vector<StampedPose> groundtruth;
+  read.has_groundtruth = fs::exists(groundtruth_path, error);
+  if (read.has_groundtruth) SFM_RETURN_IF_ERROR(ReadTumTrajectory(groundtruth_path, &groundtruth));
+
+  for (size_t i = 0; i < read.frames.size(); ++i) {
+    Frame& frame = read.frames[i];
+    const std::string where = images_path + ":" + std::to_string(line_numbers[i]) + ": ";
+    double difference = 0;
+    const int odometry_index = NearestPose(odometry, frame.timestamp, &difference);
+    if (odometry_index < 0) {
+      return Status::Error(where + "no pose in " + odometry_path + " within 1 ms of timestamp " +
+                           FormatNumber(frame.timestamp) + " (nearest is " + FormatNumber(difference) +
+                           " s away)");
+    }
+    frame.world_T_base_odometry = odometry[odometry_index].pose;
+    if (read.has_groundtruth) {
+      const int groundtruth_index = NearestPose(groundtruth, frame.timestamp, &difference);
+      if (groundtruth_index < 0) {
+        return Status::Error(where + "no pose in " + groundtruth_path + " within 1 ms of timestamp " +
+                             FormatNumber(frame.timestamp) + " (nearest is " + FormatNumber(difference) +
+                             " s away)");
+      }
+      frame.world_T_base_groundtruth = groundtruth[groundtruth_index].pose;
+    }
+  }
+  *sequence = std::move(read);
+  return Status::Ok();
+}
+
+Status LoadFrameImage(const Sequence& sequence, int frame_index, cv::Mat* grey) {
+  CHECK_GE(frame_index, 0);
+  CHECK_LT(frame_index, static_cast<int>(sequence.frames.size()));
+  const std::string path = (fs::path(sequence.directory) / sequence.frames[frame_index].image_path).string();
+  std::error_code error;
+  if (!fs::is_regular_file(path, error)) return Status::Error(path + ": image file does not exist");
+  cv::Mat image;
+  try {
+    image = cv::imread(path, cv::IMREAD_GRAYSCALE);
+  } catch (const cv::Exception& e) {
+    return Status::Error(path + ": cannot decode image (" + OneLine(e.err) + ")");
+  }
+  if (image.empty()) return Status::Error(path + ": cannot decode image");
+  const Camera& camera = sequence.calibration.camera;
+  if (image.cols != camera.width || image.rows != camera.height) {
+    return Status::Error(path + ": image is " + std::to_string(image.cols) + "x" + std::to_string(image.rows) +
+                         ", sequence.yaml says " + std::to_string(camera.width) + "x" +
+                         std::to_string(camera.height));
+  }
+  *grey = image;
+  return Status::Ok();
+}
+
+}  // namespace sfm
