@@ -34,8 +34,8 @@ struct Camera {
   Eigen::Vector2d UndistortPixel(const Eigen::Vector2d& pixel) const;
   Eigen::Vector2d DistortPixel(const Eigen::Vector2d& undistorted_pixel) const;
 
-  // The whole image resampled to the undistorted geometry (same size and K); a copy when there
-  // is no distortion.
+  // The whole image resampled to the undistorted geometry (same size and K, bilinear); a copy when
+  // there is no distortion. The image must be width x height (CHECKed: LoadFrameImage ensures it).
   cv::Mat UndistortImage(const cv::Mat& image) const;
 };
 

@@ -26,8 +26,11 @@ namespace fs = std::filesystem;
 
 // T_base_camera's rotation block must satisfy |R^T R - I| below this (files hold ~6+ digits).
 constexpr double kRotationTolerance = 1e-5;
-// Timestamps are read from decimal text, so a difference of exactly 1 ms may come out a hair over.
-constexpr double kTimestampSlack = 1e-9;
+// Timestamps are read from decimal text, so a difference of exactly 1 ms may come out a hair over:
+// by up to a few ulps of the timestamp, ~1e-7 s for Unix times (1.6e9 s).
+double TimestampSlack(double timestamp) {
+  return 1e-9 + 4 * std::numeric_limits<double>::epsilon() * std::abs(timestamp);
+}
 
 // The shortest of %.15g..%.17g that reads back to the same double ("10.1", not "10.099999999999999").
 std::string FormatNumber(double value) {
@@ -211,7 +214,7 @@ int NearestPose(const std::vector<StampedPose>& poses, double timestamp, double*
       best = static_cast<int>(it - poses.begin());
     }
   }
-  return *nearest_difference <= kTimestampTolerance + kTimestampSlack ? best : -1;
+  return *nearest_difference <= kTimestampTolerance + TimestampSlack(timestamp) ? best : -1;
 }
 
 Status ReadImageList(const std::string& directory, const std::string& path, std::vector<Frame>* frames,

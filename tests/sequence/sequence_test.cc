@@ -127,6 +127,15 @@ TEST_F(SequenceTest, ReadsValidSequenceAndAssociatesNearestPoseWithin1ms) {
   EXPECT_EQ(sequence_.frames[1].timestamp, 10.1);
 }
 
+TEST_F(SequenceTest, UnixTimestampsExactly1msApartAreAssociated) {
+  // At 1.6e9 s a double resolves ~2e-7 s, so "1 ms" read from text is not exactly 1e-3.
+  WriteText(Path("images.txt"), "1600000000.100 images/000000.png\n1600000000.200 images/000001.png\n");
+  WriteText(Path("odometry.txt"), "1600000000.101 0 0 0 0 0 0 1\n1600000000.199 0 0 0 0 0 0 1\n");
+  WriteText(Path("groundtruth.txt"), "1600000000.099 0 0 0 0 0 0 1\n1600000000.201 0 0 0 0 0 0 1\n");
+  const Status status = Read();
+  EXPECT_TRUE(status.ok()) << status.message();
+}
+
 TEST_F(SequenceTest, WithoutGroundtruthFramesHaveNone) {
   std::filesystem::remove(Path("groundtruth.txt"));
   ASSERT_TRUE(Read().ok());
