@@ -1,0 +1,200 @@
+#include "frontend/junctions/junction_detector.h"
+
+#include <algorithm>
+#include <cmath>
+#include <utility>
+#include <vector>
+
+#include <glog/logging.h>
+
+#include "frontend/junctions/classification.h"
+#include "frontend/junctions/intersection.h"
+#include "frontend/junctions/pair_probability.h"
+#include "frontend/junctions/segment_grid.h"
+
+namespace sfm {
+namespace {
+
+// A segment shorter than a pixel has no direction worth intersecting.
+constexpr double kMinSegmentLengthPx = 1.0;
+// Widens the candidate search a little so that rounding never drops a pair at the exact limit.
+constexpr double kSearchMarginPx = 0.01;
+
+// A node of the pair graph: one part (end-point 0, end-point 1, interior) of one segment.
+int NodeOf(int segment, Contact contact) { return 3 * segment + static_cast<int>(contact); }
+int SegmentOf(int node) { return node / 3; }
+Contact ContactOf(int node) { return static_cast<Contact>(node % 3); }
+int NodeA(const PairHit& hit) { return NodeOf(hit.segment_a, hit.contact_a); }
+int NodeB(const PairHit& hit) { return NodeOf(hit.segment_b, hit.contact_b); }
+int OtherNode(const PairHit& hit, int node) { return NodeA(hit) == node ? NodeB(hit) : NodeA(hit); }
+
+// The pair graph: hits, and for each node the hits touching it.
+class PairGraph {
+ public:
+  PairGraph(std::vector<PairHit> hits, int num_nodes) : hits_(std::move(hits)), begin_(num_nodes + 1, 0) {
+    for (const PairHit& hit : hits_) {
+      ++begin_[NodeA(hit) + 1];
+      ++begin_[NodeB(hit) + 1];
+    }
+    for (int v = 0; v < num_nodes; ++v) begin_[v + 1] += begin_[v];
+    incident_.resize(2 * hits_.size());
+    std::vector<int> fill(begin_.begin(), begin_.end() - 1);
+    for (int h = 0; h < static_cast<int>(hits_.size()); ++h) {
+      incident_[fill[NodeA(hits_[h])]++] = h;
+      incident_[fill[NodeB(hits_[h])]++] = h;
+    }
+  }
+
+  const std::vector<PairHit>& hits() const { return hits_; }
+  const PairHit& hit(int h) const { return hits_[h]; }
+  // Hits touching node v: incident(v)[0 .. degree(v)).
+  const int* incident(int v) const { return incident_.data() + begin_[v]; }
+  int degree(int v) const { return begin_[v + 1] - begin_[v]; }
+
+  // The hit joining nodes u and v, or -1.
+  int Between(int u, int v) const {
+    for (int k = 0; k < degree(u); ++k) {
+      if (OtherNode(hit(incident(u)[k]), u) == v) return incident(u)[k];
+    }
+    return -1;
+  }
+
+ private:
+  std::vector<PairHit> hits_;
+  std::vector<int> begin_;
+  std::vector<int> incident_;
+};
+
+// A junction being merged: member nodes and the hits among them.
+struct Group {
+  std::vector<int> nodes;
+  std::vector<int> hits;
+  double weight = 0;  // sum of the located hits' probabilities
+  Eigen::Vector2d weighted_sum = Eigen::Vector2d::Zero();
+  double score = 0;  // sum of all hits' probabilities
+
+  void Add(const PairHit& hit, int index) {
+    hits.push_back(index);
+    score += hit.probability;
+    if (hit.location) {
+      weight += hit.probability;
+      weighted_sum += hit.probability * *hit.location;
+    }
+  }
+  bool Located() const { return weight > 0; }
+  Eigen::Vector2d Location() const { return weighted_sum / weight; }
+  bool HasSegment(int segment) const {
+    return std::any_of(nodes.begin(), nodes.end(), [&](int v) { return SegmentOf(v) == segment; });
+  }
+};
+
+// The node that can join `group` with the largest sum of pair probabilities, with its hits to the
+// members, or -1: it must pass the pair test with every member (a free end-point or an interior,
+// of a segment not yet in the group), through hits no other junction took, and each located hit
+// must lie within max_gap of the group's location.
+int BestJoiner(const PairGraph& graph, const Group& group, const std::vector<bool>& taken_end,
+               const std::vector<bool>& taken_hit, double max_gap, std::vector<int>* joiner_hits) {
+  int best = -1;
+  double best_sum = 0;
+  std::vector<int> hits;
+  const int anchor = group.nodes.front();
+  for (int k = 0; k < graph.degree(anchor); ++k) {
+    const int candidate = OtherNode(graph.hit(graph.incident(anchor)[k]), anchor);
+    if (taken_end[candidate] || group.HasSegment(SegmentOf(candidate))) continue;
+    hits.clear();
+    double sum = 0;
+    for (int member : group.nodes) {
+      const int h = graph.Between(candidate, member);
+      if (h < 0 || taken_hit[h]) break;
+      const PairHit& hit = graph.hit(h);
+      if (hit.location && group.Located() && (*hit.location - group.Location()).norm() > max_gap) break;
+      hits.push_back(h);
+      sum += hit.probability;
+    }
+    if (hits.size() == group.nodes.size() && sum > best_sum) {
+      best = candidate;
+      best_sum = sum;
+      *joiner_hits = hits;
+    }
+  }
+  return best;
+}
+
+// The junction of a merged group: its segments from the location to the member segments' far
+// end-points, clockwise, typed.
+Junction MakeJunction(const Group& group, const std::vector<SegmentLine>& lines, int id,
+                      double collinear_tolerance_rad) {
+  Junction junction;
+  junction.id = id;
+  junction.location = group.Location();
+  junction.score = group.score;
+  for (int node : group.nodes) {
+    const int s = SegmentOf(node);
+    const Contact contact = ContactOf(node);
+    if (contact != Contact::kEnd1) junction.segments.push_back({lines[s].p1, s});
+    if (contact != Contact::kEnd0) junction.segments.push_back({lines[s].p0, s});
+  }
+  OrderClockwise(&junction);
+  junction.type = ClassifyJunction(junction, collinear_tolerance_rad);
+  return junction;
+}
+
+}  // namespace
+
+Junctions DetectJunctions(const LineSegments& segments, const JunctionDetectorOptions& options) {
+  const Status status = options.Check();
+  CHECK(status.ok()) << status.message();
+  const int n = static_cast<int>(segments.size());
+  std::vector<SegmentLine> lines;
+  lines.reserve(n);
+  std::vector<bool> use(n);
+  for (int i = 0; i < n; ++i) {
+    lines.emplace_back(segments[i]);
+    use[i] =
+        segments[i].p0.allFinite() && segments[i].p1.allFinite() && lines[i].length >= kMinSegmentLengthPx;
+  }
+
+  std::vector<PairHit> hits;
+  for (const auto& [a, b] : CandidatePairs(lines, use, options.max_gap_px + kSearchMarginPx,
+                                           options.collinear_max_offset_px + kSearchMarginPx)) {
+    if (std::optional<PairHit> hit = TestPair(lines, a, b, options)) hits.push_back(*hit);
+  }
+  const PairGraph graph(std::move(hits), 3 * n);
+
+  // Strongest pairs seed first; ties keep the input order, so the output is deterministic.
+  std::vector<int> order(graph.hits().size());
+  for (int h = 0; h < static_cast<int>(order.size()); ++h) order[h] = h;
+  std::stable_sort(order.begin(), order.end(),
+                   [&](int a, int b) { return graph.hit(a).probability > graph.hit(b).probability; });
+
+  // End-point nodes are exclusive; interior nodes are never marked, a bar may hold several T's.
+  std::vector<bool> taken_end(3 * n, false);
+  std::vector<bool> taken_hit(graph.hits().size(), false);
+  const double collinear_tolerance_rad = options.collinear_tolerance_deg * M_PI / 180.0;
+  Junctions junctions;
+  std::vector<int> joiner_hits;
+  for (int seed : order) {
+    const PairHit& hit = graph.hit(seed);
+    if (taken_hit[seed] || taken_end[NodeA(hit)] || taken_end[NodeB(hit)]) continue;
+    Group group;
+    group.nodes = {NodeA(hit), NodeB(hit)};
+    group.Add(hit, seed);
+    while (true) {
+      const int joiner = BestJoiner(graph, group, taken_end, taken_hit, options.max_gap_px, &joiner_hits);
+      if (joiner < 0) break;
+      group.nodes.push_back(joiner);
+      for (int h : joiner_hits) group.Add(graph.hit(h), h);
+    }
+    // Collinear pieces alone are one broken line, not a junction.
+    if (!group.Located()) continue;
+    for (int node : group.nodes) {
+      if (ContactOf(node) != Contact::kThrough) taken_end[node] = true;
+    }
+    for (int h : group.hits) taken_hit[h] = true;
+    junctions.push_back(
+        MakeJunction(group, lines, static_cast<int>(junctions.size()), collinear_tolerance_rad));
+  }
+  return junctions;
+}
+
+}  // namespace sfm

@@ -1,0 +1,238 @@
+#include "frontend/junctions/junction_detector.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <random>
+
+#include <gtest/gtest.h>
+
+namespace sfm {
+namespace {
+
+LineSegment Segment(double x0, double y0, double x1, double y1) {
+  LineSegment s;
+  s.p0 = Eigen::Vector2d(x0, y0);
+  s.p1 = Eigen::Vector2d(x1, y1);
+  return s;
+}
+
+// A segment pointing away from `center` at image angle angle_deg (y down), stopping `gap` px short
+// of it and `gap + 40` px long; the far end-point first.
+LineSegment Spoke(const Eigen::Vector2d& center, double angle_deg, double gap) {
+  const Eigen::Vector2d d(std::cos(angle_deg * M_PI / 180), std::sin(angle_deg * M_PI / 180));
+  LineSegment s;
+  s.p0 = center + (gap + 40) * d;
+  s.p1 = center + gap * d;
+  return s;
+}
+
+JunctionDetectorOptions Options() {
+  JunctionDetectorOptions options;
+  options.endpoint_model.lambda = 1.0;
+  options.endpoint_model.mu = 0.2;
+  return options;
+}
+
+Junctions DetectSpokes(std::initializer_list<double> angles, double gap) {
+  const Eigen::Vector2d center(200, 150);
+  LineSegments segments;
+  for (double a : angles) segments.push_back(Spoke(center, a, gap));
+  return DetectJunctions(segments, Options());
+}
+
+TEST(JunctionDetectorTest, L) {
+  // a stops 3 px short of (13, 0), b 2 px: probability e^(0.2*-3) e^(0.2*-2) = e^-1.
+  const Junctions junctions = DetectJunctions({Segment(0, 0, 10, 0), Segment(13, 20, 13, 2)}, Options());
+  ASSERT_EQ(junctions.size(), 1u);
+  const Junction& j = junctions[0];
+  EXPECT_EQ(j.id, 0);
+  EXPECT_EQ(j.type, JunctionType::kL);
+  EXPECT_NEAR((j.location - Eigen::Vector2d(13, 0)).norm(), 0, 1e-12);
+  EXPECT_NEAR(j.score, std::exp(-1.0), 1e-12);
+  // Clockwise on screen from the arm pointing down (b's far end) to the one pointing left (a's).
+  ASSERT_EQ(j.NumSegments(), 2);
+  EXPECT_EQ(j.segments[0].line_segment, 1);
+  EXPECT_EQ(j.segments[0].end, Eigen::Vector2d(13, 20));
+  EXPECT_EQ(j.segments[1].line_segment, 0);
+  EXPECT_EQ(j.segments[1].end, Eigen::Vector2d(0, 0));
+}
+
+TEST(JunctionDetectorTest, Y) {
+  const Junctions junctions = DetectSpokes({270, 30, 150}, 3);
+  ASSERT_EQ(junctions.size(), 1u);
+  EXPECT_EQ(junctions[0].type, JunctionType::kY);
+  EXPECT_NEAR((junctions[0].location - Eigen::Vector2d(200, 150)).norm(), 0, 1e-9);
+  EXPECT_NEAR(junctions[0].score, 3 * std::exp(-1.2), 1e-12);  // three pairs, each e^(0.2*-3)^2
+}
+
+TEST(JunctionDetectorTest, Arrow) {
+  const Junctions junctions = DetectSpokes({0, 60, 120}, 3);
+  ASSERT_EQ(junctions.size(), 1u);
+  EXPECT_EQ(junctions[0].type, JunctionType::kArrow);
+  EXPECT_EQ(junctions[0].NumSegments(), 3);
+}
+
+TEST(JunctionDetectorTest, TSplitsTheBarAndReportsNoL) {
+  // Bar along y = 50, stem from below stopping 3 px short of it.
+  const Junctions junctions = DetectJunctions({Segment(0, 50, 100, 50), Segment(50, 100, 50, 53)}, Options());
+  ASSERT_EQ(junctions.size(), 1u);
+  const Junction& j = junctions[0];
+  EXPECT_EQ(j.type, JunctionType::kT);
+  EXPECT_NEAR((j.location - Eigen::Vector2d(50, 50)).norm(), 0, 1e-12);
+  EXPECT_NEAR(j.score, std::exp(-0.6), 1e-12);  // only the stem moves
+  // Clockwise: the bar's right half, the stem (down), the bar's left half.
+  ASSERT_EQ(j.NumSegments(), 3);
+  EXPECT_EQ(j.segments[0].end, Eigen::Vector2d(100, 50));
+  EXPECT_EQ(j.segments[0].line_segment, 0);
+  EXPECT_EQ(j.segments[1].end, Eigen::Vector2d(50, 100));
+  EXPECT_EQ(j.segments[1].line_segment, 1);
+  EXPECT_EQ(j.segments[2].end, Eigen::Vector2d(0, 50));
+  EXPECT_EQ(j.segments[2].line_segment, 0);
+}
+
+TEST(JunctionDetectorTest, TWithABarBrokenAtTheJunction) {
+  const Junctions junctions = DetectJunctions(
+      {Segment(0, 50, 47, 50), Segment(100, 50, 53, 50), Segment(50, 100, 50, 53)}, Options());
+  ASSERT_EQ(junctions.size(), 1u);
+  EXPECT_EQ(junctions[0].type, JunctionType::kT);
+  EXPECT_NEAR((junctions[0].location - Eigen::Vector2d(50, 50)).norm(), 0, 1e-12);
+  // Two stem-piece pairs and the pieces' own continuation (gap 6), each e^-1.2.
+  EXPECT_NEAR(junctions[0].score, 3 * std::exp(-1.2), 1e-12);
+}
+
+TEST(JunctionDetectorTest, TNearTheBarsEndIsAnL) {
+  // The stem meets the bar 1 px inside its end (less than min_arm_px): the bar's end moves.
+  const Junctions junctions = DetectJunctions({Segment(0, 50, 51, 50), Segment(50, 100, 50, 53)}, Options());
+  ASSERT_EQ(junctions.size(), 1u);
+  EXPECT_EQ(junctions[0].type, JunctionType::kL);
+  EXPECT_NEAR(junctions[0].score, std::exp(-1.0 - 0.6), 1e-12);
+}
+
+TEST(JunctionDetectorTest, XFromFourEnds) {
+  const Junctions junctions = DetectSpokes({0, 90, 180, 270}, 3);
+  ASSERT_EQ(junctions.size(), 1u);
+  EXPECT_EQ(junctions[0].type, JunctionType::kX);
+  EXPECT_EQ(junctions[0].NumSegments(), 4);
+  EXPECT_NEAR((junctions[0].location - Eigen::Vector2d(200, 150)).norm(), 0, 1e-9);
+}
+
+TEST(JunctionDetectorTest, XFromTwoCrossingSegments) {
+  const Junctions junctions = DetectJunctions({Segment(0, 0, 100, 100), Segment(0, 100, 100, 0)}, Options());
+  ASSERT_EQ(junctions.size(), 1u);
+  EXPECT_EQ(junctions[0].type, JunctionType::kX);
+  EXPECT_EQ(junctions[0].NumSegments(), 4);
+  EXPECT_NEAR((junctions[0].location - Eigen::Vector2d(50, 50)).norm(), 0, 1e-12);
+  EXPECT_DOUBLE_EQ(junctions[0].score, 1.0);
+}
+
+TEST(JunctionDetectorTest, N) {
+  const Junctions junctions = DetectSpokes({0, 72, 144, 216, 288}, 3);
+  ASSERT_EQ(junctions.size(), 1u);
+  EXPECT_EQ(junctions[0].type, JunctionType::kN);
+  EXPECT_EQ(junctions[0].NumSegments(), 5);
+  EXPECT_NEAR(junctions[0].score, 10 * std::exp(-1.2), 1e-12);
+}
+
+TEST(JunctionDetectorTest, NoJunction) {
+  EXPECT_TRUE(DetectJunctions({}, Options()).empty());
+  // Ends 7 px short each: e^-2.8 < 0.1.
+  EXPECT_TRUE(DetectJunctions({Segment(0, 0, 10, 0), Segment(17, 30, 17, 7)}, Options()).empty());
+  // One line broken in two is not a junction.
+  EXPECT_TRUE(DetectJunctions({Segment(0, 0, 47, 0), Segment(53, 0, 100, 0)}, Options()).empty());
+  // Degenerate and non-finite segments are ignored.
+  EXPECT_TRUE(
+      DetectJunctions({Segment(5, 5, 5, 5), Segment(0, 0, NAN, 3), Segment(0, 0, 10, 0)}, Options()).empty());
+}
+
+TEST(JunctionDetectorTest, AnEndPointJoinsOneJunction) {
+  // a's end (10, 0) could close an L with b at (12, 0) (e^-0.8) or with c at (9, 0) (e^-1.6);
+  // b and c are parallel, 3 px apart: no 3-junction. The stronger L wins, c is left alone.
+  const Junctions junctions =
+      DetectJunctions({Segment(0, 0, 10, 0), Segment(12, -20, 12, -2), Segment(9, 20, 9, 3)}, Options());
+  ASSERT_EQ(junctions.size(), 1u);
+  EXPECT_NEAR((junctions[0].location - Eigen::Vector2d(12, 0)).norm(), 0, 1e-12);
+  EXPECT_NEAR(junctions[0].score, std::exp(-0.8), 1e-12);
+}
+
+TEST(JunctionDetectorTest, BarHoldsATAndEndsInAnL) {
+  const Junctions junctions =
+      DetectJunctions({Segment(0, 50, 100, 50), Segment(50, 100, 50, 53), Segment(0, 100, 0, 52)}, Options());
+  ASSERT_EQ(junctions.size(), 2u);
+  std::vector<JunctionType> types = {junctions[0].type, junctions[1].type};
+  std::sort(types.begin(), types.end());
+  EXPECT_EQ(types, (std::vector<JunctionType>{JunctionType::kL, JunctionType::kT}));
+}
+
+// Drawings of cubes seen from a corner: a hexagon outline with three inner edges meeting at its
+// centre, giving a Y at the centre, an ARROW at every other outline vertex and an L between.
+struct CubeScene {
+  LineSegments segments;
+  std::vector<Eigen::Vector2d> vertices;
+  std::vector<JunctionType> types;
+};
+
+CubeScene MakeCubes(int columns, int rows, double end_noise_px, std::mt19937* rng) {
+  std::uniform_real_distribution<double> gap(0.5, 4.0);
+  std::normal_distribution<double> noise(0.0, end_noise_px);
+  std::bernoulli_distribution flip(0.5);
+  CubeScene scene;
+  auto add = [&](const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+    const Eigen::Vector2d d = (b - a).normalized();
+    LineSegment s;
+    s.p0 = a + gap(*rng) * d + Eigen::Vector2d(noise(*rng), noise(*rng));
+    s.p1 = b - gap(*rng) * d + Eigen::Vector2d(noise(*rng), noise(*rng));
+    if (flip(*rng)) std::swap(s.p0, s.p1);
+    scene.segments.push_back(s);
+  };
+  for (int r = 0; r < rows; ++r) {
+    for (int c = 0; c < columns; ++c) {
+      const Eigen::Vector2d center(60 + 100 * c, 60 + 100 * r);
+      Eigen::Vector2d hexagon[6];
+      for (int k = 0; k < 6; ++k) {
+        const double a = (-90 + 60 * k) * M_PI / 180;
+        hexagon[k] = center + 40 * Eigen::Vector2d(std::cos(a), std::sin(a));
+        scene.vertices.push_back(hexagon[k]);
+        scene.types.push_back(k % 2 == 0 ? JunctionType::kArrow : JunctionType::kL);
+      }
+      scene.vertices.push_back(center);
+      scene.types.push_back(JunctionType::kY);
+      for (int k = 0; k < 6; ++k) add(hexagon[k], hexagon[(k + 1) % 6]);
+      for (int k = 0; k < 6; k += 2) add(center, hexagon[k]);
+    }
+  }
+  return scene;
+}
+
+TEST(JunctionDetectorTest, ThirtyCubesAllVerticesFast) {
+  std::mt19937 rng(7);
+  const CubeScene scene = MakeCubes(6, 5, /*end_noise_px=*/0.1, &rng);
+  ASSERT_EQ(scene.segments.size(), 270u);
+  const Junctions junctions = DetectJunctions(scene.segments, Options());
+  EXPECT_EQ(junctions.size(), scene.vertices.size());
+  for (size_t v = 0; v < scene.vertices.size(); ++v) {
+    const auto nearest =
+        std::min_element(junctions.begin(), junctions.end(), [&](const Junction& a, const Junction& b) {
+          return (a.location - scene.vertices[v]).norm() < (b.location - scene.vertices[v]).norm();
+        });
+    ASSERT_NE(nearest, junctions.end());
+    EXPECT_LT((nearest->location - scene.vertices[v]).norm(), /*max_error_px=*/1.0) << v;
+    EXPECT_EQ(nearest->type, scene.types[v]) << v;
+  }
+  for (size_t j = 0; j < junctions.size(); ++j) EXPECT_EQ(junctions[j].id, static_cast<int>(j));
+
+  constexpr int kRuns = 200;
+  const auto start = std::chrono::steady_clock::now();
+  size_t total = 0;
+  for (int run = 0; run < kRuns; ++run) total += DetectJunctions(scene.segments, Options()).size();
+  const double ms =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count() / kRuns;
+  EXPECT_EQ(total, kRuns * junctions.size());
+  std::printf("DetectJunctions on 270 segments: %.3f ms\n", ms);
+#ifdef NDEBUG
+  EXPECT_LT(ms, /*max_ms=*/1.0);
+#endif
+}
+
+}  // namespace
+}  // namespace sfm
