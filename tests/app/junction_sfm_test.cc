@@ -64,8 +64,7 @@ struct RunResult {
 };
 
 RunResult RunJunctionSfm(const std::string& arguments, const fs::path& scratch) {
-  const char* binary_dir = std::getenv("SFM_BINARY_DIR");
-  const std::string binary = std::string(binary_dir ? binary_dir : "build") + "/bin/junction_sfm";
+  const std::string binary = SFM_JUNCTION_SFM_BINARY;
   const fs::path err = scratch / "stderr.txt";
   const std::string command = binary + " --progress=false --minloglevel=2 " + arguments + " > /dev/null 2> " +
                               err.string();
