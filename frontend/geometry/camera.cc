@@ -1,11 +1,11 @@
 #include "frontend/geometry/camera.h"
 
+#include "frontend/geometry/image_undistorter.h"
+
 #include <cmath>
 
 #include <Eigen/LU>
 #include <glog/logging.h>
-#include <opencv2/calib3d.hpp>
-#include <opencv2/imgproc.hpp>
 
 namespace sfm {
 namespace {
@@ -84,19 +84,7 @@ Eigen::Vector2d Camera::DistortPixel(const Eigen::Vector2d& undistorted_pixel) c
 }
 
 cv::Mat Camera::UndistortImage(const cv::Mat& image) const {
-  CHECK_EQ(image.cols, width);
-  CHECK_EQ(image.rows, height);
-  if (!HasDistortion()) return image.clone();
-  const cv::Matx33d camera_matrix(fx, 0, cx, 0, fy, cy, 0, 0, 1);
-  const cv::Matx<double, 1, 5> coefficients(distortion[0], distortion[1], distortion[2], distortion[3],
-                                            distortion[4]);
-  // Float maps: the fixed-point CV_16SC2 maps quantise to 1/32 px.
-  cv::Mat map_x, map_y;
-  cv::initUndistortRectifyMap(camera_matrix, coefficients, cv::noArray(), camera_matrix, image.size(),
-                              CV_32FC1, map_x, map_y);
-  cv::Mat undistorted;
-  cv::remap(image, undistorted, map_x, map_y, cv::INTER_LINEAR, cv::BORDER_CONSTANT, cv::Scalar::all(0));
-  return undistorted;
+  return ImageUndistorter(*this).Apply(image).clone();
 }
 
 }  // namespace sfm

@@ -36,6 +36,7 @@ struct Camera {
 
   // The whole image resampled to the undistorted geometry (same size and K, bilinear); a copy when
   // there is no distortion. The image must be width x height (CHECKed: LoadFrameImage ensures it).
+  // For a sequence of frames use ImageUndistorter (image_undistorter.h), which builds its maps once.
   cv::Mat UndistortImage(const cv::Mat& image) const;
 };
 
