@@ -41,6 +41,22 @@ Junctions DetectSpokes(std::initializer_list<double> angles, double gap) {
   return DetectJunctions(segments, Options());
 }
 
+TEST(JunctionDetectorTest, OptionsCheck) {
+  EXPECT_TRUE(JunctionDetectorOptions().Check().ok());
+  JunctionDetectorOptions options;
+  options.min_probability = 0;
+  EXPECT_EQ(options.Check().message(), "JunctionDetectorOptions: min_probability must be in (0, 1]");
+  options = JunctionDetectorOptions();
+  options.endpoint_model.mu = -1;
+  EXPECT_FALSE(options.Check().ok());
+  options = JunctionDetectorOptions();
+  options.collinear_tolerance_deg = 0;
+  EXPECT_FALSE(options.Check().ok());
+  options = JunctionDetectorOptions();
+  options.max_gap_px = NAN;
+  EXPECT_FALSE(options.Check().ok());
+}
+
 TEST(JunctionDetectorTest, L) {
   // a stops 3 px short of (13, 0), b 2 px: probability e^(0.2*-3) e^(0.2*-2) = e^-1.
   const Junctions junctions = DetectJunctions({Segment(0, 0, 10, 0), Segment(13, 20, 13, 2)}, Options());
