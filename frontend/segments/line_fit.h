@@ -1,0 +1,67 @@
+// Orthogonal least-squares line fit with sums kept incrementally (the sub-pixel fit of paper
+// section 2 [20]: line parameters from all supporting edge points, end-points from the last ones).
+#pragma once
+
+#include <Eigen/Core>
+
+#include "frontend/segments/line_segment.h"
+
+namespace sfm {
+
+// A fitted infinite line: a point on it (the centroid of the fitted points) and a unit direction.
+struct FittedLine {
+  Eigen::Vector2d centroid = Eigen::Vector2d::Zero();  // pixels
+  Eigen::Vector2d direction = Eigen::Vector2d::UnitX();
+  double rms = 0;  // RMS perpendicular distance of the fitted points, pixels
+
+  // Signed perpendicular distance of p to the line, pixels (positive to the left of direction
+  // in image axes, i.e. along (-direction.y, direction.x)).
+  double Distance(const Eigen::Vector2d& p) const {
+    const Eigen::Vector2d d = p - centroid;
+    return direction.x() * d.y() - direction.y() * d.x();
+  }
+  // Orthogonal projection of p onto the line.
+  Eigen::Vector2d Project(const Eigen::Vector2d& p) const {
+    return centroid + direction * direction.dot(p - centroid);
+  }
+};
+
+// Sums of points for an orthogonal (total) least-squares fit. Coordinates are taken relative to the
+// first point added so that the second moments keep their precision far from the image origin.
+class LineFitAccumulator {
+ public:
+  void Add(double x, double y) {
+    if (n_ == 0) {
+      ox_ = x;
+      oy_ = y;
+    }
+    x -= ox_;
+    y -= oy_;
+    ++n_;
+    sx_ += x;
+    sy_ += y;
+    sxx_ += x * x;
+    sxy_ += x * y;
+    syy_ += y * y;
+  }
+  void Add(const Eigen::Vector2d& p) { Add(p.x(), p.y()); }
+  // Adds all the points of `other`, as if each had been added here.
+  void Merge(const LineFitAccumulator& other);
+  int count() const { return n_; }
+
+  // The line minimising the sum of squared perpendicular distances: it passes through the centroid
+  // along the principal axis of the scatter matrix. Needs count() >= 2.
+  FittedLine Fit() const;
+
+ private:
+  int n_ = 0;
+  double ox_ = 0, oy_ = 0;
+  double sx_ = 0, sy_ = 0, sxx_ = 0, sxy_ = 0, syy_ = 0;
+};
+
+// The segment of `line` between the projections of the two extreme points `first` and `last`
+// (paper section 2: end-points are the projections of the last edge pixels onto the fitted line).
+LineSegment SegmentOnLine(const FittedLine& line, const Eigen::Vector2d& first, const Eigen::Vector2d& last,
+                          int support);
+
+}  // namespace sfm
