@@ -4,18 +4,28 @@
 
 #include <string>
 
+#include "frontend/junctions/junction_options.h"
+#include "frontend/matching/matching_options.h"
+#include "frontend/segments/segment_detector.h"
 #include "frontend/util/status.h"
 
 namespace sfm {
 
 struct PipelineOptions {
-  std::string sequence_dir;  // a SPEC section 1 sequence directory
-  std::string output_dir;    // created if needed; existing files of the same names are replaced
-  bool show_progress = true; // a progress line on stderr (only when stderr is a terminal)
+  std::string sequence_dir;   // a SPEC section 1 sequence directory
+  std::string output_dir;     // created if needed; existing files of the same names are replaced
+  bool show_progress = true;  // a progress line on stderr (only when stderr is a terminal)
+  SegmentDetectorOptions segments;
+  JunctionDetectorOptions junctions;
+  MatchingOptions matching;
+
+  // OK, or a message naming the first bad setting.
+  Status Check() const;
 };
 
-// Runs everything. All input is read and validated before any output file is written, and each
-// output file is written atomically, so a failure never leaves a half-written file.
+// Runs everything. All input is read and validated, and every stage has run, before any output
+// file is written; each output file is written atomically. So a failure never leaves a
+// half-written file.
 Status RunPipeline(const PipelineOptions& options);
 
 }  // namespace sfm
