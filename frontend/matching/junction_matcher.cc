@@ -1,0 +1,40 @@
+#include "frontend/matching/junction_matcher.h"
+
+#include <optional>
+
+#include <glog/logging.h>
+
+#include "frontend/matching/junction_similarity.h"
+#include "frontend/matching/similarity_table.h"
+#include "frontend/matching/topology_similarity.h"
+
+namespace sfm {
+
+std::vector<JunctionMatch> MatchJunctions(const Junctions& a, const TopologyGraph& graph_a, const Junctions& b,
+                                         const TopologyGraph& graph_b, const Eigen::Matrix3d& F,
+                                         const MatchingOptions& options) {
+  const Status status = options.Check();
+  CHECK(status.ok()) << status.message();
+  CHECK(F.allFinite()) << "F:\n" << F;
+  const int num_a = static_cast<int>(a.size());
+  const int num_b = static_cast<int>(b.size());
+  const JunctionSimilarity similarity(a, b, F, options);
+  SimilarityTable table(num_a, num_b, [&similarity](int i, int j) { return similarity.Rho(i, j); });
+  std::optional<TopologySimilarity> topology;
+  if (options.use_topology) topology.emplace(a, graph_a, b, graph_b, &table);
+
+  // Step 1 of section 4.4: the candidate list S. sigma = rho = 0 where rho is (C is empty then).
+  std::vector<JunctionMatch> candidates;
+  for (int i = 0; i < num_a; ++i) {
+    for (int j = 0; j < num_b; ++j) {
+      const PairSimilarity& rho = table.Get(i, j);
+      if (!rho.Matched()) continue;
+      const double similarity_ij = topology ? topology->Sigma(i, j) : rho.rho;
+      if (similarity_ij > options.tau1) candidates.push_back({i, j, similarity_ij, rho.shift});
+    }
+  }
+  // Step 2: the mutual test of (38).
+  return SelectMatches(candidates, num_a, num_b, options.tau1, options.tau2);
+}
+
+}  // namespace sfm

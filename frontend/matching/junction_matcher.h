@@ -1,0 +1,23 @@
+// Junction matching between two frames (paper section 4): the entry point of sfm_matching.
+#pragma once
+
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "frontend/junctions/junction.h"
+#include "frontend/matching/matching_options.h"
+#include "frontend/matching/matching_rule.h"
+
+namespace sfm {
+
+// Matches junctions a (image 1) with junctions b (image 2), x2^T F x1 = 0 (F from calibration and
+// odometry, undistorted pixels): rho (34) for the P x Q pairs (pairs with different segment counts
+// or farther than R from each other's epipolar line rejected first), sigma (section 4.2) on the
+// topology graphs where options.use_topology, then rule (38) both ways. Matches come in increasing
+// index_a. options must pass Check() (CHECKed); the graphs must describe a and b.
+std::vector<JunctionMatch> MatchJunctions(const Junctions& a, const TopologyGraph& graph_a, const Junctions& b,
+                                         const TopologyGraph& graph_b, const Eigen::Matrix3d& F,
+                                         const MatchingOptions& options);
+
+}  // namespace sfm

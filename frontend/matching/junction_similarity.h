@@ -1,0 +1,64 @@
+// Similarity of two junctions under the epipolar constraint, rho(J, J') (paper section 4.1, eq.
+// 31-34), with the physical constraints of section 4.3 applied under each segment correspondence.
+#pragma once
+
+#include <optional>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "frontend/junctions/junction.h"
+#include "frontend/matching/epipolar_transfer.h"
+#include "frontend/matching/matching_options.h"
+
+namespace sfm {
+
+// Eq. (31) (exponential, w such that exp(-w R) = 0.01) or its linear form (footnote 10), for the
+// distances d, d' (pixels) of each junction location from the epipolar line of the other's. Both
+// must be <= R (pixels).
+double Rho1(double d, double d_prime, double R, Rho1Kind kind);
+
+// rho of a pair and the shift k that maximised M(k) in (33): segment i of J corresponds to segment
+// (i + shift) mod N of J'. shift = -1: the pair is unmatched (different segment counts, d or d' > R,
+// or no shift passes (17), (36) and (37)), and rho = 0.
+struct PairSimilarity {
+  double rho = 0;
+  int shift = -1;
+  bool Matched() const { return shift >= 0; }
+};
+
+// rho for the pairs of two junction sets, with everything that depends on one junction only (its
+// segments, the epipolar lines of its location and end-points) computed once.
+class JunctionSimilarity {
+ public:
+  // x2^T F x1 = 0 for x1 in the image of `a`, x2 in that of `b`.
+  JunctionSimilarity(const Junctions& a, const Junctions& b, const Eigen::Matrix3d& F,
+                     const MatchingOptions& options);
+
+  // Eq. (34): rho = 0.5 (rho1 + rho2), rho2 = max_k M(k) (33) over the shifts allowed.
+  PairSimilarity Rho(int index_a, int index_b) const;
+
+  // Eq. (32): M(k) = (1/N) sum_i H(p_i, p'_j) H'(p_i, p'_j), j = (i + k) mod N. nullopt when the
+  // shift violates (36) or (37) or a segment pairing fails (17); the segment counts must agree.
+  std::optional<double> M(int index_a, int index_b, int shift) const;
+
+ private:
+  // One image's junctions: segments of junction j at [first[j], first[j] + count[j]).
+  struct Side {
+    std::vector<int> first;
+    std::vector<int> count;
+    std::vector<Eigen::Vector2d> location;       // p0
+    std::vector<Eigen::Vector3d> location_line;  // epipolar line of p0 in the other image, |(a,b)| = 1
+    std::vector<OrientedSegment> segments;
+    std::vector<Eigen::Vector2d> directions;      // segments[k].direction, contiguous for (36)-(37)
+    std::vector<EndpointEpipolar> epipolar;       // of each end-point, into the other image
+  };
+  static Side MakeSide(const Junctions& junctions, const Eigen::Matrix3d& F);
+
+  MatchingOptions options_;
+  double min_sin_;  // sin(options.cyclic_order_min_angle_deg)
+  Side side_a_;     // lines through F
+  Side side_b_;     // lines through F^T
+};
+
+}  // namespace sfm

@@ -1,0 +1,60 @@
+// Settings of junction matching (paper section 4). docs/matching.md says how each default was chosen.
+#pragma once
+
+#include <cmath>
+#include <string>
+
+#include "frontend/segments/endpoint_model.h"
+#include "frontend/util/status.h"
+
+namespace sfm {
+
+// The two forms of rho1 in section 4.1.
+enum class Rho1Kind {
+  kExponential,  // eq. (31): 0.5*(exp(-w d) + exp(-w d')), exp(-w R) = 0.01
+  kLinear,       // footnote 10: 0.5*(2 - (d + d')/R), more tolerant of a poor epipolar geometry
+};
+
+struct MatchingOptions {
+  // R of section 4.1: largest distance of a junction location from the epipolar line of its
+  // partner's location; a pair farther than this either way is unmatched. Pixels.
+  double max_epipolar_distance_px = 10.0;
+  // tau1 of (38): a candidate pair needs a similarity above this. Unitless, >= 0.
+  double tau1 = 0.0;
+  // tau2 of (38): the chosen partner must beat every other candidate, both ways, by more than
+  // this. Unitless, >= 0.
+  double tau2 = 0.1;
+  Rho1Kind rho1_kind = Rho1Kind::kExponential;
+  // true: rule (38) on sigma (section 4.2, junction topology); false: on plain rho (34).
+  bool use_topology = true;
+  // f(t) of eq. (5), t = detected minus true end-point along the outward direction (eq. 8),
+  // pixels. Use the model junction detection uses.
+  EndpointModel endpoint_model;
+  // The epipolar line of an end-point counts as parallel to the partner segment (section 3.2, last
+  // paragraph) when, along the partner's length, it departs from the partner's line by at most
+  // this; nearer parallel than that the intersection p'e is set by noise. Pixels, > 0.
+  double parallel_tolerance_px = 1.0;
+  // (36) compares the turn from segment i to segment i+1 in both junctions; a pair of segments
+  // closer than this to collinear (the two halves of a T's bar) has no reliable turn and is not
+  // tested. Degrees, in [0, 45).
+  double cyclic_order_min_angle_deg = 5.0;
+
+  Status Check() const {
+    auto bad = [](const std::string& what) { return Status::Error("MatchingOptions: " + what); };
+    if (!(max_epipolar_distance_px > 0 && std::isfinite(max_epipolar_distance_px))) {
+      return bad("max_epipolar_distance_px must be finite and > 0");
+    }
+    if (!(tau1 >= 0 && std::isfinite(tau1))) return bad("tau1 must be finite and >= 0");
+    if (!(tau2 >= 0 && std::isfinite(tau2))) return bad("tau2 must be finite and >= 0");
+    if (!endpoint_model.Check()) return bad("endpoint_model needs finite lambda > 0 and mu > 0");
+    if (!(parallel_tolerance_px > 0 && std::isfinite(parallel_tolerance_px))) {
+      return bad("parallel_tolerance_px must be finite and > 0");
+    }
+    if (!(cyclic_order_min_angle_deg >= 0 && cyclic_order_min_angle_deg < 45)) {
+      return bad("cyclic_order_min_angle_deg must be in [0, 45)");
+    }
+    return Status::Ok();
+  }
+};
+
+}  // namespace sfm

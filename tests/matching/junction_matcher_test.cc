@@ -1,0 +1,232 @@
+// MatchJunctions end to end on synthetic two-view scenes, and its speed on 150 x 150 junctions.
+#include "frontend/matching/junction_matcher.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <numeric>
+#include <random>
+#include <string>
+
+#include <Eigen/Geometry>
+#include <gtest/gtest.h>
+
+#include "tests/matching/synthetic_views.h"
+
+namespace sfm {
+namespace {
+
+using testing::Junction3d;
+using testing::ProjectedJunction;
+using testing::TwoViews;
+
+// Both images of a synthetic scene; image 2's junctions in shuffled order.
+struct Scene {
+  TwoViews views;
+  std::vector<ProjectedJunction> projected_a, projected_b;  // projected_b in image 1's order
+  Junctions a, b;
+  TopologyGraph graph_a, graph_b;
+  std::vector<int> b_of_a;  // index in b of the partner of a[i]
+};
+
+TopologyGraph EmptyGraph(int num_junctions) {
+  TopologyGraph graph;
+  graph.edges_of_junction.resize(num_junctions);
+  return graph;
+}
+
+// The segment of a projected junction that comes from 3D arm `arm`.
+int SegmentOfArm(const ProjectedJunction& junction, int arm) {
+  const auto it = std::find(junction.arm_of_segment.begin(), junction.arm_of_segment.end(), arm);
+  return static_cast<int>(it - junction.arm_of_segment.begin());
+}
+
+// Projects, perturbs (end-points moved -3..+1 px along their segments, locations by 0.3 px), shuffles
+// image 2. rectangles: groups of four consecutive junctions that are the corners of a 3D rectangle
+// (arm 0 to the next corner, arm 1 to the previous), joined in the topology graphs by their sides.
+Scene MakeScene(const TwoViews& views, const std::vector<Junction3d>& junctions3d, int num_rectangles,
+                std::mt19937* rng) {
+  Scene scene;
+  scene.views = views;
+  const int n = static_cast<int>(junctions3d.size());
+  for (const Junction3d& junction3d : junctions3d) {
+    scene.projected_a.push_back(testing::ProjectJunction(views, 0, junction3d));
+    scene.projected_b.push_back(testing::ProjectJunction(views, 1, junction3d));
+    testing::Perturb(&scene.projected_a.back().junction, -3, 1, 0.3, rng);
+    testing::Perturb(&scene.projected_b.back().junction, -3, 1, 0.3, rng);
+  }
+  std::vector<int> a_of_b(n);
+  std::iota(a_of_b.begin(), a_of_b.end(), 0);
+  std::shuffle(a_of_b.begin(), a_of_b.end(), *rng);
+  scene.b_of_a.resize(n);
+  for (int j = 0; j < n; ++j) scene.b_of_a[a_of_b[j]] = j;
+  for (int i = 0; i < n; ++i) scene.a.push_back(scene.projected_a[i].junction);
+  for (int j = 0; j < n; ++j) scene.b.push_back(scene.projected_b[a_of_b[j]].junction);
+  scene.graph_a = EmptyGraph(n);
+  scene.graph_b = EmptyGraph(n);
+  for (int r = 0; r < num_rectangles; ++r) {
+    for (int c = 0; c < 4; ++c) {
+      const int from = 4 * r + c, to = 4 * r + (c + 1) % 4;
+      for (int image = 0; image < 2; ++image) {
+        const std::vector<ProjectedJunction>& projected = image == 0 ? scene.projected_a : scene.projected_b;
+        TopologyGraph& graph = image == 0 ? scene.graph_a : scene.graph_b;
+        const int index_from = image == 0 ? from : scene.b_of_a[from];
+        const int index_to = image == 0 ? to : scene.b_of_a[to];
+        graph.edges.push_back(
+            {index_from, SegmentOfArm(projected[from], 0), index_to, SegmentOfArm(projected[to], 1)});
+        graph.edges_of_junction[index_from].push_back(static_cast<int>(graph.edges.size()) - 1);
+        graph.edges_of_junction[index_to].push_back(static_cast<int>(graph.edges.size()) - 1);
+      }
+    }
+  }
+  return scene;
+}
+
+// Corners of a random 3D rectangle (0.6-1.6 m sides) whose corner junctions are well shaped in
+// both images, as four L junctions.
+std::vector<Junction3d> RandomRectangle(const TwoViews& views, std::mt19937* rng) {
+  std::uniform_real_distribution<double> x(-2, 2), y(-1.4, 1.4), z(4, 9), half(0.3, 0.8);
+  std::normal_distribution<double> gaussian(0, 1);
+  while (true) {
+    const Eigen::Vector3d center(x(*rng), y(*rng), z(*rng));
+    const Eigen::Vector3d u = Eigen::Vector3d(gaussian(*rng), gaussian(*rng), gaussian(*rng)).normalized();
+    const Eigen::Vector3d v =
+        u.cross(Eigen::Vector3d(gaussian(*rng), gaussian(*rng), gaussian(*rng))).normalized();
+    const double hu = half(*rng), hv = half(*rng);
+    const Eigen::Vector3d corners[4] = {center + hu * u + hv * v, center - hu * u + hv * v,
+                                        center - hu * u - hv * v, center + hu * u - hv * v};
+    std::vector<Junction3d> rectangle;
+    bool ok = true;
+    for (int c = 0; c < 4; ++c) {
+      rectangle.push_back({corners[c], {corners[(c + 1) % 4], corners[(c + 3) % 4]}});
+      for (int camera = 0; camera < 2; ++camera) {
+        ok = ok && testing::IsWellShaped(testing::ProjectJunction(views, camera, rectangle.back()).junction, views,
+                                         20, 25);
+      }
+    }
+    if (ok) return rectangle;
+  }
+}
+
+struct Score {
+  int correct = 0;  // right partner and right segment correspondence
+  int wrong = 0;
+};
+Score Evaluate(const Scene& scene, const std::vector<JunctionMatch>& matches) {
+  Score score;
+  for (const JunctionMatch& match : matches) {
+    const bool right = scene.b_of_a[match.index_a] == match.index_b &&
+                       match.shift == testing::TrueShift(scene.projected_a[match.index_a],
+                                                         scene.projected_b[match.index_a]);
+    ++(right ? score.correct : score.wrong);
+  }
+  return score;
+}
+
+// Image 2's pose off by 0.3 degrees and 1 cm, as odometry would be: F is then a few pixels wrong.
+Eigen::Matrix3d OdometryF(const TwoViews& views) {
+  TwoViews noisy = views;
+  noisy.world_T_camera2 = views.world_T_camera2 *
+                          Pose3(Eigen::AngleAxisd(0.3 * M_PI / 180, Eigen::Vector3d(1, 2, 0).normalized()).toRotationMatrix(),
+                                Eigen::Vector3d(0.01, 0, 0));
+  return noisy.F();
+}
+
+TEST(JunctionMatcherTest, MatchesAHandfulOfProjectedJunctions) {
+  std::mt19937 rng(11);
+  const TwoViews views = testing::MakeTwoViews();
+  std::vector<Junction3d> junctions3d;
+  for (int k = 0; k < 10; ++k) junctions3d.push_back(testing::RandomJunction3d(views, k % 2 ? 2 : 3, &rng));
+  const Scene scene = MakeScene(views, junctions3d, 0, &rng);
+  struct Variant {
+    std::string name;
+    MatchingOptions options;
+    Eigen::Matrix3d F;
+  };
+  std::vector<Variant> variants(4);
+  variants[0] = {"sigma, exact F", MatchingOptions(), views.F()};
+  variants[1] = {"rho, linear rho1, exact F", MatchingOptions(), views.F()};
+  variants[1].options.use_topology = false;
+  variants[1].options.rho1_kind = Rho1Kind::kLinear;
+  variants[2] = {"sigma, odometry F", MatchingOptions(), OdometryF(views)};
+  variants[3] = {"paper lab settings (R = 6), exact F", MatchingOptions(), views.F()};
+  variants[3].options.max_epipolar_distance_px = 6;
+  for (const Variant& variant : variants) {
+    const std::vector<JunctionMatch> matches =
+        MatchJunctions(scene.a, scene.graph_a, scene.b, scene.graph_b, variant.F, variant.options);
+    const Score score = Evaluate(scene, matches);
+    EXPECT_EQ(score.correct, 10) << variant.name;
+    EXPECT_EQ(score.wrong, 0) << variant.name;
+  }
+}
+
+TEST(JunctionMatcherTest, TwoNearIdenticalCandidatesGiveNoMatch) {
+  // Image 2 holds the true partner and a copy of it slid 1 px along the epipolar line of p0: rho
+  // is nearly the same for both (1 against 0.94), within tau2, so (38) refuses to choose.
+  std::mt19937 rng(12);
+  const TwoViews views = testing::MakeTwoViews();
+  const Junction3d junction3d = testing::RandomJunction3d(views, 3, &rng);
+  const Junctions a = {testing::ProjectJunction(views, 0, junction3d).junction};
+  Junction copy = testing::ProjectJunction(views, 1, junction3d).junction;
+  const Junctions single = {copy};
+  const Eigen::Vector3d line = views.F() * a[0].location.homogeneous();
+  const Eigen::Vector2d along = Eigen::Vector2d(-line.y(), line.x()).normalized();
+  copy.location += along;
+  for (JunctionSegment& segment : copy.segments) segment.end += along;
+  const Junctions b = {single[0], copy};
+  const MatchingOptions options;
+  EXPECT_EQ(MatchJunctions(a, EmptyGraph(1), single, EmptyGraph(1), views.F(), options).size(), 1u);
+  EXPECT_TRUE(MatchJunctions(a, EmptyGraph(1), b, EmptyGraph(2), views.F(), options).empty());
+}
+
+TEST(JunctionMatcherTest, RectanglesWithTopologyAndSpeedOn150Junctions) {
+  std::mt19937 rng(13);
+  const TwoViews views = testing::MakeTwoViews();
+  // 25 rectangles (100 L junctions joined by their sides) and 50 free Y junctions.
+  std::vector<Junction3d> junctions3d;
+  constexpr int kRectangles = 25;
+  for (int r = 0; r < kRectangles; ++r) {
+    for (const Junction3d& corner : RandomRectangle(views, &rng)) junctions3d.push_back(corner);
+  }
+  while (junctions3d.size() < 150) junctions3d.push_back(testing::RandomJunction3d(views, 3, &rng));
+  const Scene scene = MakeScene(views, junctions3d, kRectangles, &rng);
+  const Eigen::Matrix3d F = OdometryF(views);
+  int correct_with_sigma = 0;
+  for (const bool use_topology : {true, false}) {
+    MatchingOptions options;
+    options.use_topology = use_topology;
+    std::vector<JunctionMatch> matches;
+    std::vector<double> milliseconds;
+    for (int run = 0; run < 21; ++run) {
+      const auto start = std::chrono::steady_clock::now();
+      matches = MatchJunctions(scene.a, scene.graph_a, scene.b, scene.graph_b, F, options);
+      milliseconds.push_back(
+          std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+    }
+    std::sort(milliseconds.begin(), milliseconds.end());
+    const double median_ms = milliseconds[milliseconds.size() / 2];
+    const Score score = Evaluate(scene, matches);
+    const std::string name = use_topology ? "sigma" : "rho";
+    std::printf("150 x 150 junctions, %s: median %.3f ms (min %.3f) per pair of frames; %d correct, %d wrong\n",
+                name.c_str(), median_ms, milliseconds.front(), score.correct, score.wrong);
+    RecordProperty(name + "_median_ms", std::to_string(median_ms));
+    RecordProperty(name + "_correct", score.correct);
+    RecordProperty(name + "_wrong", score.wrong);
+    // The design target is 1 ms on one core; the bound leaves room for a loaded test machine.
+    EXPECT_LT(median_ms, 10.0) << name;
+    // Seeded figures (sigma 146 right, 1 wrong; rho 133 right, 2 wrong): with F 0.3 degrees off,
+    // a junction elsewhere on the epipolar line now and then beats the true partner's rho1.
+    if (use_topology) {
+      EXPECT_GE(score.correct, 140) << name;
+      EXPECT_LE(score.wrong, 2) << name;
+      correct_with_sigma = score.correct;
+    } else {
+      EXPECT_GE(score.correct, 125) << name;
+      EXPECT_LE(score.wrong, 4) << name;
+      EXPECT_GT(correct_with_sigma, score.correct);  // the paper's Table 2: sigma keeps more
+    }
+  }
+}
+
+}  // namespace
+}  // namespace sfm
