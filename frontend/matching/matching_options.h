@@ -24,7 +24,7 @@ struct MatchingOptions {
   // tau2 of (38): the chosen partner must beat every other candidate, both ways, by more than
   // this. Unitless, >= 0.
   double tau2 = 0.1;
-  Rho1Kind rho1_kind = Rho1Kind::kExponential;
+  Rho1Kind rho1_kind = Rho1Kind::kLinear;
   // true: rule (38) on sigma (section 4.2, junction topology); false: on plain rho (34).
   bool use_topology = true;
   // f(t) of eq. (5), t = detected minus true end-point along the outward direction (eq. 8),
