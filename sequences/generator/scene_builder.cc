@@ -56,14 +56,20 @@ class Builder {
   double Shade(const Eigen::Vector3d& n, double albedo) const { return options_.lighting.Shade(n, albedo); }
 
   // An albedo in [low, high) such that faces of the given normals differ in shade by at least
-  // min_contrast from every shade in `avoid` (the room's shell and what the object touches).
-  // Falls back to the best of the tries.
+  // min_contrast from each other and, as far as possible, from every shade in `avoid` (the floor,
+  // the walls and what the object stands on). 200 random tries: the first that meets both, else
+  // the one with the best background contrast among those whose own faces differ enough.
   double PickAlbedo(double low, double high, const std::vector<Eigen::Vector3d>& normals,
                     const std::vector<double>& avoid);
-  // A yaw in [low, high) for which the side and top faces of a box differ in light term by at
-  // least twice min_contrast, so that the box's own edges stay visible.
-  double PickYaw(double low, double high);
-  std::vector<double> ShellShades() const { return shell_shades_; }
+  // A yaw in base + [low, high) for which the side and top faces of a box differ in light term by at
+  // least min_contrast / 0.4, so that any albedo above 0.4 keeps the box's own edges visible.
+  double PickYaw(double base, double low, double high);
+  // Shades an object is seen against: the floor and the wall it stands at (every wall for an
+  // object in the middle of the room).
+  std::vector<double> Background(const Wall* wall) const {
+    if (wall == nullptr) return shell_shades_;
+    return {shell_shades_[0], Shade(wall->Inward3(), wall_albedo_)};
+  }
   std::vector<double> BoxShades(double yaw, double albedo) const;
 
   void BuildShell(const Eigen::Vector2d& floor_min, const Eigen::Vector2d& floor_max);
@@ -80,7 +86,7 @@ class Builder {
   // Boxes of decreasing size stacked on a base whose top is at `z` with footprint centre, yaw and
   // size. Returns the top of the stack.
   double StackBoxes(int object, const Eigen::Vector2d& centre, double yaw, double z, const Eigen::Vector2d& base_size,
-                  double base_albedo, int count, double max_top);
+                  double base_albedo, int count, double max_top, const std::vector<double>& background);
   void AddIsland(const Eigen::Vector2d& centre);
 
   const SceneOptions& options_;
@@ -92,29 +98,38 @@ class Builder {
 
 double Builder::PickAlbedo(double low, double high, const std::vector<Eigen::Vector3d>& normals,
                            const std::vector<double>& avoid) {
-  double best = low, best_margin = -1;
+  // Own faces: a hard constraint (they share wireframe edges). The background: as good as we can.
+  double best = high, best_own = -1, best_background = -1;
   for (int attempt = 0; attempt < 200; ++attempt) {
     const double albedo = random_.Uniform(low, high);
-    double margin = std::numeric_limits<double>::infinity();
-    for (const Eigen::Vector3d& n : normals) {
-      for (double shade : avoid) margin = std::min(margin, std::abs(Shade(n, albedo) - shade));
+    double own = std::numeric_limits<double>::infinity(), background = own;
+    for (size_t i = 0; i < normals.size(); ++i) {
+      const double shade_i = Shade(normals[i], albedo);
+      for (double shade : avoid) background = std::min(background, std::abs(shade_i - shade));
+      for (size_t j = i + 1; j < normals.size(); ++j) {
+        own = std::min(own, std::abs(shade_i - Shade(normals[j], albedo)));
+      }
     }
-    if (margin >= options_.min_contrast) return albedo;
-    if (margin > best_margin) {
-      best_margin = margin;
+    const bool own_ok = own >= options_.min_contrast;
+    if (own_ok && background >= options_.min_contrast) return albedo;
+    const bool better = own_ok ? (best_own < options_.min_contrast || background > best_background)
+                               : (best_own < options_.min_contrast && own > best_own);
+    if (better) {
       best = albedo;
+      best_own = own;
+      best_background = background;
     }
   }
   return best;
 }
 
-double Builder::PickYaw(double low, double high) {
-  double yaw = 0;
+double Builder::PickYaw(double base, double low, double high) {
+  double yaw = base;
   for (int attempt = 0; attempt < 200; ++attempt) {
-    yaw = random_.Uniform(low, high);
+    yaw = base + random_.Uniform(low, high);
     const Eigen::Vector3d a(std::cos(yaw), std::sin(yaw), 0), b(-std::sin(yaw), std::cos(yaw), 0);
     const double la = LightTerm(a), lb = LightTerm(b), lz = LightTerm(Eigen::Vector3d::UnitZ());
-    const double step = 2 * options_.min_contrast;
+    const double step = options_.min_contrast / 0.4;
     if (std::abs(la - lb) >= step && std::abs(la - lz) >= step && std::abs(lb - lz) >= step) return yaw;
   }
   return yaw;
@@ -139,15 +154,16 @@ void Builder::BuildShell(const Eigen::Vector2d& floor_min, const Eigen::Vector2d
     ceiling_albedo = random_.Uniform(0.8, 0.95);
     const double floor_shade = Shade(up, floor_albedo), ceiling_shade = Shade(up, ceiling_albedo);
     const double wall_x = Shade(ex, wall_albedo_), wall_y = Shade(ey, wall_albedo_);
-    const double c = options_.min_contrast;
+    // The shell's edges are the longest in the image: make them stand out well.
+    const double c = 2.5 * options_.min_contrast;
     if (std::abs(floor_shade - wall_x) >= c && std::abs(floor_shade - wall_y) >= c &&
         std::abs(ceiling_shade - wall_x) >= c && std::abs(ceiling_shade - wall_y) >= c &&
         std::abs(wall_x - wall_y) >= c) {
       break;
     }
   }
-  shell_shades_ = {Shade(up, floor_albedo), Shade(up, ceiling_albedo), Shade(ex, wall_albedo_),
-                   Shade(ey, wall_albedo_)};
+  // What furniture is seen against: the floor and the walls (the ceiling only meets the walls).
+  shell_shades_ = {Shade(up, floor_albedo), Shade(ex, wall_albedo_), Shade(ey, wall_albedo_)};
   const double x0 = floor_min.x(), y0 = floor_min.y(), x1 = floor_max.x(), y1 = floor_max.y();
   const Eigen::Vector3d b[4] = {{x0, y0, 0}, {x1, y0, 0}, {x1, y1, 0}, {x0, y1, 0}};
   const Eigen::Vector3d t[4] = {{x0, y0, h}, {x1, y0, h}, {x1, y1, h}, {x0, y1, h}};
@@ -230,7 +246,7 @@ double Builder::AddCabinet(const Wall& wall, double s0, double width) {
   const double depth = random_.Uniform(std::min(0.4, options_.max_object_depth), options_.max_object_depth);
   const double height = std::min(random_.Uniform(1.5, 2.0), options_.ceiling_height - 0.3);
   const std::vector<Eigen::Vector3d> normals = {wall.Along3(), wall.Inward3(), Eigen::Vector3d::UnitZ()};
-  const double albedo = PickAlbedo(0.3, 0.95, normals, ShellShades());
+  const double albedo = PickAlbedo(0.3, 0.95, normals, Background(&wall));
   const int id = scene_->AddObject("cabinet", /*obstacle=*/true);
   scene_->AddBox(id, wall.XY(s0 + 0.5 * width, kWallGap + 0.5 * depth), wall.Yaw(), 0,
                  {width, depth, height}, albedo, false);
@@ -259,7 +275,7 @@ double Builder::AddShelf(const Wall& wall, double s0, double width) {
   const double height = std::min(random_.Uniform(1.3, 1.9), options_.ceiling_height - 0.35);
   const double t = kBoardThickness;
   const std::vector<Eigen::Vector3d> normals = {wall.Along3(), wall.Inward3(), Eigen::Vector3d::UnitZ()};
-  const double albedo = PickAlbedo(0.3, 0.95, normals, ShellShades());
+  const double albedo = PickAlbedo(0.3, 0.95, normals, Background(&wall));
   const int id = scene_->AddObject("shelf", /*obstacle=*/true);
   const double yaw = wall.Yaw(), s1 = s0 + width, d0 = kWallGap, dm = d0 + 0.5 * depth;
   // Side panels, floor to `height`.
@@ -308,18 +324,21 @@ double Builder::AddShelf(const Wall& wall, double s0, double width) {
 }
 
 double Builder::StackBoxes(int object, const Eigen::Vector2d& centre, double yaw, double z,
-                         const Eigen::Vector2d& base_size, double base_albedo, int count, double max_top) {
+                           const Eigen::Vector2d& base_size, double base_albedo, int count, double max_top,
+                           const std::vector<double>& background) {
   Eigen::Vector2d size = base_size;
   std::vector<double> below = BoxShades(yaw, base_albedo);
   Eigen::Vector2d c = centre;
   for (int i = 0; i < count; ++i) {
     // Smaller than the box below so that, turned by up to 0.4 rad, it still stands on it.
-    const Eigen::Vector2d next(size.x() * random_.Uniform(0.45, 0.65), size.y() * random_.Uniform(0.45, 0.65));
+    Eigen::Vector2d next(size.x() * random_.Uniform(0.45, 0.65), size.y() * random_.Uniform(0.45, 0.65));
+    // Its diagonal must fit across the narrower side of the box below, whatever its turn.
+    if (next.norm() > size.minCoeff()) next *= size.minCoeff() / next.norm();
     const double height = random_.Uniform(0.12, 0.35);
     if (z + height > max_top) return z;
-    const double next_yaw = yaw + PickYaw(-0.4, 0.4);
+    const double next_yaw = PickYaw(yaw, -0.4, 0.4);
     std::vector<double> avoid = below;
-    for (double s : ShellShades()) avoid.push_back(s);
+    for (double s : background) avoid.push_back(s);
     const double albedo = PickAlbedo(0.15, 0.95,
                                      {{std::cos(next_yaw), std::sin(next_yaw), 0},
                                       {-std::sin(next_yaw), std::cos(next_yaw), 0},
@@ -343,12 +362,12 @@ double Builder::AddBoxStack(const Wall& wall, double s0, double width) {
   const double height = random_.Uniform(0.3, 0.6);
   const double yaw = wall.Yaw();
   const std::vector<Eigen::Vector3d> normals = {wall.Along3(), wall.Inward3(), Eigen::Vector3d::UnitZ()};
-  const double albedo = PickAlbedo(0.3, 0.95, normals, ShellShades());
+  const double albedo = PickAlbedo(0.3, 0.95, normals, Background(&wall));
   const int id = scene_->AddObject("box_stack", /*obstacle=*/true);
   scene_->AddBox(id, wall.XY(s0 + 0.5 * width, kWallGap + 0.5 * depth), yaw, 0, {width, depth, height}, albedo,
                  false);
   return StackBoxes(id, wall.XY(s0 + 0.5 * width, kWallGap + 0.5 * depth), yaw, height, {width, depth}, albedo,
-                    random_.UniformInt(0, 2), 1.0);
+                    random_.UniformInt(0, 2), 1.0, Background(&wall));
 }
 
 double Builder::AddTable(const Wall& wall, double s0, double width) {
@@ -356,7 +375,7 @@ double Builder::AddTable(const Wall& wall, double s0, double width) {
   const double height = random_.Uniform(0.72, 0.76), top = 0.035, leg = 0.05, inset = 0.03;
   const double yaw = wall.Yaw();
   const std::vector<Eigen::Vector3d> normals = {wall.Along3(), wall.Inward3(), Eigen::Vector3d::UnitZ()};
-  const double albedo = PickAlbedo(0.3, 0.95, normals, ShellShades());
+  const double albedo = PickAlbedo(0.3, 0.95, normals, Background(&wall));
   const int id = scene_->AddObject("table", /*obstacle=*/true);
   const double d_mid = kWallGap + 0.5 * depth;
   scene_->AddBox(id, wall.XY(s0 + 0.5 * width, d_mid), yaw, height - top, {width, depth, top}, albedo, true);
@@ -368,7 +387,7 @@ double Builder::AddTable(const Wall& wall, double s0, double width) {
   if (random_.Bernoulli(0.6)) {
     const int boxes = scene_->AddObject("box");
     StackBoxes(boxes, wall.XY(s0 + 0.5 * width, d_mid), yaw, height, {width, depth}, albedo,
-               random_.UniformInt(1, 2), 1.2);
+               random_.UniformInt(1, 2), 1.2, Background(&wall));
   }
   return height;
 }
@@ -376,7 +395,7 @@ double Builder::AddTable(const Wall& wall, double s0, double width) {
 void Builder::AddDoor(const Wall& wall, double s0) {
   const double s1 = s0 + kDoorWidth + 2 * kJambWidth;
   const std::vector<Eigen::Vector3d> normals = {wall.Along3(), wall.Inward3(), Eigen::Vector3d::UnitZ()};
-  const double frame_albedo = PickAlbedo(0.2, 0.95, normals, ShellShades());
+  const double frame_albedo = PickAlbedo(0.2, 0.95, normals, Background(&wall));
   const int frame = scene_->AddObject("door_frame");
   const double yaw = wall.Yaw();
   scene_->AddBox(frame, wall.XY(s0 + 0.5 * kJambWidth, 0.5 * kJambDepth), yaw, 0,
@@ -386,7 +405,7 @@ void Builder::AddDoor(const Wall& wall, double s0) {
   // The lintel overhangs the jambs (sides and front), so no two faces of the frame are flush.
   scene_->AddBox(frame, wall.XY(0.5 * (s0 + s1), 0.5 * kLintelDepth), yaw, kDoorHeight,
                  {s1 - s0 + 0.02, kLintelDepth, kJambWidth}, frame_albedo, true);
-  std::vector<double> avoid = ShellShades();
+  std::vector<double> avoid = Background(&wall);
   for (double s : BoxShades(yaw, frame_albedo)) avoid.push_back(s);
   const double leaf_albedo = PickAlbedo(0.2, 0.9, {wall.Inward3()}, avoid);
   const double a = s0 + kJambWidth, b = s1 - kJambWidth;
@@ -416,11 +435,11 @@ void Builder::AddPoster(const Wall& wall, double s0, double width, double z0, do
 
 void Builder::AddIsland(const Eigen::Vector2d& centre) {
   // A table turned a little, with boxes on it, and a box stack beside it.
-  const double yaw = PickYaw(-0.25, 0.25);
+  const double yaw = PickYaw(0, -0.25, 0.25);
   const double albedo = PickAlbedo(0.15, 0.95,
                                    {{std::cos(yaw), std::sin(yaw), 0}, {-std::sin(yaw), std::cos(yaw), 0},
                                     Eigen::Vector3d::UnitZ()},
-                                   ShellShades());
+                                   Background(nullptr));
   const int table = scene_->AddObject("table", /*obstacle=*/true);
   const Eigen::Vector2d table_centre = centre - Eigen::Vector2d(0.35, 0);
   const double length = 1.1, depth = 0.65, height = 0.74, top = 0.035, leg = 0.05, inset = 0.04;
@@ -431,20 +450,20 @@ void Builder::AddIsland(const Eigen::Vector2d& centre) {
     const double v = (i < 2 ? -1 : 1) * (0.5 * depth - inset - 0.5 * leg);
     scene_->AddBox(table, table_centre + u * ax + v * ay, yaw, 0, {leg, leg, height - top}, albedo, false);
   }
-  StackBoxes(scene_->AddObject("box"), table_centre, yaw, height, {length, depth}, albedo, 2, 1.3);
+  StackBoxes(scene_->AddObject("box"), table_centre, yaw, height, {length, depth}, albedo, 2, 1.3, Background(nullptr));
 
-  const double stack_yaw = PickYaw(-0.6, 0.6);
+  const double stack_yaw = PickYaw(0, -0.6, 0.6);
   const double stack_albedo = PickAlbedo(0.15, 0.95,
                                          {{std::cos(stack_yaw), std::sin(stack_yaw), 0},
                                           {-std::sin(stack_yaw), std::cos(stack_yaw), 0}, Eigen::Vector3d::UnitZ()},
-                                         ShellShades());
+                                         Background(nullptr));
   const int stack = scene_->AddObject("box_stack", /*obstacle=*/true);
   const Eigen::Vector2d stack_centre = centre + Eigen::Vector2d(0.65, 0);
   const Eigen::Vector2d stack_size(0.4, 0.35);
   const double stack_height = random_.Uniform(0.4, 0.6);
   scene_->AddBox(stack, stack_centre, stack_yaw, 0, {stack_size.x(), stack_size.y(), stack_height}, stack_albedo,
                  false);
-  StackBoxes(stack, stack_centre, stack_yaw, stack_height, stack_size, stack_albedo, 2, 1.2);
+  StackBoxes(stack, stack_centre, stack_yaw, stack_height, stack_size, stack_albedo, 2, 1.2, Background(nullptr));
 }
 
 void Builder::BuildCorridor() {

@@ -1,0 +1,72 @@
+// The committed default sequence (sequences/default) is exactly what the generator makes with its
+// default options, which is what sequences/regenerate_default.sh runs.
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <regex>
+#include <sstream>
+
+#include <gtest/gtest.h>
+
+#include "sequences/generator/sequence_writer.h"
+#include "tests/test_data.h"
+
+namespace sfm {
+namespace {
+namespace fs = std::filesystem;
+
+std::map<std::string, std::string> ReadTree(const fs::path& root) {
+  std::map<std::string, std::string> files;
+  for (const auto& entry : fs::recursive_directory_iterator(root)) {
+    if (!entry.is_regular_file()) continue;
+    std::ifstream in(entry.path(), std::ios::binary);
+    std::ostringstream bytes;
+    bytes << in.rdbuf();
+    files[fs::relative(entry.path(), root).string()] = bytes.str();
+  }
+  return files;
+}
+
+std::string ReadText(const fs::path& path) {
+  std::ifstream in(path);
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+TEST(DefaultSequenceTest, ScriptRunsMakeSequenceWithDefaultOptions) {
+  const std::string script = ReadText(fs::path(testing::SourceDir()) / "sequences" / "regenerate_default.sh");
+  ASSERT_FALSE(script.empty());
+  // The one make_sequence command line: only --output and --overwrite, so the defaults apply.
+  std::smatch match;
+  ASSERT_TRUE(std::regex_search(script, match, std::regex(R"(make_sequence\"?((?: +\S+)*)\n)")));
+  std::istringstream arguments(match[1].str());
+  std::string argument;
+  while (arguments >> argument) {
+    EXPECT_TRUE(argument.rfind("--output", 0) == 0 || argument == "--overwrite" || argument[0] != '-')
+        << "regenerate_default.sh passes " << argument << ": the default sequence must use default options";
+  }
+}
+
+TEST(DefaultSequenceTest, RegeneratesBitForBit) {
+  const fs::path committed = fs::path(testing::SourceDir()) / "sequences" / "default";
+  ASSERT_TRUE(fs::exists(committed / "sequence.yaml")) << committed << " is missing";
+  const std::string scratch = testing::MakeScratchDir("generator_default");
+  GenerationReport report;
+  const Status status = GenerateSequence(GeneratorOptions(), scratch, /*overwrite=*/false, &report);
+  ASSERT_TRUE(status.ok()) << status.message();
+  const auto expected = ReadTree(committed), actual = ReadTree(scratch);
+  for (const auto& [name, bytes] : actual) {
+    ASSERT_TRUE(expected.count(name)) << name << " is not in sequences/default: run sequences/regenerate_default.sh";
+    EXPECT_TRUE(bytes == expected.at(name)) << name << " differs from sequences/default";
+  }
+  for (const auto& [name, bytes] : expected) {
+    if (name == "README.md") continue;
+    EXPECT_TRUE(actual.count(name)) << name << " is in sequences/default but not generated";
+  }
+  EXPECT_GE(report.frames, 40);
+  EXPECT_LT(report.bytes, /*max_bytes=*/10'000'000u);
+}
+
+}  // namespace
+}  // namespace sfm
