@@ -1,0 +1,22 @@
+#include "backend/export/number_text.h"
+
+#include <glog/logging.h>
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+
+namespace sfm {
+
+std::string ShortestNumberText(double value) {
+  CHECK(std::isfinite(value)) << "callers reject non-finite numbers before formatting";
+  if (value == 0) value = 0;  // turns -0 into +0
+  char buffer[32];
+  for (int precision = 6; precision <= 17; ++precision) {
+    std::snprintf(buffer, sizeof(buffer), "%.*g", precision, value);
+    if (std::strtod(buffer, nullptr) == value) break;
+  }
+  return buffer;
+}
+
+}  // namespace sfm

@@ -1,0 +1,13 @@
+// Numbers as text for the exported files (PLY, COLMAP).
+#pragma once
+
+#include <string>
+
+namespace sfm {
+
+// The shortest "%.{6..17}g" text that reads back to the same double, so files round-trip exactly
+// and stay readable ("0.1", not "0.10000000000000001"). Negative zero is written "0": inverting a
+// pose makes -0 from +0, and a file should not depend on that. The value must be finite.
+std::string ShortestNumberText(double value);
+
+}  // namespace sfm
