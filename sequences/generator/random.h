@@ -3,7 +3,8 @@
 // std::mt19937_64's output is fixed by the C++ standard, but the distributions built on it
 // (std::normal_distribution, std::uniform_real_distribution) are not. So the few distributions the
 // generator needs are written here on top of the raw 64-bit engine: uniform reals from the top 53
-// bits, integers by rejection, Gaussians by the Box-Muller transform (Box and Muller 1958).
+// bits, integers by rejection, Gaussians by Marsaglia's polar form of the Box-Muller transform
+// (Box and Muller 1958; Marsaglia and Bray 1964).
 #pragma once
 
 #include <cstdint>
@@ -24,7 +25,8 @@ class Random {
   int UniformInt(int low, int high);
   // True with probability p.
   bool Bernoulli(double p) { return Uniform() < p; }
-  // Standard normal N(0, 1) by Box-Muller; the second value of each pair is kept for the next call.
+  // Standard normal N(0, 1) by the polar Box-Muller method; the second value of each pair is kept
+  // for the next call.
   double Gaussian();
 
  private:

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstddef>
 
 #include <glog/logging.h>
 
@@ -33,6 +34,21 @@ int ClipNear(const Eigen::Vector3d* in, int count, double near, Eigen::Vector3d*
   return n;
 }
 
+// One row (or column, with `stride`) of a separable filter, borders replicated.
+void FilterLine(const float* in, int count, std::ptrdiff_t stride, const std::vector<double>& kernel, float* out) {
+  const int radius = static_cast<int>(kernel.size() / 2);
+  for (int x = 0; x < count; ++x) {
+    double v = 0;
+    if (x >= radius && x + radius < count) {
+      const float* p = in + (x - radius) * stride;
+      for (size_t k = 0; k < kernel.size(); ++k) v += kernel[k] * p[k * stride];
+    } else {
+      for (int k = -radius; k <= radius; ++k) v += kernel[k + radius] * in[std::clamp(x + k, 0, count - 1) * stride];
+    }
+    out[x * stride] = static_cast<float>(v);
+  }
+}
+
 // Separable Gaussian blur of a float image, borders replicated.
 void GaussianBlur(int width, int height, double sigma, std::vector<float>* image) {
   if (sigma <= 0) return;
@@ -42,26 +58,11 @@ void GaussianBlur(int width, int height, double sigma, std::vector<float>* image
   for (int k = -radius; k <= radius; ++k) sum += kernel[k + radius] = std::exp(-0.5 * k * k / (sigma * sigma));
   for (double& w : kernel) w /= sum;
   std::vector<float> tmp(image->size());
-  const std::vector<float>& src = *image;
   for (int y = 0; y < height; ++y) {
-    const float* row = &src[static_cast<size_t>(y) * width];
-    float* dst = &tmp[static_cast<size_t>(y) * width];
-    for (int x = 0; x < width; ++x) {
-      double v = 0;
-      for (int k = -radius; k <= radius; ++k) v += kernel[k + radius] * row[std::clamp(x + k, 0, width - 1)];
-      dst[x] = static_cast<float>(v);
-    }
+    const size_t row = static_cast<size_t>(y) * width;
+    FilterLine(image->data() + row, width, 1, kernel, tmp.data() + row);
   }
-  for (int y = 0; y < height; ++y) {
-    float* dst = &(*image)[static_cast<size_t>(y) * width];
-    for (int x = 0; x < width; ++x) {
-      double v = 0;
-      for (int k = -radius; k <= radius; ++k) {
-        v += kernel[k + radius] * tmp[static_cast<size_t>(std::clamp(y + k, 0, height - 1)) * width + x];
-      }
-      dst[x] = static_cast<float>(v);
-    }
-  }
+  for (int x = 0; x < width; ++x) FilterLine(tmp.data() + x, height, width, kernel, image->data() + x);
 }
 
 }  // namespace

@@ -420,17 +420,30 @@ void Builder::AddPoster(const Wall& wall, double s0, double width, double z0, do
   const double albedo = PickAlbedo(0.05, 0.95, {wall.Inward3()}, {Shade(wall.Inward3(), wall_albedo_)});
   const int id = scene_->AddObject("poster");
   const double s1 = s0 + width, d = kFlatOffset;
-  scene_->AddPolygon(id, {wall.At(s0, d, z0), wall.At(s1, d, z0), wall.At(s1, d, z1), wall.At(s0, d, z1)}, albedo,
-                     wall.Inward3());
-  // Half of them are framed pictures: a second rectangle inside the first.
-  if (!random_.Bernoulli(0.5)) return;
+  auto rectangle = [&](double a0, double a1, double b0, double b1, double depth, double a) {
+    scene_->AddPolygon(id, {wall.At(a0, depth, b0), wall.At(a1, depth, b0), wall.At(a1, depth, b1), wall.At(a0, depth, b1)},
+                       a, wall.Inward3());
+  };
+  const int variant = random_.UniformInt(0, 2);
+  if (variant == 2) {
+    // Quartered, like a window of four panes or a chart: two albedos in a 2 x 2 checker. The
+    // centre is an X junction, the ends of the dividing lines on the border T junctions.
+    const double other = PickAlbedo(0.05, 0.95, {wall.Inward3()},
+                                    {Shade(wall.Inward3(), wall_albedo_), Shade(wall.Inward3(), albedo)});
+    const double sm = s0 + width * random_.Uniform(0.35, 0.65), zm = z0 + (z1 - z0) * random_.Uniform(0.35, 0.65);
+    rectangle(s0, sm, z0, zm, d, albedo);
+    rectangle(sm, s1, z0, zm, d, other);
+    rectangle(s0, sm, zm, z1, d, other);
+    rectangle(sm, s1, zm, z1, d, albedo);
+    return;
+  }
+  rectangle(s0, s1, z0, z1, d, albedo);
+  if (variant == 0) return;
+  // A framed picture: a second rectangle inside the first.
   const double margin = random_.Uniform(0.04, 0.1);
   if (width < 3 * margin || z1 - z0 < 3 * margin) return;
   const double inner = PickAlbedo(0.05, 0.95, {wall.Inward3()}, {Shade(wall.Inward3(), albedo)});
-  const double di = d + 0.003;
-  scene_->AddPolygon(id, {wall.At(s0 + margin, di, z0 + margin), wall.At(s1 - margin, di, z0 + margin),
-                          wall.At(s1 - margin, di, z1 - margin), wall.At(s0 + margin, di, z1 - margin)},
-                     inner, wall.Inward3());
+  rectangle(s0 + margin, s1 - margin, z0 + margin, z1 - margin, d + 0.003, inner);
 }
 
 void Builder::AddIsland(const Eigen::Vector2d& centre) {

@@ -8,6 +8,7 @@
 
 #include <gtest/gtest.h>
 
+#include "sequences/generator/ground_truth.h"
 #include "sequences/generator/sequence_writer.h"
 #include "tests/test_data.h"
 
@@ -66,6 +67,29 @@ TEST(DefaultSequenceTest, RegeneratesBitForBit) {
   }
   EXPECT_GE(report.frames, 40);
   EXPECT_LT(report.bytes, /*max_bytes=*/10'000'000u);
+}
+
+TEST(DefaultSequenceTest, TruthHasEveryJunctionType) {
+  GroundTruth truth;
+  const Status status = ReadGroundTruth((fs::path(testing::SourceDir()) / "sequences" / "default").string(), &truth);
+  ASSERT_TRUE(status.ok()) << status.message();
+  ASSERT_GE(truth.frames.size(), 40u);
+  std::map<std::string, int> types;
+  int occlusions = 0;
+  for (const FrameTruth& frame : truth.frames) {
+    for (const VisibleVertex& vertex : frame.vertices) ++types[vertex.type];
+    for (const VisibleSegment& segment : frame.segments) {
+      occlusions += (segment.end[0] == SegmentEnd::kOcclusion) + (segment.end[1] == SegmentEnd::kOcclusion);
+    }
+  }
+  // Per frame on average: plenty of L and ARROW, some Y and T; X from the quartered posters.
+  const int frames = static_cast<int>(truth.frames.size());
+  EXPECT_GT(types["L"], 20 * frames);
+  EXPECT_GT(types["ARROW"], 5 * frames);
+  EXPECT_GT(types["Y"], 2 * frames);
+  EXPECT_GT(types["T"], 2 * frames);
+  EXPECT_GT(types["X"], 10);
+  EXPECT_GT(occlusions, 20 * frames);  // T junctions made by occlusion
 }
 
 }  // namespace

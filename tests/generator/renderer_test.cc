@@ -1,8 +1,8 @@
 #include "sequences/generator/renderer.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
+#include <ctime>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -158,14 +158,15 @@ TEST(RendererTest, RendersAVgaCorridorFrameQuickly) {
   CameraRigOptions rig;
   const Renderer renderer(scene, rig.MakeCamera(), RenderOptions());
   const Pose3 world_T_camera = Pose3(Eigen::Matrix3d::Identity(), Eigen::Vector3d(1, 0, 0)) * rig.BaseTCamera();
+  // Processor time, best of 5: the figure of the code, not of how busy the machine is.
   double best = 1e9;
   Canvas canvas;
   for (int i = 0; i < 5; ++i) {
-    const auto start = std::chrono::steady_clock::now();
+    const std::clock_t start = std::clock();
     renderer.Render(world_T_camera, i, &canvas);
-    best = std::min(best, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+    best = std::min(best, static_cast<double>(std::clock() - start) / CLOCKS_PER_SEC);
   }
-  std::printf("render 640x480, %zu faces: %.1f ms (best of 5)\n", scene.faces.size(), 1e3 * best);
+  std::printf("render 640x480, %zu faces: %.1f ms of processor time (best of 5)\n", scene.faces.size(), 1e3 * best);
   EXPECT_LT(best, /*max_seconds=*/0.05);
 #else
   GTEST_SKIP() << "timing only in optimised builds without sanitizers";
