@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "backend/export/number_text.h"
+#include "frontend/util/number_text.h"
 #include "frontend/util/atomic_file.h"
 
 namespace sfm {

@@ -10,7 +10,7 @@
 #include <utility>
 #include <vector>
 
-#include "backend/export/number_text.h"
+#include "frontend/util/number_text.h"
 #include "frontend/util/atomic_file.h"
 
 namespace sfm {

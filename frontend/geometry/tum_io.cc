@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "frontend/util/atomic_file.h"
+#include "frontend/util/number_text.h"
 
 namespace sfm {
 namespace {
@@ -19,17 +20,6 @@ constexpr double kQuaternionNormTolerance = 1e-3;
 // A quaternion read back from our own %.17g output is unit to rounding; renormalising it would
 // change its last bits and break exact round trips, so only norms further off are corrected.
 constexpr double kRenormaliseAbove = 1e-14;
-
-// The shortest of %.15g..%.17g that reads back to the same double: exact round trips, and
-// "10.1" rather than "10.099999999999999" in files and messages.
-std::string FormatNumber(double value) {
-  char buffer[32];
-  for (int precision = 15; precision <= 17; ++precision) {
-    std::snprintf(buffer, sizeof(buffer), "%.*g", precision, value);
-    if (std::strtod(buffer, nullptr) == value) break;
-  }
-  return buffer;
-}
 
 // Parses a whole token as a double; false when it is not entirely a number.
 bool ParseDouble(const std::string& token, double* value) {
@@ -79,14 +69,14 @@ Status ReadTumTrajectory(const std::string& path, std::vector<StampedPose>* pose
     StampedPose stamped;
     stamped.timestamp = v[0];
     if (!poses->empty() && !(stamped.timestamp > poses->back().timestamp)) {
-      return Status::Error(where + "timestamp " + FormatNumber(stamped.timestamp) +
-                           " does not increase (previous line has " + FormatNumber(poses->back().timestamp) +
+      return Status::Error(where + "timestamp " + ShortestNumberText(stamped.timestamp) +
+                           " does not increase (previous line has " + ShortestNumberText(poses->back().timestamp) +
                            ")");
     }
     Eigen::Quaterniond q(v[7], v[4], v[5], v[6]);  // Eigen's constructor takes w first
     const double norm = q.norm();
     if (std::abs(norm - 1) > kQuaternionNormTolerance) {
-      return Status::Error(where + "quaternion qx qy qz qw has norm " + FormatNumber(norm) +
+      return Status::Error(where + "quaternion qx qy qz qw has norm " + ShortestNumberText(norm) +
                            ", expected 1 (within 1e-3)");
     }
     if (std::abs(norm - 1) > kRenormaliseAbove) q.normalize();
@@ -104,10 +94,10 @@ std::string FormatTumTrajectory(const std::vector<StampedPose>& poses) {
     const Eigen::Vector3d& t = p.pose.translation;
     const Eigen::Quaterniond& q = p.pose.rotation;
     for (double value : {p.timestamp, t.x(), t.y(), t.z(), q.x(), q.y(), q.z()}) {
-      text += FormatNumber(value);
+      text += ShortestNumberText(value);
       text += ' ';
     }
-    text += FormatNumber(q.w());
+    text += ShortestNumberText(q.w());
     text += '\n';
   }
   return text;

@@ -1,20 +1,14 @@
 #include "frontend/util/json_format.h"
 
+#include "frontend/util/number_text.h"
+
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
 
 namespace sfm {
 
 std::string JsonNumber(double value) {
-  if (!std::isfinite(value)) return "null";
-  char buffer[32];
-  // 17 significant digits round-trip any double; try fewer first for readable files.
-  for (int precision = 6; precision <= 17; ++precision) {
-    std::snprintf(buffer, sizeof(buffer), "%.*g", precision, value);
-    if (std::strtod(buffer, nullptr) == value) break;
-  }
-  return buffer;
+  return std::isfinite(value) ? ShortestNumberText(value) : std::string("null");
 }
 
 std::string JsonNumber(const std::optional<double>& value) {

@@ -1,4 +1,4 @@
-#include "backend/export/number_text.h"
+#include "frontend/util/number_text.h"
 
 #include <glog/logging.h>
 

@@ -1,4 +1,4 @@
-// Numbers as text for the exported files (PLY, COLMAP).
+// Numbers as text for every file the project writes (TUM, JSON, PLY, COLMAP).
 #pragma once
 
 #include <string>
