@@ -105,7 +105,15 @@ class FastDetector {
       chain_.assign(backward_.rbegin(), backward_.rend());
       chain_.push_back(anchor);
       chain_.insert(chain_.end(), forward_.begin(), forward_.end());
-      SplitChain();
+      const size_t first_piece = pieces_.size();
+      const size_t first_break = SplitChain();
+      // A closed contour has no natural start: the anchor may lie mid-side, which would cut that
+      // side in two. Start it again where its first piece ended, which is a corner.
+      if (pieces_.size() - first_piece >= 2 && IsClosed()) {
+        pieces_.resize(first_piece);
+        std::rotate(chain_.begin(), chain_.begin() + static_cast<std::ptrdiff_t>(first_break), chain_.end());
+        SplitChain();
+      }
     }
     MergeCollinearPieces(options_.max_gap, options_.fast.line_tolerance, &pieces_);
     LineSegments segments;
@@ -210,14 +218,21 @@ class FastDetector {
     return along_x ? Eigen::Vector2d(x, y + delta) : Eigen::Vector2d(x + delta, y);
   }
 
+  // Whether the chain's two ends are 8-neighbours.
+  bool IsClosed() const {
+    const int a = chain_.front(), b = chain_.back();
+    return chain_.size() > 2 && std::abs(a % cols_ - b % cols_) <= 1 && std::abs(a / cols_ - b / cols_) <= 1;
+  }
+
   // EDLines' splitting: fit the first min_pixels_ points; if they are straight, extend the line
   // point by point while each next point is within the tolerance, then start again after it.
-  void SplitChain() {
+  // Returns the chain index where the first piece ended (the chain's size if there is none).
+  size_t SplitChain() {
     points_.clear();
     for (const int index : chain_) points_.push_back(SubpixelPoint(index));
     const double tolerance = options_.fast.line_tolerance;
     const size_t n = points_.size(), window = static_cast<size_t>(min_pixels_);
-    size_t start = 0;
+    size_t start = 0, first_break = n;
     while (start + window <= n) {
       LineFitAccumulator fit;
       for (size_t i = start; i < start + window; ++i) fit.Add(points_[i]);
@@ -238,8 +253,10 @@ class FastDetector {
         ++end;
       }
       AddPiece(start, end, fit);
+      if (first_break == n) first_break = end;
       start = end;
     }
+    return first_break;
   }
 
   // Records chain points [begin, end), fitted by `fit`, as a piece.

@@ -38,8 +38,8 @@ std::vector<EdgePoint> DetectSubpixelEdges(const cv::Mat& grey, double sigma, do
   CHECK_LE(low, high);
   cv::Mat smooth, derivative, gx, gy;
   GaussianKernels(sigma, &smooth, &derivative);
-  cv::sepFilter2D(grey, gx, CV_32F, derivative, smooth, cv::Point(-1, -1), 0, cv::BORDER_REPLICATE);
-  cv::sepFilter2D(grey, gy, CV_32F, smooth, derivative, cv::Point(-1, -1), 0, cv::BORDER_REPLICATE);
+  cv::sepFilter2D(grey, gx, CV_32F, derivative, smooth, cv::Point(-1, -1), 0, cv::BORDER_REPLICATE | cv::BORDER_ISOLATED);
+  cv::sepFilter2D(grey, gy, CV_32F, smooth, derivative, cv::Point(-1, -1), 0, cv::BORDER_REPLICATE | cv::BORDER_ISOLATED);
   cv::Mat magnitude;
   cv::magnitude(gx, gy, magnitude);
 
