@@ -213,7 +213,9 @@ TEST(JunctionMatcherTest, RectanglesWithTopologyAndSpeedOn150Junctions) {
     RecordProperty(name + "_correct", score.correct);
     RecordProperty(name + "_wrong", score.wrong);
     // The design target is 1 ms on one core; the bound leaves room for a loaded test machine.
-    EXPECT_LT(median_ms, 10.0) << name;
+#if defined(NDEBUG) && !defined(__SANITIZE_ADDRESS__)
+    EXPECT_LT(median_ms, /*max_ms=*/10.0) << name;
+#endif
     // Seeded figures (sigma 146 right, 0 wrong; rho 138 right, 0 wrong): with F 0.3 degrees off,
     // the true partner's rho2 now and then falls within tau2 of another junction's on its line.
     if (use_topology) {
