@@ -1,0 +1,168 @@
+#include "sequences/importers/imported_sequence.h"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <utility>
+
+#include <glog/logging.h>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "frontend/geometry/tum_io.h"
+#include "frontend/sequence/sequence.h"
+#include "frontend/util/atomic_file.h"
+#include "sequences/importers/input_files.h"
+
+namespace sfm {
+namespace {
+namespace fs = std::filesystem;
+
+// Removes the temporary directory unless the import completed and it was renamed into place.
+class TemporaryDirectory {
+ public:
+  explicit TemporaryDirectory(fs::path path) : path_(std::move(path)) {}
+  TemporaryDirectory(const TemporaryDirectory&) = delete;
+  TemporaryDirectory& operator=(const TemporaryDirectory&) = delete;
+  ~TemporaryDirectory() {
+    std::error_code ignored;
+    if (!released_) fs::remove_all(path_, ignored);
+  }
+  const fs::path& path() const { return path_; }
+  void Release() { released_ = true; }
+
+ private:
+  fs::path path_;
+  bool released_ = false;
+};
+
+std::string SizeText(int width, int height) { return std::to_string(width) + "x" + std::to_string(height); }
+
+// Decodes, checks and scales one image, and writes it as PNG.
+Status WriteFrameImage(const std::string& source, const Camera& source_camera, const cv::Size& size,
+                       const fs::path& target) {
+  cv::Mat image;
+  // 8-bit grey or colour, whatever the file holds (the pipeline converts to grey itself).
+  SFM_RETURN_IF_ERROR(DecodeImage(source, cv::IMREAD_ANYCOLOR, &image));
+  if (image.cols != source_camera.width || image.rows != source_camera.height) {
+    return Status::Error(source + ": image is " + SizeText(image.cols, image.rows) + ", expected " +
+                         SizeText(source_camera.width, source_camera.height));
+  }
+  // INTER_AREA averages whole source pixels: no aliasing when shrinking, and it keeps the
+  // pixel-centre mapping that ScaleCamera assumes.
+  if (image.size() != size) cv::resize(cv::Mat(image), image, size, 0, 0, cv::INTER_AREA);
+  std::vector<unsigned char> png;
+  if (!cv::imencode(".png", image, png)) return Status::Error(target.string() + ": PNG encoding failed");
+  return WriteFileAtomically(target.string(), std::string(png.begin(), png.end()));
+}
+
+std::string NotesText(const ImportedSequence& sequence, const SequenceWriteOptions& options, const Camera& camera) {
+  const CameraOdometryNoiseOptions& noise = options.odometry;
+  std::string text = "# How this sequence was imported (import_sequence; see docs/importers.md)\n";
+  for (const std::string& note : sequence.notes) text += note + "\n";
+  const std::string source_size = SizeText(sequence.camera.width, sequence.camera.height);
+  text += camera.width == sequence.camera.width && camera.height == sequence.camera.height
+              ? "images: " + source_size + ", not scaled\n"
+              : "images: " + source_size + " scaled to " + SizeText(camera.width, camera.height) +
+                    " (K scaled with the pixel-centre convention, cx' = s (cx + 0.5) - 0.5)\n";
+  text += "odometry: simulated from groundtruth.txt, seed " + std::to_string(options.seed) + ", scale_error " +
+          FormatNumber(noise.scale_error) + ", distance_sigma " + FormatNumber(noise.distance_sigma) +
+          ", rotation_sigma " + FormatNumber(noise.rotation_sigma) + " rad, rotation_bias " +
+          FormatNumber(noise.rotation_bias) + " rad (camera y axis)\n";
+  return text;
+}
+
+// Output path without a trailing separator, so that its parent and name are those of the directory.
+fs::path NormalisedTarget(const std::string& output_dir) {
+  fs::path target = fs::path(output_dir).lexically_normal();
+  if (!target.has_filename()) target = target.parent_path();
+  return target;
+}
+
+// Moves the finished temporary directory to `target`, replacing what is there when allowed.
+Status MoveIntoPlace(TemporaryDirectory* temporary, const fs::path& target) {
+  std::error_code error;
+  fs::path replaced;
+  if (fs::exists(target, error)) {
+    replaced = target.parent_path() / ("." + target.filename().string() + ".replaced." + std::to_string(::getpid()));
+    fs::rename(target, replaced, error);
+    if (error) return Status::Error(target.string() + ": cannot move the old directory aside (" + error.message() + ")");
+  }
+  fs::rename(temporary->path(), target, error);
+  if (error) {
+    std::error_code ignored;
+    if (!replaced.empty()) fs::rename(replaced, target, ignored);
+    return Status::Error(target.string() + ": cannot rename the imported sequence into place (" + error.message() + ")");
+  }
+  temporary->Release();
+  if (!replaced.empty()) fs::remove_all(replaced, error);
+  return Status::Ok();
+}
+
+}  // namespace
+
+Status SequenceWriteOptions::Check() const {
+  SFM_RETURN_IF_ERROR(scale.Check());
+  return odometry.Check();
+}
+
+Status WriteImportedSequence(const ImportedSequence& sequence, const SequenceWriteOptions& options,
+                             const std::string& output_dir) {
+  SFM_RETURN_IF_ERROR(options.Check());
+  if (sequence.frames.size() < 2) {
+    return Status::Error("import: " + std::to_string(sequence.frames.size()) + " frame(s), a sequence needs at least 2");
+  }
+  const fs::path target = NormalisedTarget(output_dir);
+  if (target.empty()) return Status::Error("import: the output directory is not named");
+  std::error_code error;
+  if (fs::exists(target, error)) {
+    if (!fs::is_directory(target, error)) return Status::Error(target.string() + ": exists and is not a directory");
+    if (!fs::is_empty(target, error) && !options.overwrite) {
+      return Status::Error(target.string() + ": exists and is not empty; choose another directory or overwrite it");
+    }
+  }
+  const fs::path parent = target.has_parent_path() ? target.parent_path() : fs::path(".");
+  SFM_RETURN_IF_ERROR(EnsureWritableDirectory(parent.string()));
+
+  TemporaryDirectory temporary(parent / ("." + target.filename().string() + ".importing." + std::to_string(::getpid())));
+  fs::remove_all(temporary.path(), error);
+  SFM_RETURN_IF_ERROR(EnsureWritableDirectory((temporary.path() / "images").string()));
+
+  const cv::Size size = ScaledImageSize(sequence.camera.width, sequence.camera.height, options.scale);
+  Calibration calibration;
+  calibration.camera = ScaleCamera(sequence.camera, size);
+  calibration.base_T_camera = Pose3::Identity();  // SPEC: a data set that gives camera poses
+  calibration.odometry_noise = options.odometry.ForCalibration();
+  calibration.odometry_noise_given = true;
+
+  std::vector<Pose3> truth;
+  for (const ImportedFrame& frame : sequence.frames) truth.push_back(frame.world_T_camera);
+  const std::vector<Pose3> odometry = SimulateCameraOdometry(truth, options.odometry, options.seed);
+
+  std::string image_list = "# timestamp image (imported by import_sequence; see import_notes.txt)\n";
+  std::vector<StampedPose> groundtruth_poses, odometry_poses;
+  for (size_t i = 0; i < sequence.frames.size(); ++i) {
+    const ImportedFrame& frame = sequence.frames[i];
+    char name[32];
+    std::snprintf(name, sizeof(name), "images/%06zu.png", i);
+    SFM_RETURN_IF_ERROR(WriteFrameImage(frame.source_image, sequence.camera, size, temporary.path() / name));
+    image_list += FormatNumber(frame.timestamp) + " " + name + "\n";
+    groundtruth_poses.push_back({frame.timestamp, truth[i]});
+    odometry_poses.push_back({frame.timestamp, odometry[i]});
+  }
+  const fs::path& root = temporary.path();
+  SFM_RETURN_IF_ERROR(WriteFileAtomically((root / "images.txt").string(), image_list));
+  SFM_RETURN_IF_ERROR(WriteTumTrajectory((root / "groundtruth.txt").string(), groundtruth_poses));
+  SFM_RETURN_IF_ERROR(WriteTumTrajectory((root / "odometry.txt").string(), odometry_poses));
+  SFM_RETURN_IF_ERROR(WriteCalibration((root / "sequence.yaml").string(), calibration));
+  SFM_RETURN_IF_ERROR(WriteFileAtomically((root / "import_notes.txt").string(),
+                                          NotesText(sequence, options, calibration.camera)));
+  SFM_RETURN_IF_ERROR(MoveIntoPlace(&temporary, target));
+  LOG(INFO) << "import: wrote " << sequence.frames.size() << " frames of " << SizeText(size.width, size.height)
+            << " to " << target.string();
+  return Status::Ok();
+}
+
+}  // namespace sfm

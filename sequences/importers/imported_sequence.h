@@ -1,0 +1,52 @@
+// A data set read into memory (camera, image files, true camera poses) and written as a SPEC
+// sequence directory (SPEC section 1) with simulated odometry.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "frontend/geometry/camera.h"
+#include "frontend/geometry/pose.h"
+#include "frontend/util/status.h"
+#include "sequences/importers/camera_odometry_noise.h"
+#include "sequences/importers/image_scaling.h"
+
+namespace sfm {
+
+// Seconds between frames given to data sets without timestamps (SPEC needs a time per frame).
+constexpr double kFrameInterval = 0.1;
+
+struct ImportedFrame {
+  double timestamp = 0;      // seconds
+  std::string source_image;  // path of the data set's image file
+  Pose3 world_T_camera;      // ground truth
+};
+
+struct ImportedSequence {
+  Camera camera;  // of the source images, before any scaling
+  std::vector<ImportedFrame> frames;
+  // Lines for the sequence's import_notes.txt: where K, the poses and the world frame come from.
+  std::vector<std::string> notes;
+};
+
+struct SequenceWriteOptions {
+  ImageScaleOptions scale;
+  CameraOdometryNoiseOptions odometry;
+  std::uint64_t seed = 1;  // of the odometry noise
+  bool overwrite = false;  // replace an existing non-empty output directory
+
+  Status Check() const;
+};
+
+// Writes `output_dir`: sequence.yaml (scaled camera, T_base_camera identity since the poses are
+// camera poses, the odometry noise model), images/NNNNNN.png, images.txt, groundtruth.txt (the true
+// poses), odometry.txt (SimulateCameraOdometry), import_notes.txt (the sequence's notes and the
+// options used). Everything goes to a temporary sibling directory first, renamed into place at the
+// end, so a failed import leaves no output. Fails, naming the file, on an image that does not
+// decode or is not of the camera's size, an existing non-empty output without overwrite, or a
+// write error.
+Status WriteImportedSequence(const ImportedSequence& sequence, const SequenceWriteOptions& options,
+                             const std::string& output_dir);
+
+}  // namespace sfm

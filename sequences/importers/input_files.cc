@@ -1,0 +1,131 @@
+#include "sequences/importers/input_files.h"
+
+#include <unistd.h>
+
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <sstream>
+
+#include <glog/logging.h>
+#include <opencv2/imgcodecs.hpp>
+
+namespace sfm {
+namespace {
+
+// While alive, whatever is written to file descriptor 2 (std::cerr, C stdio, OpenCV's logger)
+// goes to a temporary file instead; Release() restores stderr and returns the text.
+class StderrCapture {
+ public:
+  StderrCapture() {
+    std::fflush(stderr);
+    std::cerr.flush();
+    file_ = std::tmpfile();
+    saved_ = file_ != nullptr ? ::dup(2) : -1;
+    if (saved_ >= 0) ::dup2(::fileno(file_), 2);
+  }
+  StderrCapture(const StderrCapture&) = delete;
+  StderrCapture& operator=(const StderrCapture&) = delete;
+  ~StderrCapture() { Release(); }
+
+  std::string Release() {
+    std::string text;
+    if (saved_ < 0) {
+      if (file_ != nullptr) std::fclose(file_);
+      file_ = nullptr;
+      return text;
+    }
+    std::fflush(stderr);
+    std::cerr.flush();
+    ::dup2(saved_, 2);
+    ::close(saved_);
+    saved_ = -1;
+    std::rewind(file_);
+    char buffer[512];
+    size_t read = 0;
+    while ((read = std::fread(buffer, 1, sizeof(buffer), file_)) > 0 && text.size() < 4096) text.append(buffer, read);
+    std::fclose(file_);
+    file_ = nullptr;
+    return text;
+  }
+
+ private:
+  std::FILE* file_ = nullptr;
+  int saved_ = -1;
+};
+
+// The captured text as one line: OpenCV's messages span lines and end in blank ones.
+std::string OneLine(std::string text) {
+  for (char& c : text) {
+    if (c == '\n' || c == '\r') c = ' ';
+  }
+  const size_t end = text.find_last_not_of(' ');
+  return end == std::string::npos ? std::string() : text.substr(0, end + 1);
+}
+
+}  // namespace
+
+Status ReadNumbers(const std::string& path, std::vector<double>* numbers) {
+  numbers->clear();
+  std::error_code error;
+  if (!std::filesystem::is_regular_file(path, error)) return Status::Error(path + ": file does not exist");
+  std::ifstream in(path);
+  if (!in) return Status::Error(path + ": cannot open (" + std::strerror(errno) + ")");
+  std::string line;
+  int line_number = 0;
+  while (std::getline(in, line)) {
+    ++line_number;
+    std::istringstream tokens(line);
+    std::string token;
+    while (tokens >> token) {
+      errno = 0;
+      char* end = nullptr;
+      const double value = std::strtod(token.c_str(), &end);
+      if (end == token.c_str() || *end != '\0' || errno == ERANGE || !std::isfinite(value)) {
+        return Status::Error(path + ":" + std::to_string(line_number) + ": '" + token + "' is not a finite number");
+      }
+      numbers->push_back(value);
+    }
+  }
+  if (in.bad()) return Status::Error(path + ": read error (" + std::strerror(errno) + ")");
+  return Status::Ok();
+}
+
+Status DecodeImage(const std::string& path, int flags, cv::Mat* image) {
+  std::error_code error;
+  if (!std::filesystem::is_regular_file(path, error)) return Status::Error(path + ": image file does not exist");
+  StderrCapture capture;
+  cv::Mat decoded;
+  std::string exception;
+  try {
+    decoded = cv::imread(path, flags);
+  } catch (const cv::Exception& e) {
+    exception = e.what();
+  }
+  const std::string diagnostics = OneLine(capture.Release() + exception);
+  if (decoded.empty()) {
+    return Status::Error(path + ": cannot decode image" + (diagnostics.empty() ? "" : " (" + diagnostics + ")"));
+  }
+  if (diagnostics.find("Premature end of JPEG file") != std::string::npos) {
+    return Status::Error(path + ": cannot decode image (truncated: " + diagnostics + ")");
+  }
+  if (!diagnostics.empty()) LOG(WARNING) << path << ": " << diagnostics;
+  *image = decoded;
+  return Status::Ok();
+}
+
+std::string FormatNumber(double value) {
+  char buffer[32];
+  for (int precision = 15; precision <= 17; ++precision) {
+    std::snprintf(buffer, sizeof(buffer), "%.*g", precision, value);
+    if (std::strtod(buffer, nullptr) == value) break;
+  }
+  return buffer;
+}
+
+}  // namespace sfm

@@ -1,0 +1,250 @@
+#include "sequences/importers/vgg_importer.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <filesystem>
+#include <map>
+
+#include <Eigen/LU>
+#include <glog/logging.h>
+#include <opencv2/calib3d.hpp>
+#include <opencv2/core/eigen.hpp>
+#include <opencv2/imgcodecs.hpp>
+
+#include "sequences/importers/projection_decomposition.h"
+#include "sequences/importers/input_files.h"
+
+namespace sfm {
+namespace {
+namespace fs = std::filesystem;
+
+using Matrix34d = Eigen::Matrix<double, 3, 4>;
+
+// PnP needs a few points; fewer in view means the camera does not look at the reconstructed scene.
+constexpr int kMinPointsInView = 6;
+
+struct View {
+  std::string stem;  // <name>.NNN
+  std::string camera_path, image_path;
+  Matrix34d P;       // in the sequence's world frame
+  ProjectionDecomposition decomposition;
+};
+
+// The <name>.NNN.P files of the folder in NNN order; fails unless there are some, all of one name.
+Status ListViews(const fs::path& dir, std::vector<View>* views, std::string* name) {
+  std::map<long, View> by_number;
+  std::error_code error;
+  for (const fs::directory_entry& entry : fs::directory_iterator(dir, error)) {
+    const std::string file = entry.path().filename().string();
+    if (file.size() < 2 || file.substr(file.size() - 2) != ".P") continue;
+    const std::string stem = file.substr(0, file.size() - 2);
+    const size_t dot = stem.rfind('.');
+    if (dot == std::string::npos || dot == 0 || dot + 1 == stem.size()) continue;
+    const std::string number = stem.substr(dot + 1);
+    if (!std::all_of(number.begin(), number.end(), [](unsigned char c) { return std::isdigit(c); })) continue;
+    const std::string this_name = stem.substr(0, dot);
+    if (!name->empty() && this_name != *name) {
+      return Status::Error(dir.string() + ": camera files of two sequences (" + *name + ".NNN.P and " + this_name +
+                           ".NNN.P); keep one per folder");
+    }
+    *name = this_name;
+    View view;
+    view.stem = stem;
+    view.camera_path = entry.path().string();
+    view.image_path = (dir / (stem + ".pgm")).string();
+    by_number[std::stol(number)] = view;
+  }
+  if (error) return Status::Error(dir.string() + ": cannot list (" + error.message() + ")");
+  if (by_number.empty()) return Status::Error(dir.string() + ": no VGG camera files (<name>.NNN.P)");
+  for (auto& [number, view] : by_number) views->push_back(std::move(view));
+  return Status::Ok();
+}
+
+Status ReadProjection(const std::string& path, Matrix34d* P) {
+  std::vector<double> numbers;
+  SFM_RETURN_IF_ERROR(ReadNumbers(path, &numbers));
+  if (numbers.size() != 12) {
+    return Status::Error(path + ": expected 12 numbers (a 3x4 camera matrix), found " + std::to_string(numbers.size()));
+  }
+  for (int r = 0; r < 3; ++r) {
+    for (int c = 0; c < 4; ++c) (*P)(r, c) = numbers[4 * r + c];
+  }
+  return Status::Ok();
+}
+
+Status ReadPoints(const std::string& path, std::vector<Eigen::Vector3d>* points) {
+  std::vector<double> numbers;
+  SFM_RETURN_IF_ERROR(ReadNumbers(path, &numbers));
+  if (numbers.empty() || numbers.size() % 3 != 0) {
+    return Status::Error(path + ": expected 'X Y Z' per line, found " + std::to_string(numbers.size()) +
+                         " numbers in all");
+  }
+  for (size_t i = 0; i < numbers.size(); i += 3) points->emplace_back(numbers[i], numbers[i + 1], numbers[i + 2]);
+  return Status::Ok();
+}
+
+bool InsideImage(const Eigen::Vector2d& pixel, const cv::Size& size) {
+  return pixel.x() >= -0.5 && pixel.y() >= -0.5 && pixel.x() <= size.width - 0.5 && pixel.y() <= size.height - 0.5;
+}
+
+// True when most points that project into the images lie behind the cameras as a right-handed
+// world frame sees them (H&Z eq. 6.15: depth has the sign of det(M) w): the files' frame is then
+// left-handed. P and -P project alike, so the points are needed to tell.
+bool WorldIsMirrored(const std::vector<View>& views, const std::vector<Eigen::Vector3d>& points, const cv::Size& size) {
+  long in_front = 0, behind = 0;
+  for (const View& view : views) {
+    const double determinant_sign = view.P.leftCols<3>().determinant() > 0 ? 1 : -1;
+    for (const Eigen::Vector3d& X : points) {
+      const Eigen::Vector3d x = view.P * X.homogeneous();
+      if (x.z() == 0 || !InsideImage(x.hnormalized(), size)) continue;
+      (determinant_sign * x.z() > 0 ? in_front : behind) += 1;
+    }
+  }
+  return behind > in_front;
+}
+
+// The pose for the shared K that best reproduces P's projections of the 3D points in view
+// (Levenberg-Marquardt on the reprojection error, from the decomposed pose).
+Status RefitPose(const View& view, const std::vector<Eigen::Vector3d>& points, const cv::Size& size,
+                 const Eigen::Matrix3d& K, Pose3* camera_T_world, double* rms_px) {
+  std::vector<cv::Point3d> object;
+  std::vector<cv::Point2d> image;
+  for (const Eigen::Vector3d& X : points) {
+    if ((view.decomposition.camera_T_world * X).z() <= 0) continue;
+    const Eigen::Vector2d x = (view.P * X.homogeneous()).hnormalized();
+    if (!InsideImage(x, size)) continue;
+    object.emplace_back(X.x(), X.y(), X.z());
+    image.emplace_back(x.x(), x.y());
+  }
+  if (static_cast<int>(object.size()) < kMinPointsInView) {
+    return Status::Error(view.camera_path + ": only " + std::to_string(object.size()) +
+                         " of the 3D points lie in front of this camera and inside its image; at least " +
+                         std::to_string(kMinPointsInView) + " are needed");
+  }
+  cv::Mat K_cv, rotation, rotation_vector, translation;
+  cv::eigen2cv(K, K_cv);
+  cv::eigen2cv(Eigen::Matrix3d(view.decomposition.camera_T_world.RotationMatrix()), rotation);
+  cv::Rodrigues(rotation, rotation_vector);
+  cv::eigen2cv(Eigen::Vector3d(view.decomposition.camera_T_world.translation), translation);
+  cv::solvePnP(object, image, K_cv, cv::noArray(), rotation_vector, translation, /*useExtrinsicGuess=*/true,
+               cv::SOLVEPNP_ITERATIVE);
+  cv::Rodrigues(rotation_vector, rotation);
+  Eigen::Matrix3d R;
+  Eigen::Vector3d t;
+  cv::cv2eigen(rotation, R);
+  cv::cv2eigen(translation, t);
+  *camera_T_world = Pose3(R, t);
+  double sum = 0;
+  for (size_t i = 0; i < object.size(); ++i) {
+    const Eigen::Vector2d x = (K * (R * Eigen::Vector3d(object[i].x, object[i].y, object[i].z) + t)).hnormalized();
+    sum += (x - Eigen::Vector2d(image[i].x, image[i].y)).squaredNorm();
+  }
+  *rms_px = std::sqrt(sum / object.size());
+  return Status::Ok();
+}
+
+double Median(std::vector<double> values) {
+  std::sort(values.begin(), values.end());
+  const size_t n = values.size();
+  return n % 2 == 1 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
+}
+
+// "a..b" of the values, for the log and the notes.
+std::string RangeText(const std::vector<double>& values) {
+  const auto [low, high] = std::minmax_element(values.begin(), values.end());
+  char text[64];
+  std::snprintf(text, sizeof(text), "%.1f..%.1f", *low, *high);
+  return text;
+}
+
+}  // namespace
+
+Eigen::Vector3d VggFileToWorld(const Eigen::Vector3d& point_in_file, bool world_mirrored) {
+  return world_mirrored ? Eigen::Vector3d(-point_in_file) : point_in_file;
+}
+
+Status ReadVggSequence(const std::string& input_dir, const VggImportOptions& options, ImportedSequence* sequence,
+                       VggImportSummary* summary) {
+  const fs::path dir(input_dir);
+  std::error_code error;
+  if (!fs::is_directory(dir, error)) return Status::Error(input_dir + ": input directory does not exist");
+  std::vector<View> views;
+  std::string name;
+  SFM_RETURN_IF_ERROR(ListViews(dir, &views, &name));
+  for (View& view : views) {
+    if (!fs::is_regular_file(view.image_path, error)) {
+      return Status::Error(view.image_path + ": image file for " + view.stem + ".P does not exist");
+    }
+    SFM_RETURN_IF_ERROR(ReadProjection(view.camera_path, &view.P));
+  }
+  const std::string points_path = (dir / (name + ".p3d")).string();
+  std::vector<Eigen::Vector3d> points;
+  SFM_RETURN_IF_ERROR(ReadPoints(points_path, &points));
+
+  cv::Mat first_image;
+  SFM_RETURN_IF_ERROR(DecodeImage(views.front().image_path, cv::IMREAD_GRAYSCALE, &first_image));
+  const cv::Size size = first_image.size();
+
+  VggImportSummary result;
+  result.world_mirrored = WorldIsMirrored(views, points, size);
+  if (result.world_mirrored) {
+    // P_world = P_file diag(-1, -1, -1, 1), so that P_world X_world = P_file X_file.
+    for (View& view : views) view.P.leftCols<3>() *= -1;
+    for (Eigen::Vector3d& X : points) X = VggFileToWorld(X, true);
+  }
+  std::vector<double> fx, fy, cx, cy, skew;
+  for (View& view : views) {
+    const Status status = DecomposeProjection(view.P, &view.decomposition);
+    if (!status.ok()) return Status::Error(view.camera_path + ": " + status.message());
+    const Eigen::Matrix3d& K = view.decomposition.K;
+    fx.push_back(K(0, 0));
+    fy.push_back(K(1, 1));
+    cx.push_back(K(0, 2));
+    cy.push_back(K(1, 2));
+    skew.push_back(std::abs(K(0, 1)));
+  }
+  result.K << Median(fx), 0, Median(cx), 0, Median(fy), Median(cy), 0, 0, 1;
+  const std::string k_note = "K: median of the " + std::to_string(views.size()) + " frames' decomposed K (fx " +
+                             RangeText(fx) + ", fy " + RangeText(fy) + ", cx " + RangeText(cx) + ", cy " +
+                             RangeText(cy) + ", |skew| " + RangeText(skew) + " set to 0): fx " +
+                             FormatNumber(result.K(0, 0)) + " fy " + FormatNumber(result.K(1, 1)) + " cx " +
+                             FormatNumber(result.K(0, 2)) + " cy " + FormatNumber(result.K(1, 2));
+  LOG(INFO) << "VGG: one " << k_note;
+
+  ImportedSequence imported;
+  imported.camera.width = size.width;
+  imported.camera.height = size.height;
+  imported.camera.fx = result.K(0, 0);
+  imported.camera.fy = result.K(1, 1);
+  imported.camera.cx = result.K(0, 2);
+  imported.camera.cy = result.K(1, 2);
+  for (size_t i = 0; i < views.size(); ++i) {
+    const View& view = views[i];
+    Pose3 camera_T_world = view.decomposition.camera_T_world;
+    double rms_px = 0;
+    if (options.refit_poses) {
+      SFM_RETURN_IF_ERROR(RefitPose(view, points, size, result.K, &camera_T_world, &rms_px));
+      LOG(INFO) << "VGG: " << view.stem << ": pose refitted for the shared K, RMS " << rms_px << " px against P";
+    }
+    result.refit_rms_px.push_back(rms_px);
+    imported.frames.push_back({static_cast<double>(i) * kFrameInterval, view.image_path, camera_T_world.Inverse()});
+  }
+  imported.notes.push_back("format: VGG multi-view, " + input_dir + ", " + std::to_string(views.size()) +
+                           " frames " + views.front().stem + " .. " + views.back().stem);
+  imported.notes.push_back(k_note);
+  imported.notes.push_back(options.refit_poses
+                               ? "poses: re-estimated for that K (PnP on " + name +
+                                     ".p3d as each P projects it; RMS " + RangeText(result.refit_rms_px) + " px)"
+                               : "poses: R, C of each P's RQ decomposition (with its own K, not the shared one)");
+  imported.notes.push_back(result.world_mirrored
+                               ? "world: X_world = -X_file, the point reflection of the files' left-handed frame"
+                               : "world: the files' frame");
+  imported.notes.push_back("units: those of the VGG reconstruction, not metres (the scale is unknown)");
+  imported.notes.push_back("timestamps: 0.1 s per frame (the data set has none)");
+  *sequence = std::move(imported);
+  *summary = std::move(result);
+  return Status::Ok();
+}
+
+}  // namespace sfm

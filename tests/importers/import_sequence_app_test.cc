@@ -1,0 +1,128 @@
+// import_sequence as a user runs it: exit status, the one-line error naming the file, no output
+// on bad input, and a sequence that ReadSequence accepts on good input.
+#include <sys/wait.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+#include <opencv2/imgcodecs.hpp>
+
+#include "frontend/sequence/sequence.h"
+#include "tests/test_data.h"
+
+namespace sfm {
+namespace {
+
+namespace fs = std::filesystem;
+using ::testing::HasSubstr;
+
+struct AppRun {
+  int exit_status = -1;
+  std::string stderr_text;
+};
+
+AppRun RunImport(const fs::path& scratch, const std::string& arguments) {
+  const fs::path err = scratch / "stderr.txt";
+  const std::string command = std::string(SFM_IMPORT_SEQUENCE_BINARY) + " " + arguments + " 2>" + err.string() +
+                              " >/dev/null";
+  const int status = std::system(command.c_str());
+  AppRun run;
+  run.exit_status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  std::ifstream in(err);
+  std::stringstream text;
+  text << in.rdbuf();
+  run.stderr_text = text.str();
+  return run;
+}
+
+int CountLines(const std::string& text) { return static_cast<int>(std::count(text.begin(), text.end(), '\n')); }
+
+// The lines of stderr that are not glog's informational lines ("I<date> ..."): the error.
+std::string ErrorLines(const std::string& text) {
+  std::istringstream lines(text);
+  std::string line, errors;
+  while (std::getline(lines, line)) {
+    if (!line.empty() && line[0] != 'I') errors += line + "\n";
+  }
+  return errors;
+}
+
+// A valid two-camera Strecha folder with small images, 1 m apart.
+fs::path WriteStrechaFolder(const fs::path& scratch) {
+  const fs::path dir = scratch / "strecha";
+  fs::create_directories(dir / "images");
+  fs::create_directories(dir / "gt_dense_cameras");
+  for (const char* name : {"0000.jpg", "0001.jpg"}) {
+    cv::imwrite((dir / "images" / name).string(), cv::Mat(48, 64, CV_8UC3, cv::Scalar(10, 200, 90)));
+    std::ofstream(dir / "gt_dense_cameras" / (std::string(name) + ".camera"))
+        << "57.5 0 31.7\n0 57.6 20.9\n0 0 1\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n" << (name[3] == '0' ? "0" : "1")
+        << " 0 0\n64 48\n";
+  }
+  return dir;
+}
+
+TEST(ImportSequenceAppTest, BadInputExitsNonZeroWithOneLineAndNoOutput) {
+  const fs::path scratch = testing::MakeScratchDir("import_app_bad");
+  const fs::path out = scratch / "out";
+  AppRun run = RunImport(scratch, "--format strecha --input " + (scratch / "absent").string() + " --output " + out.string());
+  EXPECT_EQ(run.exit_status, 1);
+  EXPECT_EQ(ErrorLines(run.stderr_text), "import_sequence: " + (scratch / "absent").string() +
+                                              ": input directory does not exist\n");
+
+  const fs::path strecha = WriteStrechaFolder(scratch);
+  std::ofstream(strecha / "gt_dense_cameras" / "0001.jpg.camera")
+      << "57.5 0 31.7\n0 57.6 20.9\n0 0 1\n0 0 0\n1 0 0\n0 1 0\n0 0 2\n0 0 0\n64 48\n";
+  run = RunImport(scratch, "--format strecha --input " + strecha.string() + " --output " + out.string());
+  EXPECT_EQ(run.exit_status, 1);
+  EXPECT_THAT(ErrorLines(run.stderr_text), HasSubstr("0001.jpg.camera: R is not a rotation"));
+  EXPECT_EQ(CountLines(ErrorLines(run.stderr_text)), 1) << run.stderr_text;
+
+  std::ofstream(strecha / "gt_dense_cameras" / "0001.jpg.camera")
+      << "57.5 0 31.7\n0 57.6 20.9\n0 0 1\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n1 0 0\n64 48\n";
+  std::ofstream(strecha / "images" / "0001.jpg") << "not a JPEG";
+  run = RunImport(scratch, "--format strecha --input " + strecha.string() + " --output " + out.string());
+  EXPECT_EQ(run.exit_status, 1);
+  // OpenCV's own diagnostics are folded into the one line.
+  EXPECT_THAT(ErrorLines(run.stderr_text), HasSubstr("0001.jpg: cannot decode image"));
+  EXPECT_EQ(CountLines(ErrorLines(run.stderr_text)), 1) << run.stderr_text;
+
+  run = RunImport(scratch, "--format colmap --input " + strecha.string() + " --output " + out.string());
+  EXPECT_EQ(run.exit_status, 2);
+  EXPECT_THAT(run.stderr_text, HasSubstr("--format must be vgg, strecha or tum"));
+  EXPECT_FALSE(fs::exists(out));
+}
+
+TEST(ImportSequenceAppTest, ImportsAndRefusesToOverwriteUnlessAsked) {
+  const fs::path scratch = testing::MakeScratchDir("import_app_good");
+  const fs::path strecha = WriteStrechaFolder(scratch);
+  const fs::path out = scratch / "out";
+  const std::string arguments = "--format strecha --input " + strecha.string() + " --output " + out.string();
+  AppRun run = RunImport(scratch, arguments + " --scale 0.5 --seed 9");
+  ASSERT_EQ(run.exit_status, 0) << run.stderr_text;
+  Sequence sequence;
+  const Status status = ReadSequence(out.string(), &sequence);
+  ASSERT_TRUE(status.ok()) << status.message();
+  EXPECT_EQ(sequence.calibration.camera.width, 32);
+  EXPECT_DOUBLE_EQ(sequence.calibration.camera.cx, 0.5 * (31.7 + 0.5) - 0.5);
+
+  run = RunImport(scratch, arguments);
+  EXPECT_EQ(run.exit_status, 1);
+  EXPECT_THAT(run.stderr_text, HasSubstr("exists and is not empty"));
+  run = RunImport(scratch, arguments + " --overwrite");
+  EXPECT_EQ(run.exit_status, 0) << run.stderr_text;
+  ASSERT_TRUE(ReadSequence(out.string(), &sequence).ok());
+  EXPECT_EQ(sequence.calibration.camera.width, 64);
+  for (const fs::directory_entry& entry : fs::directory_iterator(scratch)) {
+    const std::string name = entry.path().filename().string();
+    EXPECT_TRUE(name == "out" || name == "strecha" || name == "stderr.txt") << "left behind: " << name;
+  }
+}
+
+}  // namespace
+}  // namespace sfm
