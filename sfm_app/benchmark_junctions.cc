@@ -1,0 +1,799 @@
+// benchmark_junctions: quality of junction detection and the end-point model of eq. (5), measured
+// against ground truth in one run (docs/junction_results.md, docs/endpoint_model.md).
+//
+//   build/bin/benchmark_junctions --output junction_results.md [--work_dir /tmp/junction_benchmark]
+//                                 [--sequences a,b] [--segments fast,reference] [junction flags]
+//
+// Run from the repository's top directory (the default --vgg_dir is relative to it). Single thread.
+// 1. Generated sequences: unless --sequences names existing ones, three are generated into
+//    --work_dir with the generator library (fixed seeds, so the same bytes every run): a corridor
+//    (straight), a room (loop) and a corridor with barrel distortion (turns). Each frame is
+//    undistorted with ImageUndistorter, segments and junctions detected, and the junctions
+//    compared with the true vertices of the frame (junction_evaluation.h).
+// 2. VGG Corridor: ground-truth junctions built from the ground-truth segments (bt.NNN.lines)
+//    whose ends meet; recall and precision of the detected junctions against them.
+// 3. End-point model: t offsets of detected segments against the true edge parts (generated) and
+//    the ground-truth segments (VGG), and the maximum-likelihood lambda and mu (FitEndpointModel).
+// Markdown tables go to stdout and to --output.
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <map>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <gflags/gflags.h>
+#include <glog/logging.h>
+#include <opencv2/core.hpp>
+#include <opencv2/imgcodecs.hpp>
+
+#include "frontend/geometry/image_undistorter.h"
+#include "frontend/junctions/junction_detector.h"
+#include "frontend/segments/endpoint_fit.h"
+#include "frontend/segments/segment_detector.h"
+#include "frontend/segments/segment_evaluation.h"
+#include "frontend/sequence/sequence.h"
+#include "frontend/util/atomic_file.h"
+#include "sequences/generator/ground_truth.h"
+#include "sequences/generator/sequence_writer.h"
+#include "sfm_app/evaluation/junction_evaluation.h"
+#include "sfm_app/evaluation/junction_overlay.h"
+
+namespace {
+const sfm::JunctionDetectorOptions kJunctionDefaults;
+const sfm::TrueJunctionOptions kTruthDefaults;
+const sfm::SegmentJunctionOptions kGtDefaults;
+const sfm::EndpointOffsetOptions kOffsetDefaults;
+}  // namespace
+
+DEFINE_string(output, "", "Also write the markdown report to this file.");
+DEFINE_string(work_dir, "/tmp/junction_benchmark", "Where the generated sequences are written (replaced each run).");
+DEFINE_string(sequences, "",
+              "Comma-separated generated sequence directories (with truth/) to measure instead of generating "
+              "the standard three.");
+DEFINE_int32(frames, 30, "Frames of each generated sequence.");
+DEFINE_string(vgg_dir, "../shared/data/vgg-corridor", "VGG Corridor directory (bt.NNN.pgm, bt.NNN.lines); skipped if absent.");
+DEFINE_string(segments, "fast,reference", "Segment detectors to measure, comma-separated: fast, reference.");
+DEFINE_double(min_segment_length, sfm::SegmentDetectorOptions().min_length, "Segment detectors: shortest segment kept, px.");
+DEFINE_string(overlay_dir, "", "If set, write overlays there (every 10th generated frame, every VGG image), "
+                               "with missed true junctions circled in white.");
+DEFINE_double(radius, 3.0, "A true junction is found when a detected one lies within this, px.");
+DEFINE_double(min_edge_px, kTruthDefaults.min_edge_px,
+              "Generated: a vertex is detectable when at least two visible edges at least this long (px) meet there.");
+DEFINE_string(gt_contact_px, "3,5",
+              "VGG: how close ground-truth segment ends must come to meet, px; a comma-separated list gives one "
+              "set of ground-truth junctions each (overlays and end-point fits use the first).");
+DEFINE_double(gt_min_angle_deg, kGtDefaults.min_angle_deg, "VGG: ground-truth segments closer to parallel never meet, degrees.");
+DEFINE_double(max_abs_t, kOffsetDefaults.max_abs_t, "End-point samples with |t| above this are gross failures, px.");
+DEFINE_double(lambda, kJunctionDefaults.endpoint_model.lambda, "End-point model: decay for t >= 0 (too long), 1/px.");
+DEFINE_double(mu, kJunctionDefaults.endpoint_model.mu, "End-point model: decay for t < 0 (too short), 1/px.");
+DEFINE_double(min_probability, kJunctionDefaults.min_probability, "Pairwise junction probability threshold.");
+DEFINE_double(max_gap_px, kJunctionDefaults.max_gap_px, "Largest end-point move, px.");
+DEFINE_double(collinear_tolerance_deg, kJunctionDefaults.collinear_tolerance_deg, "Near-parallel limit, degrees.");
+DEFINE_double(collinear_max_offset_px, kJunctionDefaults.collinear_max_offset_px, "Broken-line offset, px.");
+DEFINE_double(min_arm_px, kJunctionDefaults.min_arm_px, "Smallest arm of a T bar or X, px.");
+
+namespace sfm {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+constexpr int kNumTypes = 6;
+constexpr JunctionType kTypes[kNumTypes] = {JunctionType::kL, JunctionType::kY, JunctionType::kArrow,
+                                            JunctionType::kT, JunctionType::kX, JunctionType::kN};
+
+// Why a detectable vertex was missed, first reason that applies.
+enum MissKind {
+  kCrowded,        // another true junction (vertex or occlusion T) within 2 x radius
+  kEdgesMissing,   // fewer than two of its long edges have a detected segment on them
+  kEndsFar,        // fewer than two of those detections reach within max_gap_px of the vertex
+  kNotJoined,      // at least two do, yet no junction within the radius
+  kNumMissKinds
+};
+const char* const kMissNames[kNumMissKinds] = {
+    "crowded: another true junction within 2 x radius",
+    "edges missing: fewer than 2 long edges have a detected segment on them",
+    "ends far: fewer than 2 of those segments end within max_gap_px of the vertex",
+    "not joined: 2 or more segments end near, no junction within the radius"};
+
+// No other true junction (vertex or occlusion T) within 2 x radius of p.
+bool Isolated(const Eigen::Vector2d& p, const std::vector<Eigen::Vector2d>& any_truth) {
+  for (const Eigen::Vector2d& q : any_truth) {
+    const double d = (p - q).norm();
+    if (d > 1e-6 && d <= 2 * FLAGS_radius) return false;
+  }
+  return true;
+}
+
+MissKind WhyMissed(const TrueVertexJunction& v, const std::vector<Eigen::Vector2d>& any_truth,
+                   const LineSegments& segments, double max_gap) {
+  if (!Isolated(v.location, any_truth)) return kCrowded;
+  EndpointOffsetOptions options;
+  options.max_abs_t = 1e9;
+  options.min_true_length = 0;
+  int detected = 0, close = 0;
+  for (const Eigen::Vector2d& far : v.long_edge_ends) {
+    LineSegment edge;
+    edge.p0 = v.location;
+    edge.p1 = far;
+    EndpointOffsets offsets;
+    const bool at_vertex[2] = {true, false};
+    CollectEndpointOffsets(segments, edge, at_vertex, options, &offsets);
+    if (offsets.t.empty()) continue;
+    ++detected;
+    if (offsets.t[0] >= -max_gap) ++close;
+  }
+  if (detected < 2) return kEdgesMissing;
+  if (close < 2) return kEndsFar;
+  return kNotJoined;
+}
+
+double Ms(Clock::time_point since) { return std::chrono::duration<double, std::milli>(Clock::now() - since).count(); }
+
+std::vector<std::string> Split(const std::string& text) {
+  std::vector<std::string> parts;
+  std::stringstream in(text);
+  for (std::string part; std::getline(in, part, ',');) {
+    if (!part.empty()) parts.push_back(part);
+  }
+  return parts;
+}
+
+std::string Fixed(double value, int digits) {
+  char buffer[64];
+  std::snprintf(buffer, sizeof buffer, "%.*f", digits, value);
+  return buffer;
+}
+std::string Percent(int part, int whole) { return whole > 0 ? Fixed(100.0 * part / whole, 1) + " %" : "-"; }
+
+struct Method {
+  std::string name;
+  SegmentDetectorOptions options;
+};
+
+// What one detector did on one set of generated frames.
+// Stricter readings of "detectable", reported beside the main one.
+constexpr int kNumVariants = 3;
+const char* const kVariantNames[kNumVariants] = {
+    "main, and isolated: no other true junction within 2 x radius", "at least two edges of at least 20 px",
+    "at least two edges of at least 20 px, isolated"};
+
+struct GeneratedStats {
+  std::array<int, kNumVariants> variant_count{}, variant_found{};
+  std::array<std::vector<double>, kNumVariants> variant_errors;
+  int frames = 0;
+  int detectable = 0, detectable_found = 0;
+  int visible = 0, visible_found = 0;  // every visible vertex junction
+  int detected = 0, detected_valid = 0, detected_correct = 0;  // correct: a true vertex or occlusion T
+  int segments = 0;
+  double segment_ms = 0, junction_ms = 0;
+  std::vector<double> errors;  // px, detectable vertices found
+  std::array<int, kNumTypes> true_by_type{}, found_by_type{};  // detectable vertices, by true type
+  std::array<int, kNumTypes> detected_by_type{}, detected_vertex_by_type{}, detected_correct_by_type{};
+  std::array<std::array<int, kNumTypes>, kNumTypes> confusion{};  // [true type][detected type], found detectable
+  EndpointOffsets vertex_ends, occlusion_ends;
+  std::array<int, kNumMissKinds> misses{};  // missed detectable vertices by MissKind
+
+  void Add(const GeneratedStats& o) {
+    for (int k = 0; k < kNumMissKinds; ++k) misses[k] += o.misses[k];
+    for (int k = 0; k < kNumVariants; ++k) {
+      variant_count[k] += o.variant_count[k];
+      variant_found[k] += o.variant_found[k];
+      variant_errors[k].insert(variant_errors[k].end(), o.variant_errors[k].begin(), o.variant_errors[k].end());
+    }
+    frames += o.frames;
+    detectable += o.detectable;
+    detectable_found += o.detectable_found;
+    visible += o.visible;
+    visible_found += o.visible_found;
+    detected += o.detected;
+    detected_valid += o.detected_valid;
+    detected_correct += o.detected_correct;
+    segments += o.segments;
+    segment_ms += o.segment_ms;
+    junction_ms += o.junction_ms;
+    errors.insert(errors.end(), o.errors.begin(), o.errors.end());
+    for (int i = 0; i < kNumTypes; ++i) {
+      true_by_type[i] += o.true_by_type[i];
+      found_by_type[i] += o.found_by_type[i];
+      detected_by_type[i] += o.detected_by_type[i];
+      detected_vertex_by_type[i] += o.detected_vertex_by_type[i];
+      detected_correct_by_type[i] += o.detected_correct_by_type[i];
+      for (int j = 0; j < kNumTypes; ++j) confusion[i][j] += o.confusion[i][j];
+    }
+    for (auto [to, from] : {std::pair{&vertex_ends, &o.vertex_ends}, std::pair{&occlusion_ends, &o.occlusion_ends}}) {
+      to->t.insert(to->t.end(), from->t.begin(), from->t.end());
+      to->ends += from->ends;
+      to->unmatched += from->unmatched;
+      to->gross += from->gross;
+    }
+  }
+};
+
+struct VggStats {
+  int images = 0, gt_segments = 0, gt_junctions = 0, gt_found = 0, detected = 0, detected_correct = 0;
+  int detected_border = 0, correct_border = 0;  // detections within the radius of the image border
+  int detected_on_gt = 0, correct_on_gt = 0;     // detections with two or more segments on GT segments
+  std::vector<double> errors, dx, dy;
+  std::array<int, kNumTypes> gt_by_type{}, gt_found_by_type{}, detected_by_type{}, detected_correct_by_type{};
+  EndpointOffsets ends;
+  double ms = 0;
+};
+
+std::vector<Eigen::Vector2d> Locations(const Junctions& junctions) {
+  std::vector<Eigen::Vector2d> points;
+  for (const Junction& j : junctions) points.push_back(j.location);
+  return points;
+}
+
+// Undistorted pixels whose distorted position lies in the stored image, `margin` px inside it:
+// where the undistorted image shows the scene and not the black fill.
+cv::Mat ValidMask(const Camera& camera, double margin) {
+  cv::Mat mask(camera.height, camera.width, CV_8U, cv::Scalar(255));
+  for (int y = 0; y < camera.height; ++y) {
+    for (int x = 0; x < camera.width; ++x) {
+      const Eigen::Vector2d d = camera.DistortPixel(Eigen::Vector2d(x, y));
+      const bool inside = d.x() >= margin && d.y() >= margin && d.x() <= camera.width - 1 - margin &&
+                          d.y() <= camera.height - 1 - margin;
+      mask.at<uchar>(y, x) = inside ? 255 : 0;
+    }
+  }
+  return mask;
+}
+
+bool InMask(const cv::Mat& mask, const Eigen::Vector2d& p) {
+  const int x = static_cast<int>(std::lround(p.x())), y = static_cast<int>(std::lround(p.y()));
+  return x >= 0 && y >= 0 && x < mask.cols && y < mask.rows && mask.at<uchar>(y, x) != 0;
+}
+
+Status WritePng(const std::string& path, const cv::Mat& image) {
+  std::vector<uchar> png;
+  if (!cv::imencode(".png", image, png)) return Status::Error(path + ": PNG encoding failed");
+  return WriteFileAtomically(path, std::string(png.begin(), png.end()));
+}
+
+// The standard generated sequences: name and generator options.
+std::vector<std::pair<std::string, GeneratorOptions>> StandardSequences(int frames) {
+  std::vector<std::pair<std::string, GeneratorOptions>> sequences;
+  GeneratorOptions corridor;
+  corridor.scene.type = SceneType::kCorridor;
+  corridor.trajectory.type = TrajectoryType::kStraight;
+  corridor.trajectory.num_frames = frames;
+  corridor.seed = 11;
+  sequences.emplace_back("corridor", corridor);
+  GeneratorOptions room;
+  room.scene.type = SceneType::kRoom;
+  room.trajectory.type = TrajectoryType::kLoop;
+  room.trajectory.num_frames = frames;
+  room.seed = 12;
+  sequences.emplace_back("room", room);
+  GeneratorOptions distorted = corridor;
+  distorted.trajectory.type = TrajectoryType::kTurns;
+  distorted.camera.distortion = {-0.25, 0.07, 0.0005, -0.0005, 0};
+  distorted.seed = 13;
+  sequences.emplace_back("corridor-distorted", distorted);
+  return sequences;
+}
+
+// Measures one generated sequence with each method.
+Status MeasureSequence(const std::string& directory, const std::vector<Method>& methods,
+                       const JunctionDetectorOptions& junction_options, const std::string& overlay_prefix,
+                       std::vector<GeneratedStats>* stats) {
+  Sequence sequence;
+  SFM_RETURN_IF_ERROR(ReadSequence(directory, &sequence));
+  GroundTruth truth;
+  SFM_RETURN_IF_ERROR(ReadGroundTruth(directory, &truth));
+  if (truth.frames.size() != sequence.frames.size()) {
+    return Status::Error(directory + ": truth/frames has " + std::to_string(truth.frames.size()) +
+                         " frames but images.txt " + std::to_string(sequence.frames.size()));
+  }
+  const Camera& camera = sequence.calibration.camera;
+  const ImageUndistorter undistorter(camera);
+  const cv::Mat valid = ValidMask(camera, FLAGS_radius);
+  TrueJunctionOptions truth_options;
+  truth_options.min_edge_px = FLAGS_min_edge_px;
+  EndpointOffsetOptions offset_options;
+  offset_options.max_abs_t = FLAGS_max_abs_t;
+  stats->assign(methods.size(), GeneratedStats());
+
+  for (size_t f = 0; f < sequence.frames.size(); ++f) {
+    cv::Mat image;
+    SFM_RETURN_IF_ERROR(LoadFrameImage(sequence, static_cast<int>(f), &image));
+    const cv::Mat grey = undistorter.Apply(image);
+    // True vertices count where the undistorted image shows them (with distortion, some of the
+    // stored image's field of view falls outside the undistorted frame), radius px inside.
+    FrameTrueJunctions true_junctions = TrueJunctionsOfFrame(truth.wireframe, truth.frames[f], truth_options);
+    auto outside = [&](const TrueVertexJunction& v) { return !InMask(valid, v.location); };
+    true_junctions.vertices.erase(
+        std::remove_if(true_junctions.vertices.begin(), true_junctions.vertices.end(), outside),
+        true_junctions.vertices.end());
+    const std::vector<TrueSegment> true_segments = TrueSegmentsOfFrame(truth.wireframe, truth.frames[f], truth_options);
+    std::vector<Eigen::Vector2d> detectable, visible, any_truth;
+    std::vector<int> detectable_type;
+    std::vector<const TrueVertexJunction*> detectable_vertex;
+    for (const TrueVertexJunction& v : true_junctions.vertices) {
+      visible.push_back(v.location);
+      if (v.detectable) {
+        detectable.push_back(v.location);
+        detectable_vertex.push_back(&v);
+        detectable_type.push_back(static_cast<int>(v.type));
+      }
+    }
+    // Every true image junction, whatever its edges' lengths: isolation and precision.
+    TrueJunctionOptions every_options = truth_options;
+    every_options.min_edge_px = 0;
+    any_truth = visible;
+    const FrameTrueJunctions every = TrueJunctionsOfFrame(truth.wireframe, truth.frames[f], every_options);
+    any_truth.insert(any_truth.end(), every.occlusions.begin(), every.occlusions.end());
+    TrueJunctionOptions long_options = truth_options;
+    long_options.min_edge_px = 20;
+    FrameTrueJunctions long_edged = TrueJunctionsOfFrame(truth.wireframe, truth.frames[f], long_options);
+    long_edged.vertices.erase(std::remove_if(long_edged.vertices.begin(), long_edged.vertices.end(), outside),
+                              long_edged.vertices.end());
+    std::array<std::vector<Eigen::Vector2d>, kNumVariants> variant_points;
+    for (const Eigen::Vector2d& p : detectable) {
+      if (Isolated(p, any_truth)) variant_points[0].push_back(p);
+    }
+    for (const TrueVertexJunction& v : long_edged.vertices) {
+      if (!v.detectable) continue;
+      variant_points[1].push_back(v.location);
+      if (Isolated(v.location, any_truth)) variant_points[2].push_back(v.location);
+    }
+
+    for (size_t m = 0; m < methods.size(); ++m) {
+      GeneratedStats& s = (*stats)[m];
+      ++s.frames;
+      auto start = Clock::now();
+      const LineSegments segments = DetectLineSegments(grey, methods[m].options);
+      s.segment_ms += Ms(start);
+      start = Clock::now();
+      const Junctions junctions = DetectJunctions(segments, junction_options);
+      s.junction_ms += Ms(start);
+      s.segments += static_cast<int>(segments.size());
+      const std::vector<Eigen::Vector2d> detected = Locations(junctions);
+
+      // Recall over detectable vertices, with location error and type.
+      s.detectable += static_cast<int>(detectable.size());
+      std::vector<bool> detectable_found(detectable.size(), false);
+      for (const PointMatch& match : MatchPoints(detectable, detected, FLAGS_radius)) {
+        ++s.detectable_found;
+        detectable_found[match.truth] = true;
+        s.errors.push_back(match.distance);
+        ++s.found_by_type[detectable_type[match.truth]];
+        ++s.confusion[detectable_type[match.truth]][static_cast<int>(junctions[match.detected].type)];
+      }
+      for (int type : detectable_type) ++s.true_by_type[type];
+      for (size_t i = 0; i < detectable.size(); ++i) {
+        if (!detectable_found[i]) ++s.misses[WhyMissed(*detectable_vertex[i], any_truth, segments, junction_options.max_gap_px)];
+      }
+      for (int k = 0; k < kNumVariants; ++k) {
+        s.variant_count[k] += static_cast<int>(variant_points[k].size());
+        for (const PointMatch& match : MatchPoints(variant_points[k], detected, FLAGS_radius)) {
+          ++s.variant_found[k];
+          s.variant_errors[k].push_back(match.distance);
+        }
+      }
+      // Recall over every visible vertex junction, and which detections sit on a vertex.
+      s.visible += static_cast<int>(visible.size());
+      for (const PointMatch& match : MatchPoints(visible, detected, FLAGS_radius)) {
+        ++s.visible_found;
+        ++s.detected_vertex_by_type[static_cast<int>(junctions[match.detected].type)];
+      }
+      // Precision: detections in the valid image part against vertices and occlusion T's.
+      s.detected += static_cast<int>(junctions.size());
+      for (const Junction& j : junctions) {
+        ++s.detected_by_type[static_cast<int>(j.type)];
+        if (InMask(valid, j.location)) ++s.detected_valid;
+      }
+      for (const PointMatch& match : MatchPoints(any_truth, detected, FLAGS_radius)) {
+        if (!InMask(valid, detected[match.detected])) continue;
+        ++s.detected_correct;
+        ++s.detected_correct_by_type[static_cast<int>(junctions[match.detected].type)];
+      }
+      // End-point offsets.
+      for (const TrueSegment& t : true_segments) {
+        for (int e = 0; e < 2; ++e) {
+          if (!t.real_end[e]) continue;
+          const bool use[2] = {e == 0, e == 1};
+          CollectEndpointOffsets(segments, t.segment, use, offset_options,
+                                 t.end[e] == SegmentEnd::kVertex ? &s.vertex_ends : &s.occlusion_ends);
+        }
+      }
+      if (!overlay_prefix.empty() && f % 10 == 0) {
+        std::vector<Eigen::Vector2d> missed;
+        for (size_t i = 0; i < detectable.size(); ++i) {
+          if (!detectable_found[i]) missed.push_back(detectable[i]);
+        }
+        const cv::Mat overlay = DrawJunctionOverlay(grey, segments, junctions, 2,
+                                                    {{missed, {}, cv::Scalar(255, 255, 255), "missed vertices"}});
+        char name[64];
+        std::snprintf(name, sizeof name, "_%s_%06zu.png", methods[m].name.c_str(), f);
+        SFM_RETURN_IF_ERROR(WritePng(overlay_prefix + name, overlay));
+      }
+    }
+  }
+  return Status::Ok();
+}
+
+// Measures the VGG Corridor images with each method, against the ground-truth junctions of each
+// contact distance: (*stats)[method][contact].
+Status MeasureVgg(const std::string& directory, const std::vector<Method>& methods, const std::vector<double>& contacts,
+                  const JunctionDetectorOptions& junction_options, const std::string& overlay_dir,
+                  std::vector<std::vector<VggStats>>* stats) {
+  stats->assign(methods.size(), std::vector<VggStats>(contacts.size()));
+  EndpointOffsetOptions offset_options;
+  offset_options.max_abs_t = FLAGS_max_abs_t;
+  for (int i = 0;; ++i) {
+    char stem[32];
+    std::snprintf(stem, sizeof stem, "bt.%03d", i);
+    const std::string image_path = directory + "/" + stem + ".pgm";
+    if (!std::filesystem::exists(image_path)) break;
+    const cv::Mat grey = cv::imread(image_path, cv::IMREAD_GRAYSCALE);
+    if (grey.empty()) return Status::Error(image_path + ": cannot decode as an image");
+    LineSegments gt_segments;
+    SFM_RETURN_IF_ERROR(ReadVggLines(directory + "/" + stem + ".lines", &gt_segments));
+    std::vector<std::vector<SegmentJunction>> gt(contacts.size());
+    std::vector<std::vector<Eigen::Vector2d>> gt_points(contacts.size());
+    for (size_t c = 0; c < contacts.size(); ++c) {
+      SegmentJunctionOptions gt_options;
+      gt_options.contact_px = contacts[c];
+      gt_options.min_angle_deg = FLAGS_gt_min_angle_deg;
+      gt[c] = JunctionsFromSegments(gt_segments, gt_options);
+      for (const SegmentJunction& j : gt[c]) gt_points[c].push_back(j.location);
+    }
+
+    for (size_t m = 0; m < methods.size(); ++m) {
+      const auto start = Clock::now();
+      const LineSegments segments = DetectLineSegments(grey, methods[m].options);
+      const Junctions junctions = DetectJunctions(segments, junction_options);
+      const double ms = Ms(start);
+      const std::vector<Eigen::Vector2d> detected = Locations(junctions);
+      // Which detected segments lie on a GT segment (same line within 1.5 px, overlapping), and so
+      // which junctions are made of at least two GT lines.
+      std::vector<bool> on_gt(segments.size(), false);
+      EndpointOffsetOptions same_line;
+      same_line.max_line_distance = 1.5;
+      same_line.min_true_length = 0;
+      same_line.max_abs_t = 1e9;
+      for (size_t k = 0; k < segments.size(); ++k) {
+        for (const LineSegment& g : gt_segments) {
+          EndpointOffsets probe;
+          const bool one[2] = {true, false};
+          CollectEndpointOffsets({g}, segments[k], one, same_line, &probe);
+          if (!probe.t.empty()) {
+            on_gt[k] = true;
+            break;
+          }
+        }
+      }
+      std::vector<bool> junction_on_gt(junctions.size(), false);
+      for (size_t k = 0; k < junctions.size(); ++k) {
+        std::vector<int> lines;
+        for (const JunctionSegment& js : junctions[k].segments) {
+          if (js.line_segment >= 0 && on_gt[js.line_segment]) lines.push_back(js.line_segment);
+        }
+        std::sort(lines.begin(), lines.end());
+        junction_on_gt[k] = std::unique(lines.begin(), lines.end()) - lines.begin() >= 2;
+      }
+      std::vector<bool> found;
+      for (size_t c = 0; c < contacts.size(); ++c) {
+        VggStats& s = (*stats)[m][c];
+        ++s.images;
+        s.ms += ms;
+        s.gt_segments += static_cast<int>(gt_segments.size());
+        s.gt_junctions += static_cast<int>(gt[c].size());
+        s.detected += static_cast<int>(junctions.size());
+        for (const SegmentJunction& j : gt[c]) ++s.gt_by_type[static_cast<int>(j.type)];
+        auto near_border = [&](const Eigen::Vector2d& p) {
+          return p.x() < FLAGS_radius || p.y() < FLAGS_radius || p.x() > grey.cols - 1 - FLAGS_radius ||
+                 p.y() > grey.rows - 1 - FLAGS_radius;
+        };
+        for (size_t k = 0; k < junctions.size(); ++k) {
+          ++s.detected_by_type[static_cast<int>(junctions[k].type)];
+          if (near_border(junctions[k].location)) ++s.detected_border;
+          if (junction_on_gt[k]) ++s.detected_on_gt;
+        }
+        found.assign(gt[c].size(), false);
+        for (const PointMatch& match : MatchPoints(gt_points[c], detected, FLAGS_radius)) {
+          found[match.truth] = true;
+          ++s.gt_found;
+          ++s.detected_correct;
+          if (near_border(detected[match.detected])) ++s.correct_border;
+          if (junction_on_gt[match.detected]) ++s.correct_on_gt;
+          ++s.gt_found_by_type[static_cast<int>(gt[c][match.truth].type)];
+          ++s.detected_correct_by_type[static_cast<int>(junctions[match.detected].type)];
+          s.errors.push_back(match.distance);
+          s.dx.push_back(detected[match.detected].x() - gt_points[c][match.truth].x());
+          s.dy.push_back(detected[match.detected].y() - gt_points[c][match.truth].y());
+        }
+        if (c != 0) continue;
+        const bool both[2] = {true, true};
+        for (const LineSegment& g : gt_segments) CollectEndpointOffsets(segments, g, both, offset_options, &s.ends);
+        if (!overlay_dir.empty()) {
+          std::vector<Eigen::Vector2d> missed;
+          for (size_t k = 0; k < gt[c].size(); ++k) {
+            if (!found[k]) missed.push_back(gt_points[c][k]);
+          }
+          const cv::Mat overlay =
+              DrawJunctionOverlay(grey, segments, junctions, 2,
+                                  {{{}, gt_segments, cv::Scalar(0, 140, 255), "GT segments"},
+                                   {gt_points[c], {}, cv::Scalar(0, 255, 0), "GT junctions"},
+                                   {missed, {}, cv::Scalar(255, 255, 255), "missed GT"}});
+          SFM_RETURN_IF_ERROR(WritePng(overlay_dir + "/vgg_" + methods[m].name + "_" + stem + ".png", overlay));
+        }
+      }
+    }
+  }
+  if (!stats->empty() && !(*stats)[0].empty() && (*stats)[0][0].images == 0) return Status::Error(directory + ": no bt.NNN.pgm images");
+  return Status::Ok();
+}
+
+std::string EndpointRow(const std::string& source, const EndpointOffsets& o) {
+  std::ostringstream row;
+  const std::vector<double>& t = o.t;
+  int positive = 0;
+  double sum_positive = 0, sum_negative = 0;
+  for (double v : t) {
+    if (v >= 0) {
+      ++positive;
+      sum_positive += v;
+    } else {
+      sum_negative -= v;
+    }
+  }
+  const int negative = static_cast<int>(t.size()) - positive;
+  row << "| " << source << " | " << o.ends << " | " << o.unmatched << " | " << o.gross << " | " << t.size() << " | "
+      << Fixed(Quantile(t, 0.5), 2) << " | " << Fixed(Quantile(t, 0.1), 2) << " / " << Fixed(Quantile(t, 0.9), 2)
+      << " | " << Percent(positive, static_cast<int>(t.size())) << " | "
+      << (positive ? Fixed(sum_positive / positive, 2) : "-") << " | "
+      << (negative ? Fixed(sum_negative / negative, 2) : "-") << " | ";
+  if (positive > 0 && negative > 0) {
+    const EndpointModel model = FitEndpointModel(t);
+    row << Fixed(model.lambda, 3) << " | " << Fixed(model.mu, 3) << " |";
+  } else {
+    row << "- | - |";
+  }
+  return row.str();
+}
+
+const char* kEndpointHeader =
+    "| source | true ends | no detection | \\|t\\| > cap | samples | median t | 10 % / 90 % | t >= 0 | mean t (t >= 0) "
+    "| mean -t (t < 0) | lambda (1/px) | mu (1/px) |\n|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+
+}  // namespace
+}  // namespace sfm
+
+int main(int argc, char** argv) {
+  using namespace sfm;
+  gflags::SetUsageMessage(
+      "junction quality and the end-point model against ground truth (docs/junction_results.md).\n"
+      "  benchmark_junctions --output report.md [--work_dir dir] [--sequences a,b] [--segments fast,reference]");
+  gflags::ParseCommandLineFlags(&argc, &argv, true);
+  FLAGS_logtostderr = true;
+  google::InitGoogleLogging(argv[0]);
+  auto fail = [](int code, const std::string& message) {
+    std::fprintf(stderr, "benchmark_junctions: %s\n", message.c_str());
+    return code;
+  };
+  if (argc > 1) return fail(2, std::string("unexpected argument '") + argv[1] + "' (flags are --name=value)");
+
+  std::vector<Method> methods;
+  for (const std::string& name : Split(FLAGS_segments)) {
+    Method method{name, SegmentDetectorOptions()};
+    method.options.min_length = FLAGS_min_segment_length;
+    if (name == "fast") {
+      method.options.method = SegmentMethod::kFast;
+    } else if (name == "reference") {
+      method.options.method = SegmentMethod::kReference;
+    } else {
+      return fail(2, "--segments lists fast and reference, not '" + name + "'");
+    }
+    methods.push_back(method);
+  }
+  if (methods.empty()) return fail(2, "--segments is empty");
+  std::vector<double> contacts;
+  for (const std::string& text : Split(FLAGS_gt_contact_px)) {
+    char* end = nullptr;
+    const double value = std::strtod(text.c_str(), &end);
+    if (end == text.c_str() || *end != '\0' || !(value > 0 && value < 100)) {
+      return fail(2, "--gt_contact_px lists distances in (0, 100) px, not '" + text + "'");
+    }
+    contacts.push_back(value);
+  }
+  if (contacts.empty()) return fail(2, "--gt_contact_px is empty");
+  JunctionDetectorOptions junction_options;
+  junction_options.endpoint_model.lambda = FLAGS_lambda;
+  junction_options.endpoint_model.mu = FLAGS_mu;
+  junction_options.min_probability = FLAGS_min_probability;
+  junction_options.max_gap_px = FLAGS_max_gap_px;
+  junction_options.collinear_tolerance_deg = FLAGS_collinear_tolerance_deg;
+  junction_options.collinear_max_offset_px = FLAGS_collinear_max_offset_px;
+  junction_options.min_arm_px = FLAGS_min_arm_px;
+  if (const Status check = junction_options.Check(); !check.ok()) return fail(2, check.message());
+  if (!FLAGS_overlay_dir.empty()) {
+    if (const Status s = EnsureWritableDirectory(FLAGS_overlay_dir); !s.ok()) return fail(1, s.message());
+  }
+
+  // The sequences: given, or generated.
+  std::vector<std::pair<std::string, std::string>> sequences;  // name, directory
+  if (!FLAGS_sequences.empty()) {
+    for (const std::string& directory : Split(FLAGS_sequences)) {
+      sequences.emplace_back(std::filesystem::path(directory).filename().string(), directory);
+    }
+  } else {
+    for (const auto& [name, options] : StandardSequences(FLAGS_frames)) {
+      const std::string directory = FLAGS_work_dir + "/" + name;
+      std::fprintf(stderr, "benchmark_junctions: generating %s\n", directory.c_str());
+      if (const Status s = GenerateSequence(options, directory, true); !s.ok()) return fail(1, s.message());
+      sequences.emplace_back(name, directory);
+    }
+  }
+
+  std::ostringstream report;
+  report << "## Generated sequences\n\n"
+         << "Radius " << FLAGS_radius << " px; detectable vertex: at least two visible edges of at least "
+         << FLAGS_min_edge_px << " px meet there, not just two collinear ones. True vertices and "
+         << "detections count only inside the part of the undistorted image that the camera sees, at least "
+         << FLAGS_radius << " px from its border. Precision: detections matched to a visible vertex junction or an "
+         << "occlusion T.\n\n"
+         << "| sequence | segments | frames | detectable vertices | found within " << FLAGS_radius
+         << " px | median error (px) | 90 % error (px) | all visible vertex junctions | found | detected | precision "
+         << "| segments/frame | ms/frame segments + junctions |\n"
+         << "|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+  std::vector<GeneratedStats> pooled(methods.size());
+  for (const auto& [name, directory] : sequences) {
+    std::fprintf(stderr, "benchmark_junctions: measuring %s\n", directory.c_str());
+    std::vector<GeneratedStats> stats;
+    const std::string prefix = FLAGS_overlay_dir.empty() ? "" : FLAGS_overlay_dir + "/" + name;
+    if (const Status s = MeasureSequence(directory, methods, junction_options, prefix, &stats); !s.ok()) {
+      return fail(1, s.message());
+    }
+    for (size_t m = 0; m < methods.size(); ++m) pooled[m].Add(stats[m]);
+    for (size_t m = 0; m < methods.size(); ++m) {
+      const GeneratedStats& s = stats[m];
+      report << "| " << name << " | " << methods[m].name << " | " << s.frames << " | " << s.detectable << " | "
+             << Percent(s.detectable_found, s.detectable) << " | " << Fixed(Quantile(s.errors, 0.5), 3) << " | "
+             << Fixed(Quantile(s.errors, 0.9), 3) << " | " << s.visible << " | " << Percent(s.visible_found, s.visible)
+             << " | " << s.detected << " | " << Percent(s.detected_correct, s.detected_valid) << " | "
+             << Fixed(static_cast<double>(s.segments) / s.frames, 0) << " | "
+             << Fixed(s.segment_ms / s.frames, 1) << " + " << Fixed(s.junction_ms / s.frames, 2) << " |\n";
+    }
+  }
+  for (size_t m = 0; m < methods.size(); ++m) {
+    const GeneratedStats& s = pooled[m];
+    report << "| **all** | " << methods[m].name << " | " << s.frames << " | " << s.detectable << " | **"
+           << Percent(s.detectable_found, s.detectable) << "** | **" << Fixed(Quantile(s.errors, 0.5), 3) << "** | "
+           << Fixed(Quantile(s.errors, 0.9), 3) << " | " << s.visible << " | " << Percent(s.visible_found, s.visible)
+           << " | " << s.detected << " | " << Percent(s.detected_correct, s.detected_valid) << " | "
+           << Fixed(static_cast<double>(s.segments) / s.frames, 0) << " | " << Fixed(s.segment_ms / s.frames, 1)
+           << " + " << Fixed(s.junction_ms / s.frames, 2) << " |\n";
+  }
+
+  report << "\n### Other readings of \"detectable\", all generated frames\n\n"
+         << "| vertices | segments | count | found | recall | median error (px) |\n|---|---|---|---|---|---|\n";
+  for (size_t m = 0; m < methods.size(); ++m) {
+    const GeneratedStats& s = pooled[m];
+    report << "| every visible vertex junction | " << methods[m].name << " | " << s.visible << " | " << s.visible_found
+           << " | " << Percent(s.visible_found, s.visible) << " | - |\n";
+    report << "| main: at least two edges of at least " << FLAGS_min_edge_px << " px | " << methods[m].name << " | "
+           << s.detectable << " | " << s.detectable_found << " | " << Percent(s.detectable_found, s.detectable) << " | "
+           << Fixed(Quantile(s.errors, 0.5), 3) << " |\n";
+    for (int k = 0; k < kNumVariants; ++k) {
+      report << "| " << kVariantNames[k] << " | " << methods[m].name << " | " << s.variant_count[k] << " | "
+             << s.variant_found[k] << " | " << Percent(s.variant_found[k], s.variant_count[k]) << " | "
+             << Fixed(Quantile(s.variant_errors[k], 0.5), 3) << " |\n";
+    }
+  }
+  report << "\n### Missed detectable vertices, all generated frames\n\n| reason |";
+  for (const Method& method : methods) report << " " << method.name << " |";
+  report << "\n|---|";
+  for (size_t m = 0; m < methods.size(); ++m) report << "---|";
+  report << "\n";
+  for (int k = 0; k < kNumMissKinds; ++k) {
+    report << "| " << kMissNames[k] << " |";
+    for (size_t m = 0; m < methods.size(); ++m) {
+      report << " " << pooled[m].misses[k] << " (" << Percent(pooled[m].misses[k], pooled[m].detectable) << " of all) |";
+    }
+    report << "\n";
+  }
+  for (size_t m = 0; m < methods.size(); ++m) {
+    const GeneratedStats& s = pooled[m];
+    report << "\n### Per type, all generated frames, " << methods[m].name << " segments\n\n"
+           << "True type: of the detectable vertex (from its long edges). Detected type: of the detection. "
+           << "\"on a vertex\": matched one-to-one to a visible vertex junction; \"correct\": to a vertex or "
+           << "an occlusion T (valid image part).\n\n"
+           << "| type | detectable vertices | found | recall | detected | on a vertex | correct | share correct |\n"
+           << "|---|---|---|---|---|---|---|---|\n";
+    for (int t = 0; t < kNumTypes; ++t) {
+      report << "| " << JunctionTypeName(kTypes[t]) << " | " << s.true_by_type[t] << " | " << s.found_by_type[t]
+             << " | " << Percent(s.found_by_type[t], s.true_by_type[t]) << " | " << s.detected_by_type[t] << " | "
+             << s.detected_vertex_by_type[t] << " | " << s.detected_correct_by_type[t] << " | "
+             << Percent(s.detected_correct_by_type[t], s.detected_by_type[t]) << " |\n";
+    }
+    report << "\nType of the found detectable vertices (rows: true, columns: detected):\n\n| true \\ detected |";
+    for (JunctionType t : kTypes) report << " " << JunctionTypeName(t) << " |";
+    report << " agree |\n|---|---|---|---|---|---|---|---|\n";
+    for (int t = 0; t < kNumTypes; ++t) {
+      report << "| " << JunctionTypeName(kTypes[t]) << " |";
+      for (int d = 0; d < kNumTypes; ++d) report << " " << s.confusion[t][d] << " |";
+      report << " " << Percent(s.confusion[t][t], s.found_by_type[t]) << " |\n";
+    }
+  }
+
+  std::vector<std::vector<VggStats>> vgg;
+  const bool have_vgg = std::filesystem::is_directory(FLAGS_vgg_dir);
+  if (have_vgg) {
+    std::fprintf(stderr, "benchmark_junctions: measuring %s\n", FLAGS_vgg_dir.c_str());
+    if (const Status s = MeasureVgg(FLAGS_vgg_dir, methods, contacts, junction_options, FLAGS_overlay_dir, &vgg);
+        !s.ok()) {
+      return fail(1, s.message());
+    }
+    report << "\n## VGG Corridor\n\n"
+           << "Ground-truth junctions: pairs of bt.NNN.lines segments at least " << FLAGS_gt_min_angle_deg
+           << " degrees from parallel whose line intersection lies within the contact distance of an end-point "
+           << "of one and of the other segment (end or interior); pair points within " << kGtDefaults.merge_px
+           << " px merged. Radius " << FLAGS_radius << " px, one-to-one.\n\n"
+           << "| segments | contact (px) | images | GT segments | GT junctions | found | recall | detected | precision "
+           << "(lower bound) | precision away from the border | detections on two GT lines | their precision "
+           << "| median error (px) | mean dx, dy (px) | ms/image |\n"
+           << "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+    for (size_t m = 0; m < methods.size(); ++m) for (size_t c = 0; c < contacts.size(); ++c) {
+      const VggStats& s = vgg[m][c];
+      double mean_dx = 0, mean_dy = 0;
+      for (double v : s.dx) mean_dx += v / std::max<size_t>(1, s.dx.size());
+      for (double v : s.dy) mean_dy += v / std::max<size_t>(1, s.dy.size());
+      report << "| " << methods[m].name << " | " << Fixed(contacts[c], 1) << " | " << s.images << " | " << s.gt_segments << " | " << s.gt_junctions
+             << " | " << s.gt_found << " | **" << Percent(s.gt_found, s.gt_junctions) << "** | " << s.detected
+             << " | **" << Percent(s.detected_correct, s.detected) << "** | "
+             << Percent(s.detected_correct - s.correct_border, s.detected - s.detected_border) << " ("
+             << s.detected_border << " within " << FLAGS_radius << " px of the border left out) | " << s.detected_on_gt
+             << " | " << Percent(s.correct_on_gt, s.detected_on_gt) << " | "
+             << Fixed(Quantile(s.errors, 0.5), 3)
+             << " | " << Fixed(mean_dx, 2) << ", " << Fixed(mean_dy, 2) << " | " << Fixed(s.ms / s.images, 1) << " |\n";
+    }
+    for (size_t m = 0; m < methods.size(); ++m) for (size_t c = 0; c < contacts.size(); ++c) {
+      const VggStats& s = vgg[m][c];
+      report << "\nPer type, " << methods[m].name << " segments, contact " << Fixed(contacts[c], 1) << " px:\n\n"
+             << "| type | GT junctions | found | recall | detected | on a GT junction |\n|---|---|---|---|---|---|\n";
+      for (int t = 0; t < kNumTypes; ++t) {
+        report << "| " << JunctionTypeName(kTypes[t]) << " | " << s.gt_by_type[t] << " | " << s.gt_found_by_type[t]
+               << " | " << Percent(s.gt_found_by_type[t], s.gt_by_type[t]) << " | " << s.detected_by_type[t] << " | "
+               << s.detected_correct_by_type[t] << " |\n";
+      }
+    }
+  } else {
+    std::fprintf(stderr, "benchmark_junctions: %s not found; skipping VGG Corridor\n", FLAGS_vgg_dir.c_str());
+  }
+
+  report << "\n## End-point model, eq. (5)\n\n"
+         << "t = detected minus true end-point along the outward direction (eq. 8; t > 0: detected too long, "
+         << "lambda's branch; t < 0: too short, mu's branch). Per true end, the detection on the same line "
+         << "(both ends within " << kOffsetDefaults.max_line_distance << " px of it, within "
+         << kOffsetDefaults.max_angle_deg << " degrees) overlapping the true segment that reaches farthest "
+         << "towards the end; |t| > " << FLAGS_max_abs_t << " px is counted apart. Maximum likelihood "
+         << "(FitEndpointModel).\n\n";
+  for (size_t m = 0; m < methods.size(); ++m) {
+    report << "\n" << methods[m].name << " segments:\n\n" << kEndpointHeader;
+    const GeneratedStats& s = pooled[m];
+    EndpointOffsets all = s.vertex_ends;
+    all.t.insert(all.t.end(), s.occlusion_ends.t.begin(), s.occlusion_ends.t.end());
+    all.ends += s.occlusion_ends.ends;
+    all.unmatched += s.occlusion_ends.unmatched;
+    all.gross += s.occlusion_ends.gross;
+    report << EndpointRow("generated, vertex ends", s.vertex_ends) << "\n"
+           << EndpointRow("generated, occlusion ends", s.occlusion_ends) << "\n"
+           << EndpointRow("generated, all", all) << "\n";
+    if (have_vgg) report << EndpointRow("VGG GT segments", vgg[m][0].ends) << "\n";
+  }
+
+  const std::string text = report.str();
+  std::fputs(text.c_str(), stdout);
+  if (!FLAGS_output.empty()) {
+    if (const Status s = WriteFileAtomically(FLAGS_output, text); !s.ok()) return fail(1, s.message());
+  }
+  return 0;
+}
