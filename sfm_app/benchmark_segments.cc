@@ -5,8 +5,9 @@
 // Run from the repository's top directory (the default --vgg_dir is relative to it). Single
 // thread. Per image, each method runs --repetitions times; its time is the median. The tables give
 // the median over images of those times and of their ratio to cv::Canny's time on the same image in
-// the same run, then, on images with ground truth (<stem>.lines beside <stem>.<ext>), the quality
-// measures of segment_evaluation.h.
+// the same run, then, on images with ground truth, the quality measures of segment_evaluation.h.
+// Ground truth: <stem>.lines beside <stem>.<ext> (VGG), or, for a generated sequence's images/,
+// ../truth/frames/<stem>.txt.
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -102,7 +103,7 @@ struct Image {
   LineSegments truth;
 };
 
-// The images of `dir` (sorted by name) with their ground truth where a <stem>.lines file exists.
+// The images of `dir` (sorted by name) with their ground truth where there is one.
 Status LoadImages(const std::string& dir, std::vector<Image>* images) {
   namespace fs = std::filesystem;
   std::vector<fs::path> paths;
@@ -123,8 +124,12 @@ Status LoadImages(const std::string& dir, std::vector<Image>* images) {
     if (image.grey.empty()) return Status::Error(path.string() + ": cannot read the image");
     fs::path lines = path;
     lines.replace_extension(".lines");
+    const fs::path frame = path.parent_path().parent_path() / "truth" / "frames" / (path.stem().string() + ".txt");
     if (fs::exists(lines)) {
       SFM_RETURN_IF_ERROR(ReadVggLines(lines.string(), &image.truth));
+      image.has_truth = true;
+    } else if (fs::exists(frame)) {
+      SFM_RETURN_IF_ERROR(ReadGeneratorSegments(frame.string(), &image.truth));
       image.has_truth = true;
     }
     images->push_back(std::move(image));
@@ -207,10 +212,10 @@ std::string QualityTable(const std::vector<Method>& methods, const SetResult& re
   std::ostringstream out;
   char head[512];
   std::snprintf(head, sizeof(head),
-                "| method | GT covered (>= %.0f%% within %.1f px, %.0f deg) | GT matched (one segment >= %.0f%%) "
+                "| method | GT (>= %.0f px) covered (>= %.0f%% within %.1f px, %.0f deg) | GT matched (one segment >= %.0f%%) "
                 "| end-point error median / p90, px | line distance median, px | fitted lambda / mu, 1/px |\n"
                 "|---|---:|---:|---:|---:|---:|\n",
-                100 * o.min_coverage, o.max_distance, o.max_angle_deg, 100 * o.min_match_overlap);
+                o.min_true_length, 100 * o.min_coverage, o.max_distance, o.max_angle_deg, 100 * o.min_match_overlap);
   out << head;
   for (size_t m = 1; m < methods.size(); ++m) {
     const SegmentEvaluation& q = result.quality[m];

@@ -59,38 +59,42 @@ class EndGrid {
 };
 
 // Whether pieces a and b (with fitted lines line_a and line_b) continue each other; if so, the
-// joined piece and its line.
+// joined piece and its line. The tests use each piece's end-points as projected on its own line:
+// a single raw edge point scatters by a few tenths of a pixel on a noisy edge, the line through all
+// of them much less.
 bool TryJoin(const LinePiece& a, const FittedLine& line_a, const LinePiece& b, const FittedLine& line_b,
              double max_gap, double tolerance, LinePiece* joined, FittedLine* joined_line) {
   if (a.gradient_sum.dot(b.gradient_sum) <= 0) return false;
-  const double gap = std::min({(a.first - b.first).norm(), (a.first - b.last).norm(), (a.last - b.first).norm(),
-                               (a.last - b.last).norm()});
+  const std::array<Eigen::Vector2d, 4> ends = {line_a.Project(a.first), line_a.Project(a.last),
+                                               line_b.Project(b.first), line_b.Project(b.last)};
+  const double gap = std::min({(ends[0] - ends[2]).norm(), (ends[0] - ends[3]).norm(), (ends[1] - ends[2]).norm(),
+                               (ends[1] - ends[3]).norm()});
   if (gap > max_gap) return false;
   // A cheap test first: the shorter piece's ends near the longer piece's line, which the joined
   // line cannot stray far from (the longer piece's points dominate the fit).
-  const bool a_longer = (a.last - a.first).squaredNorm() >= (b.last - b.first).squaredNorm();
+  const bool a_longer = (ends[1] - ends[0]).squaredNorm() >= (ends[3] - ends[2]).squaredNorm();
   const FittedLine& longer = a_longer ? line_a : line_b;
-  const LinePiece& shorter = a_longer ? b : a;
-  if (std::abs(longer.Distance(shorter.first)) > 2 * tolerance ||
-      std::abs(longer.Distance(shorter.last)) > 2 * tolerance) {
+  const int shorter = a_longer ? 2 : 0;
+  if (std::abs(longer.Distance(ends[shorter])) > 2 * tolerance ||
+      std::abs(longer.Distance(ends[shorter + 1])) > 2 * tolerance) {
     return false;
   }
-  const std::array<Eigen::Vector2d, 4> ends = {a.first, a.last, b.first, b.last};
   LineFitAccumulator fit = a.fit;
   fit.Merge(b.fit);
   const FittedLine line = fit.Fit();
   for (const Eigen::Vector2d& e : ends) {
     if (std::abs(line.Distance(e)) > tolerance) return false;
   }
-  const Eigen::Vector2d* lowest = &ends[0];
-  const Eigen::Vector2d* highest = &ends[0];
-  for (const Eigen::Vector2d& e : ends) {
-    if (line.direction.dot(e) < line.direction.dot(*lowest)) lowest = &e;
-    if (line.direction.dot(e) > line.direction.dot(*highest)) highest = &e;
+  // The joined piece keeps the raw edge points of the two outermost ends.
+  const std::array<const Eigen::Vector2d*, 4> raw = {&a.first, &a.last, &b.first, &b.last};
+  int lowest = 0, highest = 0;
+  for (int k = 1; k < 4; ++k) {
+    if (line.direction.dot(ends[k]) < line.direction.dot(ends[lowest])) lowest = k;
+    if (line.direction.dot(ends[k]) > line.direction.dot(ends[highest])) highest = k;
   }
   joined->fit = fit;
-  joined->first = *lowest;
-  joined->last = *highest;
+  joined->first = *raw[lowest];
+  joined->last = *raw[highest];
   joined->gradient_sum = a.gradient_sum + b.gradient_sum;
   *joined_line = line;
   return true;

@@ -22,7 +22,8 @@ struct LinePiece {
 
 // Joins pairs of pieces of the same polarity with end-points at most `max_gap` pixels apart when
 // the line fitted to the union of their edge points passes within `tolerance` pixels of all four
-// end-points; repeats until no pair joins. A joined piece keeps the two outermost end-points.
+// end-points, until no pair joins. End-points here are the projections of first and last on the
+// piece's own fitted line. A joined piece keeps the two outermost first/last points.
 void MergeCollinearPieces(double max_gap, double tolerance, std::vector<LinePiece>* pieces);
 
 }  // namespace sfm

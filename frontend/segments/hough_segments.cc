@@ -98,19 +98,68 @@ class HoughAccumulator {
   std::vector<uint8_t> row_dirty_;
 };
 
+// The edge points bucketed in square cells, so that the points near a line are found by visiting
+// only the cells its band crosses: gathering costs the line's length, not the number of points.
+class PointGrid {
+ public:
+  PointGrid(const std::vector<EdgePoint>& points, cv::Size image_size, double cell_size)
+      : cell_(cell_size),
+        cols_(static_cast<int>(image_size.width / cell_size) + 1),
+        rows_(static_cast<int>(image_size.height / cell_size) + 1),
+        head_(static_cast<size_t>(cols_) * rows_, -1),
+        next_(points.size(), -1) {
+    for (size_t i = 0; i < points.size(); ++i) {
+      const size_t c = static_cast<size_t>(Row(points[i].y)) * cols_ + Col(points[i].x);
+      next_[i] = head_[c];
+      head_[c] = static_cast<int>(i);
+    }
+  }
+
+  // Calls f(point index) for every point in a cell that meets the band of half-width `distance`
+  // around the line {p : normal.p = rho}.
+  template <typename F>
+  void ForEachNear(const Eigen::Vector2d& normal, double rho, double distance, F f) const {
+    // Walk the cells across the line's main direction: columns for a line closer to horizontal.
+    const bool by_column = std::abs(normal.y()) >= std::abs(normal.x());
+    const double across = by_column ? normal.y() : normal.x();  // |across| >= 1/sqrt(2)
+    const double along = by_column ? normal.x() : normal.y();
+    const int lanes = by_column ? cols_ : rows_, depth = by_column ? rows_ : cols_;
+    for (int lane = 0; lane < lanes; ++lane) {
+      // The band's extent in the other coordinate over this lane [lane*cell, (lane+1)*cell].
+      const double u0 = lane * cell_, u1 = (lane + 1) * cell_;
+      const double v0 = (rho - along * u0) / across, v1 = (rho - along * u1) / across;
+      const double margin = distance / std::abs(across);
+      const int first = std::max(0, static_cast<int>(std::floor((std::min(v0, v1) - margin) / cell_)));
+      const int last = std::min(depth - 1, static_cast<int>(std::floor((std::max(v0, v1) + margin) / cell_)));
+      for (int cell = first; cell <= last; ++cell) {
+        const size_t c = by_column ? static_cast<size_t>(cell) * cols_ + lane : static_cast<size_t>(lane) * cols_ + cell;
+        for (int i = head_[c]; i >= 0; i = next_[i]) f(i);
+      }
+    }
+  }
+
+ private:
+  int Col(float x) const { return std::clamp(static_cast<int>(x / cell_), 0, cols_ - 1); }
+  int Row(float y) const { return std::clamp(static_cast<int>(y / cell_), 0, rows_ - 1); }
+
+  double cell_;
+  int cols_, rows_;
+  std::vector<int> head_, next_;
+};
+
 // Indices of the unused points within `distance` of the line {p : normal.p = rho} whose gradient
 // lies within the angle tolerance of the normal, keeping only the majority polarity.
-std::vector<int> Gather(const std::vector<EdgePoint>& points, const std::vector<uint8_t>& used,
+std::vector<int> Gather(const std::vector<EdgePoint>& points, const PointGrid& grid, const std::vector<uint8_t>& used,
                         const Eigen::Vector2d& normal, double rho, double distance, double min_cos) {
   std::vector<int> positive, negative;
-  for (size_t i = 0; i < points.size(); ++i) {
-    if (used[i]) continue;
+  grid.ForEachNear(normal, rho, distance, [&](int i) {
+    if (used[i]) return;
     const EdgePoint& p = points[i];
-    if (std::abs(normal.x() * p.x + normal.y() * p.y - rho) > distance) continue;
+    if (std::abs(normal.x() * p.x + normal.y() * p.y - rho) > distance) return;
     const double along = normal.x() * p.gx + normal.y() * p.gy;
-    if (std::abs(along) < min_cos * std::hypot(p.gx, p.gy)) continue;
-    (along > 0 ? positive : negative).push_back(static_cast<int>(i));
-  }
+    if (std::abs(along) < min_cos * std::hypot(p.gx, p.gy)) return;
+    (along > 0 ? positive : negative).push_back(i);
+  });
   return positive.size() >= negative.size() ? positive : negative;
 }
 
@@ -142,6 +191,7 @@ LineSegments HoughSegments(const std::vector<EdgePoint>& points, cv::Size image_
   HoughAccumulator accumulator(image_size, ref);
   for (const EdgePoint& p : points) accumulator.Vote(p, +1);
   std::vector<uint8_t> used(points.size(), 0);
+  const PointGrid grid(points, image_size, 4.0);
   const double min_cos = std::cos(ref.angle_tolerance_deg * kDegree);
 
   LineSegments segments;
@@ -152,12 +202,12 @@ LineSegments HoughSegments(const std::vector<EdgePoint>& points, cv::Size image_
     size_t cell = 0;
     if (accumulator.Best(&angle, &rho, &cell) < ref.min_votes) break;
     const Eigen::Vector2d peak_normal(std::cos(angle), std::sin(angle));
-    std::vector<int> support = Gather(points, used, peak_normal, rho, ref.gather_distance, min_cos);
+    std::vector<int> support = Gather(points, grid, used, peak_normal, rho, ref.gather_distance, min_cos);
     // Two rounds of fit and re-gather: the peak's line is only as good as the accumulator's cells.
     for (int round = 0; round < 2 && support.size() >= 2; ++round) {
       const FittedLine line = FitPoints(points, support);
       const Eigen::Vector2d normal(-line.direction.y(), line.direction.x());
-      support = Gather(points, used, normal, normal.dot(line.centroid), ref.fit_distance, min_cos);
+      support = Gather(points, grid, used, normal, normal.dot(line.centroid), ref.fit_distance, min_cos);
     }
     bool found = false;
     if (support.size() >= 2) {

@@ -30,7 +30,8 @@ Status SegmentDetectorOptions::Check() const {
   SFM_RETURN_IF_ERROR(Require(Finite(edge_contrast_high) && edge_contrast_high >= edge_contrast_low,
                               "edge_contrast_high", edge_contrast_high, ">= edge_contrast_low"));
   SFM_RETURN_IF_ERROR(Require(Finite(min_length) && min_length >= 2, "min_length", min_length, ">= 2 pixels"));
-  SFM_RETURN_IF_ERROR(Require(Finite(max_gap) && max_gap >= 1, "max_gap", max_gap, ">= 1 pixel"));
+  // Edge points of a diagonal edge are sqrt(2) apart: a smaller gap would split every such line.
+  SFM_RETURN_IF_ERROR(Require(Finite(max_gap) && max_gap >= 1.5, "max_gap", max_gap, ">= 1.5 pixels"));
   const ReferenceSegmentOptions& r = reference;
   SFM_RETURN_IF_ERROR(Require(Finite(r.edge_sigma) && r.edge_sigma >= 0.5 && r.edge_sigma <= 10,
                               "reference.edge_sigma", r.edge_sigma, "in [0.5, 10] pixels"));

@@ -27,16 +27,16 @@ struct ReferenceSegmentOptions {
   double edge_sigma = 1.0;            // pixels: scale of the Gaussian-derivative edge filter
   double hough_angle_step_deg = 0.5;  // degrees: accumulator resolution in the line normal's angle
   double hough_rho_step = 1.0;        // pixels: accumulator resolution in the line's distance rho
-  double vote_window_deg = 2.0;       // degrees: each edge point votes for normals this close to its gradient
-  int min_votes = 10;                 // accumulator peaks below this many votes end the search
+  double vote_window_deg = 5.0;       // degrees: each edge point votes for normals this close to its gradient
+  int min_votes = 5;                  // accumulator peaks below this many votes end the search
   double gather_distance = 2.0;       // pixels: edge points this close to a Hough peak's line are fitted
   double fit_distance = 1.0;          // pixels: edge points this close to the fitted line support it
-  double angle_tolerance_deg = 20.0;  // degrees: largest angle between an edge point's gradient and the line normal
+  double angle_tolerance_deg = 30.0;  // degrees: largest angle between an edge point's gradient and the line normal
 };
 
 // Options of the fast path (Sobel + anchored chaining + incremental splitting).
 struct FastSegmentOptions {
-  double presmooth_sigma = 1.0;     // pixels: Gaussian pre-smoothing before the Sobel pass (0: none)
+  double presmooth_sigma = 0.7;     // pixels: Gaussian pre-smoothing before the Sobel pass (0: none)
   double line_tolerance = 1.0;      // pixels: a chain pixel farther than this from the growing line ends it
   double log10_nfa_max = 0.0;       // a piece is kept if log10(number of false alarms) <= this (NFA <= 1)
 };
@@ -49,7 +49,7 @@ struct SegmentDetectorOptions {
   double edge_contrast_low = 5.0;    // grey levels
   double edge_contrast_high = 10.0;  // grey levels
   double min_length = 10.0;          // pixels: shorter segments are dropped
-  double max_gap = 3.0;              // pixels: a longer run without edge points splits a line
+  double max_gap = 3.0;              // pixels: a longer run without edge points splits a line (>= 1.5)
   ReferenceSegmentOptions reference;
   FastSegmentOptions fast;
 

@@ -48,6 +48,7 @@ Status SegmentEvaluationOptions::Check() const {
   if (!(min_match_overlap > 0 && min_match_overlap <= 1)) {
     return Status::Error("SegmentEvaluationOptions.min_match_overlap must be in (0, 1]");
   }
+  if (!(min_true_length >= 0)) return Status::Error("SegmentEvaluationOptions.min_true_length must be >= 0");
   return Status::Ok();
 }
 
@@ -69,7 +70,7 @@ std::vector<TrueSegmentResult> EvaluateEachSegment(const LineSegments& detected,
   for (size_t t = 0; t < truth.size(); ++t) {
     const LineSegment& g = truth[t];
     const double length = g.Length();
-    if (length <= 0) continue;
+    if (length <= 0 || length < options.min_true_length) continue;
     const Eigen::Vector2d n = g.Direction();
     intervals.clear();
     double best_overlap = 0;
@@ -115,10 +116,11 @@ std::vector<TrueSegmentResult> EvaluateEachSegment(const LineSegments& detected,
 SegmentEvaluation EvaluateSegments(const LineSegments& detected, const LineSegments& truth,
                                    const SegmentEvaluationOptions& options) {
   SegmentEvaluation evaluation;
-  evaluation.num_true = static_cast<int>(truth.size());
   evaluation.num_detected = static_cast<int>(detected.size());
   const std::vector<TrueSegmentResult> results = EvaluateEachSegment(detected, truth, options);
   for (size_t t = 0; t < truth.size(); ++t) {
+    if (truth[t].Length() < options.min_true_length) continue;
+    ++evaluation.num_true;
     const TrueSegmentResult& r = results[t];
     if (r.coverage >= options.min_coverage) ++evaluation.num_covered;
     if (r.match < 0) continue;
@@ -155,6 +157,27 @@ Status ReadVggLines(const std::string& path, LineSegments* segments) {
     LineSegment s;
     if (!(fields >> s.p0.x() >> s.p0.y() >> s.p1.x() >> s.p1.y())) {
       return Status::Error(path + ":" + std::to_string(line) + ": expected 4 numbers \"x0 y0 x1 y1\"");
+    }
+    segments->push_back(s);
+  }
+  return Status::Ok();
+}
+
+Status ReadGeneratorSegments(const std::string& path, LineSegments* segments) {
+  std::ifstream in(path);
+  if (!in) return Status::Error(path + ": cannot open");
+  segments->clear();
+  std::string text;
+  for (int line = 1; std::getline(in, text); ++line) {
+    if (text.rfind("segment ", 0) != 0) continue;
+    // segment <edge> <t0> <t1> <u0> <v0> <u1> <v1> <u0_dist> <v0_dist> <u1_dist> <v1_dist> <end0> <end1>
+    std::istringstream fields(text.substr(8));
+    double skip = 0;
+    LineSegment s;
+    std::string end0, end1;
+    if (!(fields >> skip >> skip >> skip >> skip >> skip >> skip >> skip >> s.p0.x() >> s.p0.y() >> s.p1.x() >>
+          s.p1.y() >> end0 >> end1)) {
+      return Status::Error(path + ":" + std::to_string(line) + ": expected a segment record of 13 fields");
     }
     segments->push_back(s);
   }

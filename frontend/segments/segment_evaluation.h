@@ -15,6 +15,7 @@ struct SegmentEvaluationOptions {
   double max_angle_deg = 5.0;      // degrees: detected segments at a larger angle cover nothing
   double min_coverage = 0.8;       // share of a true segment's length the detections must cover
   double min_match_overlap = 0.5;  // share of its length one detection must cover to be its match
+  double min_true_length = 20.0;   // pixels: shorter true segments are left out (VGG's has none)
 
   Status Check() const;
 };
@@ -31,7 +32,7 @@ struct TrueSegmentResult {
 };
 
 struct SegmentEvaluation {
-  int num_true = 0;
+  int num_true = 0;     // true segments evaluated (at least min_true_length long)
   int num_detected = 0;
   int num_covered = 0;  // true segments with coverage >= min_coverage
   int num_matched = 0;  // true segments with a match
@@ -58,5 +59,10 @@ double Quantile(std::vector<double> values, double q);
 
 // Reads a VGG ".lines" file: one segment per line, "x0 y0 x1 y1" (any whitespace).
 Status ReadVggLines(const std::string& path, LineSegments* segments);
+
+// Reads the visible wireframe segments of a generated sequence's frame (truth/frames/NNNNNN.txt,
+// docs/generator.md): the "segment" records, with their end-points in the stored (distorted)
+// image. With lens distortion the true edge is a curve and the segment its chord.
+Status ReadGeneratorSegments(const std::string& path, LineSegments* segments);
 
 }  // namespace sfm

@@ -70,8 +70,9 @@ std::vector<double> CornerAngles(const std::vector<Polygon>& polygons) {
 // 0.2 px of the true line at both its end-points. End-points: the blur (sigma 1) and the edge
 // filter round a corner of angle a over a length that grows as 1/sin(a/2), and the edge points
 // there leave the line, so a segment ends short of the corner; each end must be within
-// 2 px / sin(a/2) of it (2.8 px at a right angle, 4.1 px at the triangle's 58 degrees; measured
-// up to 2.9 and 3.8), and the median end within 2 px (measured: reference 1.94, fast 1.70).
+// 2 px / sin(a/2) of it (2.8 px at a right angle, 4.1 px at the triangle's 58 degrees; the
+// largest measured: 2.9 px reference, 3.6 px fast), and the median end within 2 px (measured:
+// reference 1.64 px, fast 1.20 px).
 TEST_P(DetectorTest, FindsEachPolygonSideWithSubpixelLineAndEndpointsNearCorners) {
   const std::vector<Polygon> scene = Scene();
   const LineSegments sides = testing::PolygonSides(scene);
