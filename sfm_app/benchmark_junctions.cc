@@ -168,6 +168,7 @@ struct GeneratedStats {
   int frames = 0;
   int detectable = 0, detectable_found = 0;
   int visible = 0, visible_found = 0;  // every visible vertex junction
+  int occlusions = 0, occlusions_found = 0;  // occlusion T's (occluded edge part >= min_edge_px)
   int detected = 0, detected_valid = 0, detected_correct = 0;  // correct: a true vertex or occlusion T
   int segments = 0;
   double segment_ms = 0, junction_ms = 0;
@@ -189,6 +190,8 @@ struct GeneratedStats {
     detectable += o.detectable;
     detectable_found += o.detectable_found;
     visible += o.visible;
+    occlusions += o.occlusions;
+    occlusions_found += o.occlusions_found;
     visible_found += o.visible_found;
     detected += o.detected;
     detected_valid += o.detected_valid;
@@ -213,6 +216,32 @@ struct GeneratedStats {
     }
   }
 };
+
+// Ground-truth junctions of the VGG images for a range of contact distances: how far apart the
+// ends of GT segments that meet at a corner are.
+std::string VggContactTable(const std::string& directory) {
+  const double contacts[] = {1, 2, 3, 4, 5, 6, 8, 10};
+  int totals[8] = {0, 0, 0, 0, 0, 0, 0, 0};
+  for (int i = 0;; ++i) {
+    char path[64];
+    std::snprintf(path, sizeof path, "/bt.%03d.lines", i);
+    LineSegments segments;
+    if (!std::filesystem::exists(directory + path) || !ReadVggLines(directory + path, &segments).ok()) break;
+    for (int c = 0; c < 8; ++c) {
+      SegmentJunctionOptions options;
+      options.contact_px = contacts[c];
+      options.min_angle_deg = FLAGS_gt_min_angle_deg;
+      totals[c] += static_cast<int>(JunctionsFromSegments(segments, options).size());
+    }
+  }
+  std::ostringstream table;
+  table << "| contact (px) |";
+  for (double c : contacts) table << " " << c << " |";
+  table << "\n|---|---|---|---|---|---|---|---|---|\n| GT junctions |";
+  for (int total : totals) table << " " << total << " |";
+  table << "\n";
+  return table.str();
+}
 
 struct VggStats {
   int images = 0, gt_segments = 0, gt_junctions = 0, gt_found = 0, detected = 0, detected_correct = 0;
@@ -311,6 +340,10 @@ Status MeasureSequence(const std::string& directory, const std::vector<Method>& 
     true_junctions.vertices.erase(
         std::remove_if(true_junctions.vertices.begin(), true_junctions.vertices.end(), outside),
         true_junctions.vertices.end());
+    std::vector<Eigen::Vector2d> occlusions;
+    for (const Eigen::Vector2d& p : true_junctions.occlusions) {
+      if (InMask(valid, p)) occlusions.push_back(p);
+    }
     const std::vector<TrueSegment> true_segments = TrueSegmentsOfFrame(truth.wireframe, truth.frames[f], truth_options);
     std::vector<Eigen::Vector2d> detectable, visible, any_truth;
     std::vector<int> detectable_type;
@@ -377,6 +410,8 @@ Status MeasureSequence(const std::string& directory, const std::vector<Method>& 
           s.variant_errors[k].push_back(match.distance);
         }
       }
+      s.occlusions += static_cast<int>(occlusions.size());
+      s.occlusions_found += static_cast<int>(MatchPoints(occlusions, detected, FLAGS_radius).size());
       // Recall over every visible vertex junction, and which detections sit on a vertex.
       s.visible += static_cast<int>(visible.size());
       for (const PointMatch& match : MatchPoints(visible, detected, FLAGS_radius)) {
@@ -634,16 +669,23 @@ int main(int argc, char** argv) {
   }
 
   std::ostringstream report;
+  report << "Junction options: lambda " << junction_options.endpoint_model.lambda << " /px, mu "
+         << junction_options.endpoint_model.mu << " /px, min_probability " << junction_options.min_probability
+         << ", max_gap_px " << junction_options.max_gap_px << ", collinear_tolerance_deg "
+         << junction_options.collinear_tolerance_deg << ", collinear_max_offset_px "
+         << junction_options.collinear_max_offset_px << ", min_arm_px " << junction_options.min_arm_px
+         << ". Segment detectors at their defaults (min_length " << FLAGS_min_segment_length << " px).\n\n";
   report << "## Generated sequences\n\n"
          << "Radius " << FLAGS_radius << " px; detectable vertex: at least two visible edges of at least "
          << FLAGS_min_edge_px << " px meet there, not just two collinear ones. True vertices and "
          << "detections count only inside the part of the undistorted image that the camera sees, at least "
-         << FLAGS_radius << " px from its border. Precision: detections matched to a visible vertex junction or an "
-         << "occlusion T.\n\n"
+         << FLAGS_radius << " px from its border. Occlusion T: where a visible edge part of at least "
+         << FLAGS_min_edge_px << " px disappears behind a nearer face. Precision: detections matched to a visible "
+         << "vertex junction or an occlusion T (of any length).\n\n"
          << "| sequence | segments | frames | detectable vertices | found within " << FLAGS_radius
-         << " px | median error (px) | 90 % error (px) | all visible vertex junctions | found | detected | precision "
-         << "| segments/frame | ms/frame segments + junctions |\n"
-         << "|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+         << " px | median error (px) | 90 % error (px) | all visible vertex junctions | found | occlusion T's | found "
+         << "| detected | precision | segments/frame | ms/frame segments + junctions |\n"
+         << "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   std::vector<GeneratedStats> pooled(methods.size());
   for (const auto& [name, directory] : sequences) {
     std::fprintf(stderr, "benchmark_junctions: measuring %s\n", directory.c_str());
@@ -658,7 +700,7 @@ int main(int argc, char** argv) {
       report << "| " << name << " | " << methods[m].name << " | " << s.frames << " | " << s.detectable << " | "
              << Percent(s.detectable_found, s.detectable) << " | " << Fixed(Quantile(s.errors, 0.5), 3) << " | "
              << Fixed(Quantile(s.errors, 0.9), 3) << " | " << s.visible << " | " << Percent(s.visible_found, s.visible)
-             << " | " << s.detected << " | " << Percent(s.detected_correct, s.detected_valid) << " | "
+             << " | " << s.occlusions << " | " << Percent(s.occlusions_found, s.occlusions) << " | " << s.detected << " | " << Percent(s.detected_correct, s.detected_valid) << " | "
              << Fixed(static_cast<double>(s.segments) / s.frames, 0) << " | "
              << Fixed(s.segment_ms / s.frames, 1) << " + " << Fixed(s.junction_ms / s.frames, 2) << " |\n";
     }
@@ -668,7 +710,7 @@ int main(int argc, char** argv) {
     report << "| **all** | " << methods[m].name << " | " << s.frames << " | " << s.detectable << " | **"
            << Percent(s.detectable_found, s.detectable) << "** | **" << Fixed(Quantile(s.errors, 0.5), 3) << "** | "
            << Fixed(Quantile(s.errors, 0.9), 3) << " | " << s.visible << " | " << Percent(s.visible_found, s.visible)
-           << " | " << s.detected << " | " << Percent(s.detected_correct, s.detected_valid) << " | "
+           << " | " << s.occlusions << " | " << Percent(s.occlusions_found, s.occlusions) << " | " << s.detected << " | " << Percent(s.detected_correct, s.detected_valid) << " | "
            << Fixed(static_cast<double>(s.segments) / s.frames, 0) << " | " << Fixed(s.segment_ms / s.frames, 1)
            << " + " << Fixed(s.junction_ms / s.frames, 2) << " |\n";
   }
@@ -755,6 +797,7 @@ int main(int argc, char** argv) {
              << Fixed(Quantile(s.errors, 0.5), 3)
              << " | " << Fixed(mean_dx, 2) << ", " << Fixed(mean_dy, 2) << " | " << Fixed(s.ms / s.images, 1) << " |\n";
     }
+    report << "\nGround-truth junctions of all images by contact distance:\n\n" << VggContactTable(FLAGS_vgg_dir);
     for (size_t m = 0; m < methods.size(); ++m) for (size_t c = 0; c < contacts.size(); ++c) {
       const VggStats& s = vgg[m][c];
       report << "\nPer type, " << methods[m].name << " segments, contact " << Fixed(contacts[c], 1) << " px:\n\n"
