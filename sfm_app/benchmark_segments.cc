@@ -3,18 +3,19 @@
 //   build-seg/bin/benchmark_segments --output segments_benchmark.md [--images_dir <dir>]
 //
 // Run from the repository's top directory (the default --vgg_dir is relative to it). Single
-// thread. Per image, each method runs --repetitions times; its time is the median. The tables give
-// the median over images of those times and of their ratio to cv::Canny's time on the same image in
-// the same run, then, on images with ground truth, the quality measures of segment_evaluation.h.
+// thread. Per image, the methods run in turns, --repetitions rounds; a method's time is the median
+// of its runs. The tables give the median over images of those times and of their ratio to
+// cv::Canny's time on the same image in the same run, then, on images with ground truth, the
+// quality measures of segment_evaluation.h.
 // Ground truth: <stem>.lines beside <stem>.<ext> (VGG), or, for a generated sequence's images/,
 // ../truth/frames/<stem>.txt.
 #include <algorithm>
+#include <cctype>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <functional>
-#include <map>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -30,11 +31,12 @@
 #include "frontend/segments/endpoint_fit.h"
 #include "frontend/segments/segment_detector.h"
 #include "frontend/segments/segment_evaluation.h"
+#include "frontend/util/atomic_file.h"
 
 DEFINE_string(vgg_dir, "../shared/data/vgg-corridor",
               "Directory of VGG Corridor images with ground truth (<stem>.lines); skipped if absent.");
 DEFINE_string(images_dir, "", "Optional further directory of images (for example a sequence's images/).");
-DEFINE_int32(repetitions, 5, "Runs of each method per image; the median time is kept.");
+DEFINE_int32(repetitions, 7, "Runs of each method per image, taken in turns; the median time is kept.");
 DEFINE_string(output, "", "Also write the markdown report to this file.");
 DEFINE_string(overlay_dir, "", "If set, write <method>_<image>.png overlays of the segments found there.");
 
@@ -174,19 +176,23 @@ SetResult RunSet(const std::vector<Method>& methods, const std::vector<Image>& i
   result.quality.resize(methods.size());
   for (const Image& image : images) {
     if (image.has_truth) ++result.num_with_truth;
-    for (size_t m = 0; m < methods.size(); ++m) {
-      std::vector<double> times;
-      LineSegments segments;
-      for (int r = 0; r < FLAGS_repetitions; ++r) {
+    // Repetitions go round the methods, so that a load change on a shared machine hits all of them
+    // alike and the ratios to cv::Canny stay meaningful.
+    std::vector<std::vector<double>> times(methods.size());
+    std::vector<LineSegments> segments(methods.size());
+    for (int r = 0; r < FLAGS_repetitions; ++r) {
+      for (size_t m = 0; m < methods.size(); ++m) {
         const Clock::time_point start = Clock::now();
-        segments = methods[m].detect(image.grey);
-        times.push_back(std::chrono::duration<double, std::milli>(Clock::now() - start).count());
+        segments[m] = methods[m].detect(image.grey);
+        times[m].push_back(std::chrono::duration<double, std::milli>(Clock::now() - start).count());
       }
-      result.ms[m].push_back(Median(times));
-      result.count[m].push_back(static_cast<double>(segments.size()));
+    }
+    for (size_t m = 0; m < methods.size(); ++m) {
+      result.ms[m].push_back(Median(times[m]));
+      result.count[m].push_back(static_cast<double>(segments[m].size()));
       if (m == 0) continue;  // cv::Canny: timing only
-      if (image.has_truth) result.quality[m].Add(EvaluateSegments(segments, image.truth, evaluation_options));
-      if (!FLAGS_overlay_dir.empty()) WriteOverlay(FLAGS_overlay_dir, methods[m].name, image, segments);
+      if (image.has_truth) result.quality[m].Add(EvaluateSegments(segments[m], image.truth, evaluation_options));
+      if (!FLAGS_overlay_dir.empty()) WriteOverlay(FLAGS_overlay_dir, methods[m].name, image, segments[m]);
     }
   }
   return result;
@@ -213,26 +219,52 @@ std::string QualityTable(const std::vector<Method>& methods, const SetResult& re
   char head[512];
   std::snprintf(head, sizeof(head),
                 "| method | GT (>= %.0f px) covered (>= %.0f%% within %.1f px, %.0f deg) | GT matched (one segment >= %.0f%%) "
-                "| end-point error median / p90, px | line distance median, px | fitted lambda / mu, 1/px |\n"
-                "|---|---:|---:|---:|---:|---:|\n",
+                "| end-point error median / p90, px | line distance median, px |\n"
+                "|---|---:|---:|---:|---:|\n",
                 o.min_true_length, 100 * o.min_coverage, o.max_distance, o.max_angle_deg, 100 * o.min_match_overlap);
   out << head;
   for (size_t m = 1; m < methods.size(); ++m) {
     const SegmentEvaluation& q = result.quality[m];
-    std::string fit = "-";
-    const bool both_sides = std::any_of(q.endpoint_t.begin(), q.endpoint_t.end(), [](double t) { return t > 0; }) &&
-                            std::any_of(q.endpoint_t.begin(), q.endpoint_t.end(), [](double t) { return t < 0; });
-    if (both_sides) {
-      const EndpointModel model = FitEndpointModel(q.endpoint_t);
-      char text[64];
-      std::snprintf(text, sizeof(text), "%.3f / %.3f", model.lambda, model.mu);
-      fit = text;
-    }
     char row[512];
-    std::snprintf(row, sizeof(row), "| %s | %.1f%% (%d/%d) | %.1f%% | %.2f / %.2f | %.2f | %s |\n",
-                  methods[m].name.c_str(), 100 * q.CoveredShare(), q.num_covered, q.num_true, 100 * q.MatchedShare(),
-                  Quantile(q.endpoint_errors, 0.5), Quantile(q.endpoint_errors, 0.9), Quantile(q.line_distances, 0.5),
-                  fit.c_str());
+    std::snprintf(row, sizeof(row), "| %s | %.1f%% (%d/%d) | %.1f%% | %.2f / %.2f | %.2f |\n", methods[m].name.c_str(),
+                  100 * q.CoveredShare(), q.num_covered, q.num_true, 100 * q.MatchedShare(),
+                  Quantile(q.endpoint_errors, 0.5), Quantile(q.endpoint_errors, 0.9), Quantile(q.line_distances, 0.5));
+    out << row;
+  }
+  return out.str();
+}
+
+// "lambda / mu" of the ML fit of eq. (5) to the samples with |t| <= limit, or "-" when one side
+// has none.
+std::string FitText(const std::vector<double>& t, double limit) {
+  std::vector<double> kept;
+  for (const double v : t) {
+    if (std::abs(v) <= limit) kept.push_back(v);
+  }
+  const bool both_sides = std::any_of(kept.begin(), kept.end(), [](double v) { return v > 0; }) &&
+                          std::any_of(kept.begin(), kept.end(), [](double v) { return v < 0; });
+  if (!both_sides) return "-";
+  const EndpointModel model = FitEndpointModel(kept);
+  char text[64];
+  std::snprintf(text, sizeof(text), "%.3f / %.3f", model.lambda, model.mu);
+  return text;
+}
+
+// The end-point offsets t of the matched segments (eq. 8: detected minus true, outward positive)
+// and the maximum-likelihood end-point model (5) fitted to them: on all of them, and on those
+// within 10 px (the rest are mostly a segment joined to, or cut from, a collinear neighbour).
+std::string EndpointTable(const std::vector<Method>& methods, const SetResult& result) {
+  std::ostringstream out;
+  out << "| method | end-points | share t >= 0 | t median / p10 / p90, px | lambda / mu (all t), 1/px "
+         "| lambda / mu (abs(t) <= 10 px), 1/px |\n"
+      << "|---|---:|---:|---:|---:|---:|\n";
+  for (size_t m = 1; m < methods.size(); ++m) {
+    const std::vector<double>& t = result.quality[m].endpoint_t;
+    const double beyond = static_cast<double>(std::count_if(t.begin(), t.end(), [](double v) { return v >= 0; }));
+    char row[512];
+    std::snprintf(row, sizeof(row), "| %s | %zu | %.2f | %.2f / %.2f / %.2f | %s | %s |\n", methods[m].name.c_str(),
+                  t.size(), t.empty() ? 0.0 : beyond / t.size(), Quantile(t, 0.5), Quantile(t, 0.1), Quantile(t, 0.9),
+                  FitText(t, INFINITY).c_str(), FitText(t, 10).c_str());
     out << row;
   }
   return out.str();
@@ -246,7 +278,8 @@ std::string Report(const std::vector<Method>& methods, const std::string& title,
       << SpeedTable(methods, result) << "\n";
   if (result.num_with_truth > 0) {
     out << "Quality on the " << result.num_with_truth << " images with ground truth:\n\n"
-        << QualityTable(methods, result) << "\n";
+        << QualityTable(methods, result) << "\nEnd-point offsets t and the fitted end-point model (5):\n\n"
+        << EndpointTable(methods, result) << "\n";
   }
   return out.str();
 }
@@ -297,10 +330,9 @@ int main(int argc, char** argv) {
   }
   std::fputs(report.c_str(), stdout);
   if (!FLAGS_output.empty()) {
-    std::ofstream out(FLAGS_output);
-    out << report;
-    if (!out) {
-      std::fprintf(stderr, "benchmark_segments: cannot write %s\n", FLAGS_output.c_str());
+    const sfm::Status status = sfm::WriteFileAtomically(FLAGS_output, report);
+    if (!status.ok()) {
+      std::fprintf(stderr, "benchmark_segments: %s\n", status.message().c_str());
       return 1;
     }
   }
