@@ -76,8 +76,7 @@ class FastDetector {
     low_ = std::max(1, static_cast<int>(std::ceil(options.edge_contrast_low * response)));
     high_ = std::max(low_, static_cast<int>(std::ceil(options.edge_contrast_high * response)));
     magnitude_.create(rows_, cols_, CV_16S);
-    direction_.create(rows_, cols_, CV_8U);
-    direction_.setTo(0);
+    direction_.create(rows_, cols_, CV_8U);  // every pixel written by ComputeMagnitude
     edge_.create(rows_, cols_, CV_8U);
     edge_.setTo(0);
     min_pixels_ = std::max(3, static_cast<int>(std::ceil(options.min_length / M_SQRT2)));
@@ -294,7 +293,7 @@ class FastDetector {
     int aligned = 0;
     for (int i = 0; i < samples; ++i) {
       const Eigen::Vector2d p = segment.p0 + i * step;
-      // Rounding by truncation of p + 0.5: end-points lie within half a pixel of the image.
+      // Rounding as truncation of p + 0.5 (p >= -0.5 here; a point farther out is clamped anyway).
       const int x = std::clamp(static_cast<int>(p.x() + 0.5), 0, cols_ - 1);
       const int y = std::clamp(static_cast<int>(p.y() + 0.5), 0, rows_ - 1);
       const double g_x = gx[y * cols_ + x], g_y = gy[y * cols_ + x];
