@@ -35,7 +35,8 @@ Status PrepareDirectory(const std::string& directory, bool overwrite) {
     const fs::path path = fs::path(directory) / name;
     if (!fs::exists(path, error)) continue;
     if (!overwrite) {
-      return Status::Error(directory + ": holds a sequence already (" + name + "); choose another directory or overwrite");
+      return Status::Error(directory + ": holds a sequence already (" + name +
+                           "); choose another directory, or overwrite it (make_sequence --overwrite)");
     }
     fs::remove_all(path, error);
     if (error) return Status::Error(path.string() + ": cannot remove (" + error.message() + ")");

@@ -147,9 +147,10 @@ Status MakeTrajectory(const TrajectoryOptions& options, const Scene& scene, std:
     const double m = options.loop_margin, r = options.loop_corner_radius;
     const double side_x = hi.x() - lo.x() - 2 * m - 2 * r, side_y = hi.y() - lo.y() - 2 * m - 2 * r;
     if (side_x < 0 || side_y < 0) {
-      return Status::Error("trajectory: the loop does not fit on the floor: need a floor of at least " +
-                           std::to_string(2 * (m + r)) + " m each way (loop_margin " + std::to_string(m) +
-                           ", loop_corner_radius " + std::to_string(r) + ")");
+      std::ostringstream message;
+      message << "trajectory: the loop does not fit on the floor: it needs at least " << 2 * (m + r)
+              << " m each way (loop_margin " << m << ", loop_corner_radius " << r << "); use a room scene";
+      return Status::Error(message.str());
     }
     const int lap_segments = 8;
     const int limit = options.num_frames > 0 ? std::numeric_limits<int>::max() : lap_segments;

@@ -34,7 +34,7 @@ struct TrajectoryOptions {
   double end_margin = 4.0;          // m, and keep this far from its high-x end (the view ahead stays deep)
   double lane_offset = 0;           // m, added to the scene's lane (positive: left)
   double loop_margin = 1.2;         // m, loop: distance of its straight sides from the walls
-  double loop_corner_radius = 0.9;  // m, loop: radius of its rounded corners
+  double loop_corner_radius = 1.0;  // m, loop: radius of its rounded corners (0.1 m between frames there)
   double turn_angle = 0.3;          // rad, turns: the heading swings this far to either side
   double turn_radius = 2.0;         // m, turns: radius of the bends
   double turn_straight = 0.6;       // m, turns: straight stretch between two bends
