@@ -1,0 +1,83 @@
+#include "backend/triangulation/triangulate_tracks.h"
+
+#include <glog/logging.h>
+
+#include <algorithm>
+
+namespace sfm {
+
+int TriangulationReport::Count(PointStatus status) const {
+  return static_cast<int>(std::count(point_status.begin(), point_status.end(), status));
+}
+
+int TriangulationReport::Count(LineStatus status) const {
+  int count = 0;
+  for (const std::vector<LineStatus>& statuses : line_status) {
+    count += static_cast<int>(std::count(statuses.begin(), statuses.end(), status));
+  }
+  return count;
+}
+
+Landmarks TriangulateTracks(const Eigen::Matrix3d& K, const std::vector<Pose3>& world_T_camera,
+                            const std::vector<Junctions>& frames, const std::vector<JunctionTrack>& tracks,
+                            const TriangulationOptions& options, TriangulationReport* report) {
+  CHECK(options.Check().ok()) << options.Check().message();
+  CHECK_EQ(world_T_camera.size(), frames.size()) << "one camera pose per frame";
+  Landmarks landmarks;
+  TriangulationReport statuses;
+  for (const JunctionTrack& track : tracks) {
+    std::vector<PointView> point_views;
+    std::vector<PointObservation> point_observations;
+    for (const TrackView& view : track.views) {
+      CHECK(view.frame >= 0 && view.frame < static_cast<int>(frames.size()) && view.junction >= 0 &&
+            view.junction < static_cast<int>(frames[view.frame].size()))
+          << "track " << track.id << " views junction " << view.junction << " of frame " << view.frame;
+      const Eigen::Vector2d& location = frames[view.frame][view.junction].location;
+      point_views.push_back({world_T_camera[view.frame], location});
+      point_observations.push_back({view.frame, view.junction, location});
+    }
+    Eigen::Vector3d position;
+    const PointStatus point_status = TriangulatePoint(K, point_views, options.point, &position);
+    statuses.point_status.push_back(point_status);
+    int point_index = -1;
+    if (point_status == PointStatus::kOk) {
+      point_index = static_cast<int>(landmarks.points.size());
+      landmarks.points.push_back({track.id, position, point_observations});
+    }
+
+    statuses.line_status.emplace_back();
+    for (int s = 0; s < track.NumSegments(); ++s) {
+      std::vector<LineView> line_views;
+      std::vector<LineObservation> line_observations;
+      for (const TrackView& view : track.views) {
+        const Junction& junction = frames[view.frame][view.junction];
+        const int segment = view.segments[s];
+        CHECK(segment >= 0 && segment < junction.NumSegments())
+            << "track " << track.id << " segment " << segment;
+        line_views.push_back({world_T_camera[view.frame], junction.location, junction.segments[segment].end});
+        line_observations.push_back(
+            {view.frame, view.junction, segment, junction.location, junction.segments[segment].end});
+      }
+      Line3 line;
+      Segment3 segment;
+      LineStatus line_status = TriangulateLine(K, line_views, options.line, &line);
+      if (line_status == LineStatus::kOk) {
+        line_status = BoundLine(K, line_views, line, point_index >= 0 ? &position : nullptr, &segment);
+      }
+      statuses.line_status.back().push_back(line_status);
+      if (line_status != LineStatus::kOk) continue;
+      LineLandmark landmark;
+      landmark.point = segment.end0;
+      landmark.direction = (segment.end1 - segment.end0).normalized();
+      landmark.end0 = segment.end0;
+      landmark.end1 = segment.end1;
+      landmark.point_landmark = point_index;
+      landmark.observations = std::move(line_observations);
+      landmarks.lines.push_back(std::move(landmark));
+    }
+  }
+  if (report != nullptr) *report = std::move(statuses);
+  return landmarks;
+}
+
+}  // namespace sfm

@@ -1,0 +1,38 @@
+// Landmarks from tracks: a 3D point per junction track and a 3D line segment per segment track,
+// with a status for every one that failed. The entry point of sfm_triangulation.
+#pragma once
+
+#include <Eigen/Core>
+#include <vector>
+
+#include "backend/triangulation/landmarks.h"
+#include "backend/triangulation/line_triangulation.h"
+#include "backend/triangulation/point_triangulation.h"
+#include "backend/triangulation/triangulation_options.h"
+#include "frontend/geometry/pose.h"
+#include "frontend/junctions/junction.h"
+#include "frontend/tracks/tracks.h"
+
+namespace sfm {
+
+struct TriangulationReport {
+  std::vector<PointStatus> point_status;             // per junction track, in track order
+  std::vector<std::vector<LineStatus>> line_status;  // per junction track, per track segment s
+
+  int Count(PointStatus status) const;  // junction tracks with this status
+  int Count(LineStatus status) const;   // segment tracks with this status
+};
+
+// Triangulates every track. K: the camera matrix (undistorted pixels); world_T_camera[f] and
+// frames[f]: the camera pose (odometry) and the junctions of frame f, one each per frame (CHECKed);
+// the tracks must index frames (CHECKed). Per junction track: TriangulatePoint on the junction
+// locations; a kOk point becomes a PointLandmark. Per segment track s: TriangulateLine on
+// (location, end of segment views[v].segments[s]), then BoundLine with the track's point when it
+// was triangulated; a kOk line becomes a LineLandmark with end0 at the junction end (point = end0,
+// direction towards end1) and point_landmark set when the point exists. Landmarks come in track
+// order, lines of one track in segment order. options must pass Check() (CHECKed).
+Landmarks TriangulateTracks(const Eigen::Matrix3d& K, const std::vector<Pose3>& world_T_camera,
+                            const std::vector<Junctions>& frames, const std::vector<JunctionTrack>& tracks,
+                            const TriangulationOptions& options, TriangulationReport* report = nullptr);
+
+}  // namespace sfm

@@ -1,0 +1,66 @@
+// Tracks: pairwise junction matches joined across the sequence (union-find over (frame, junction)
+// nodes), with the junction-segment correspondences carried along (union-find over (frame,
+// junction, segment) nodes through the matches' shifts). docs/tracks_and_triangulation.md has the
+// rules.
+#pragma once
+
+#include <utility>
+#include <vector>
+
+#include "frontend/junctions/junction.h"
+#include "frontend/matching/matching_rule.h"
+
+namespace sfm {
+
+// The junction matches between two frames, as MatchJunctions returns them.
+struct FramePairMatches {
+  int frame_a = -1;                    // frame of JunctionMatch::index_a
+  int frame_b = -1;                    // frame of JunctionMatch::index_b
+  std::vector<JunctionMatch> matches;  // segment i of a <-> segment (i + shift) mod N of b
+};
+
+// One view of a junction track: the junction as seen in one frame.
+struct TrackView {
+  int frame = -1;             // index into the sequence's frames
+  int junction = -1;          // index into that frame's Junctions (not its `id`)
+  std::vector<int> segments;  // segments[s]: this junction's segment index for the track's segment s
+};
+
+// A junction track: one 3D junction seen in several frames. Its segment s across the views
+// (views[v].segments[s] for every v) is a segment track: one 3D line seen as a junction segment.
+struct JunctionTrack {
+  int id = -1;                   // 0, 1, ... in order of the first view's (frame, junction)
+  std::vector<TrackView> views;  // at least 2, at most one per frame, in increasing frame
+
+  // N: the segment count of every view's junction (matches pair equal counts), and so the number
+  // of segment tracks; view 0's segment s is the track's segment s.
+  int NumSegments() const { return static_cast<int>(views.front().segments.size()); }
+};
+
+// How the matches were used.
+struct TrackBuildReport {
+  int matches = 0;                     // matches given
+  int accepted = 0;                    // joined into tracks
+  int rejected_junction_conflict = 0;  // would have put two junctions of one frame in one track
+  int rejected_segment_conflict = 0;   // shift disagreeing with the track's: two segments of one frame
+};
+
+// The frame pairs to match so that tracks survive a junction missed in one frame: every
+// consecutive pair (i-1, i) and every pair (i-2, i) two back, (a, b) with a < b, in increasing b
+// then a. num_frames >= 0.
+std::vector<std::pair<int, int>> FramePairsToMatch(int num_frames);
+
+// Junction tracks from pairwise matches. frames[f] are the junctions of frame f; the matches must
+// index them, pair junctions with equal segment counts and have shifts in [0, N) (all CHECKed, as
+// MatchJunctions guarantees).
+//
+// Matches are taken strongest first (decreasing similarity, ties in input order). A match is
+// accepted when it keeps every track consistent: the two junctions' tracks share no frame, and
+// none of its N segment pairings (segment i <-> (i + shift) mod N) joins two segments of one frame;
+// otherwise it is rejected and counted. So an inconsistent component is never formed: it is split
+// where its weakest conflicting match was. Components of a single junction are not tracks.
+std::vector<JunctionTrack> BuildTracks(const std::vector<Junctions>& frames,
+                                       const std::vector<FramePairMatches>& pairs,
+                                       TrackBuildReport* report = nullptr);
+
+}  // namespace sfm
