@@ -1,57 +1,32 @@
 #include "sfm_app/pipeline.h"
 
 #include <chrono>
-#include <cstdio>
-#include <filesystem>
-#include <sstream>
 #include <vector>
 
 #include <glog/logging.h>
 #include <opencv2/core.hpp>
 
+#include "backend/metrics/drift.h"
+#include "backend/triangulation/triangulate_tracks.h"
 #include "frontend/geometry/epipolar.h"
 #include "frontend/geometry/image_undistorter.h"
-#include "frontend/geometry/tum_io.h"
 #include "frontend/junctions/junction_detector.h"
-#include "frontend/junctions/junctions_json.h"
 #include "frontend/junctions/topology.h"
 #include "frontend/matching/junction_matcher.h"
 #include "frontend/sequence/sequence.h"
+#include "frontend/tracks/tracks.h"
 #include "frontend/util/atomic_file.h"
-#include "frontend/util/json_format.h"
 #include "frontend/util/progress.h"
+#include "sfm_app/pipeline_outputs.h"
 
 namespace sfm {
 namespace {
 
-namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
 
 double SecondsSince(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
 }
-
-struct FrameFeatures {
-  LineSegments segments;
-  Junctions junctions;
-  TopologyGraph graph;
-};
-
-struct PairMatches {
-  int frame_a = 0, frame_b = 0;
-  std::vector<JunctionMatch> matches;
-};
-
-struct StageTimes {
-  double frontend = 0, matching = 0, backend = 0, total = 0;
-};
-
-// Everything the outputs are made from.
-struct RunResult {
-  std::vector<FrameFeatures> features;
-  std::vector<PairMatches> pairs;
-  StageTimes times;
-};
 
 Status LoadImages(const Sequence& sequence, Progress* progress, std::vector<cv::Mat>* images) {
   const int n = static_cast<int>(sequence.frames.size());
@@ -64,123 +39,69 @@ Status LoadImages(const Sequence& sequence, Progress* progress, std::vector<cv::
   return Status::Ok();
 }
 
-// Paper section 2: segments, junctions and the topology graph of every frame, in undistorted pixels.
-std::vector<FrameFeatures> DetectFeatures(const Sequence& sequence, const std::vector<cv::Mat>& images,
-                                          const PipelineOptions& options, Progress* progress) {
+// Paper section 2: junctions and topology graph of every frame, in undistorted pixels.
+void DetectJunctionsOfAllFrames(const Sequence& sequence, const std::vector<cv::Mat>& images,
+                                const PipelineOptions& options, Progress* progress, PipelineResult* result) {
   const ImageUndistorter undistorter(sequence.calibration.camera);
   const int n = static_cast<int>(images.size());
-  std::vector<FrameFeatures> features(n);
+  result->junctions.resize(n);
+  result->graphs.resize(n);
   for (int i = 0; i < n; ++i) {
     progress->Update("junction detection", "frame", i + 1, n);
-    features[i].segments = DetectLineSegments(undistorter.Apply(images[i]), options.segments);
-    features[i].junctions = DetectJunctions(features[i].segments, options.junctions);
-    features[i].graph = BuildTopologyGraph(features[i].junctions);
+    const LineSegments segments = DetectLineSegments(undistorter.Apply(images[i]), options.segments);
+    result->junctions[i] = DetectJunctions(segments, options.junctions);
+    result->graphs[i] = BuildTopologyGraph(result->junctions[i]);
   }
   progress->Finish();
-  return features;
 }
 
-// Paper sections 3-4 on every consecutive pair, F from the calibration and the odometry.
-std::vector<PairMatches> MatchConsecutiveFrames(const Sequence& sequence,
-                                                const std::vector<FrameFeatures>& features,
-                                                const PipelineOptions& options, Progress* progress) {
+// Paper sections 3-4 on every consecutive pair and every pair two apart (so a junction missed in
+// one frame does not break its track), F from the calibration and the odometry.
+void MatchFramePairs(const Sequence& sequence, const PipelineOptions& options, Progress* progress,
+                     PipelineResult* result) {
   const Calibration& calibration = sequence.calibration;
-  const int n = static_cast<int>(features.size());
-  std::vector<PairMatches> pairs;
-  for (int i = 0; i + 1 < n; ++i) {
-    progress->Update("matching", "pair", i + 1, n - 1);
+  const std::vector<std::pair<int, int>> pairs = FramePairsToMatch(static_cast<int>(sequence.frames.size()));
+  for (size_t p = 0; p < pairs.size(); ++p) {
+    progress->Update("matching", "pair", static_cast<int>(p) + 1, static_cast<int>(pairs.size()));
+    const auto [a, b] = pairs[p];
     const Eigen::Matrix3d F =
         FundamentalFromOdometry(calibration.camera.K(), calibration.base_T_camera,
-                                sequence.frames[i].world_T_base_odometry, sequence.frames[i + 1].world_T_base_odometry);
-    PairMatches pair;
-    pair.frame_a = i;
-    pair.frame_b = i + 1;
-    pair.matches = MatchJunctions(features[i].junctions, features[i].graph, features[i + 1].junctions,
-                                  features[i + 1].graph, F, options.matching);
-    pairs.push_back(std::move(pair));
+                                sequence.frames[a].world_T_base_odometry, sequence.frames[b].world_T_base_odometry);
+    FramePairMatches matches;
+    matches.frame_a = a;
+    matches.frame_b = b;
+    matches.matches = MatchJunctions(result->junctions[a], result->graphs[a], result->junctions[b],
+                                     result->graphs[b], F, options.matching);
+    result->pairs.push_back(std::move(matches));
   }
   progress->Finish();
-  return pairs;
 }
 
-std::vector<StampedPose> CameraTrajectory(const Sequence& sequence, bool groundtruth) {
-  std::vector<StampedPose> trajectory;
-  trajectory.reserve(sequence.frames.size());
+std::vector<Pose3> CameraPoses(const Sequence& sequence, bool groundtruth) {
+  std::vector<Pose3> poses;
+  poses.reserve(sequence.frames.size());
   for (const Frame& frame : sequence.frames) {
     const Pose3& world_T_base = groundtruth ? *frame.world_T_base_groundtruth : frame.world_T_base_odometry;
-    trajectory.push_back({frame.timestamp, world_T_base * sequence.calibration.base_T_camera});
+    poses.push_back(world_T_base * sequence.calibration.base_T_camera);
   }
-  return trajectory;
+  return poses;
 }
 
-std::string FrameFileStem(int frame) {
-  char stem[16];
-  std::snprintf(stem, sizeof(stem), "%06d", frame);
-  return stem;
-}
-
-std::string MatchesCsv(const PairMatches& pair, const std::vector<FrameFeatures>& features) {
-  const Junctions& a = features[pair.frame_a].junctions;
-  const Junctions& b = features[pair.frame_b].junctions;
-  std::string csv = "id_a,id_b,similarity\n";
-  for (const JunctionMatch& match : pair.matches) {
-    csv += std::to_string(a[match.index_a].id) + "," + std::to_string(b[match.index_b].id) + "," +
-           JsonNumber(match.similarity) + "\n";
-  }
-  return csv;
-}
-
-template <typename T, typename Count>
-std::string JsonCountList(const std::vector<T>& items, Count count) {
-  std::string list = "[";
-  for (size_t i = 0; i < items.size(); ++i) list += (i ? ", " : "") + std::to_string(count(items[i]));
-  return list + "]";
-}
-
-std::string MetricsJson(const Sequence& sequence, const RunResult& result) {
-  const StageTimes& times = result.times;
-  std::ostringstream json;
-  json << "{\n"
-       << "  \"frames\": " << sequence.frames.size() << ",\n"
-       << "  \"junctions_per_frame\": "
-       << JsonCountList(result.features, [](const FrameFeatures& f) { return f.junctions.size(); }) << ",\n"
-       << "  \"matches_per_pair\": "
-       << JsonCountList(result.pairs, [](const PairMatches& p) { return p.matches.size(); }) << ",\n"
-       << "  \"tracks\": null,\n"
-       << "  \"points3d\": null,\n"
-       << "  \"lines3d\": null,\n"
-       << "  \"ate_odometry_m\": null,\n"
-       << "  \"ate_refined_m\": null,\n"
-       << "  \"rpe_odometry\": null,\n"
-       << "  \"rpe_refined\": null,\n"
-       << "  \"time_s\": {\"frontend\": " << JsonNumber(times.frontend)
-       << ", \"matching\": " << JsonNumber(times.matching) << ", \"backend\": " << JsonNumber(times.backend)
-       << ", \"total\": " << JsonNumber(times.total) << "}\n"
-       << "}\n";
-  return json.str();
-}
-
-Status WriteOutputs(const Sequence& sequence, const PipelineOptions& options, const RunResult& result) {
-  const fs::path out(options.output_dir);
-  SFM_RETURN_IF_ERROR(EnsureWritableDirectory((out / "junctions").string()));
-  SFM_RETURN_IF_ERROR(EnsureWritableDirectory((out / "matches").string()));
-  const Camera& camera = sequence.calibration.camera;
-  for (size_t i = 0; i < result.features.size(); ++i) {
-    const std::string json = JunctionsToJson(static_cast<int>(i), sequence.frames[i].image_path, camera.width,
-                                             camera.height, result.features[i].junctions);
-    SFM_RETURN_IF_ERROR(WriteFileAtomically((out / "junctions" / (FrameFileStem(i) + ".json")).string(), json));
-  }
-  for (const PairMatches& pair : result.pairs) {
-    const std::string name = FrameFileStem(pair.frame_a) + "_" + FrameFileStem(pair.frame_b) + ".csv";
-    SFM_RETURN_IF_ERROR(WriteFileAtomically((out / "matches" / name).string(), MatchesCsv(pair, result.features)));
-  }
-  SFM_RETURN_IF_ERROR(WriteTumTrajectory((out / "trajectory_odometry.txt").string(),
-                                         CameraTrajectory(sequence, /*groundtruth=*/false)));
-  if (sequence.has_groundtruth) {
-    SFM_RETURN_IF_ERROR(WriteTumTrajectory((out / "trajectory_groundtruth.txt").string(),
-                                           CameraTrajectory(sequence, /*groundtruth=*/true)));
-  }
-  return WriteFileAtomically((out / "metrics.json").string(), MetricsJson(sequence, result));
+// Tracks, then 3D points and lines from the odometry poses.
+void Reconstruct(const Sequence& sequence, const PipelineOptions& options, PipelineResult* result) {
+  TrackBuildReport track_report;
+  result->tracks = BuildTracks(result->junctions, result->pairs, &track_report);
+  LOG(INFO) << "tracks: " << result->tracks.size() << " from " << track_report.matches << " matches ("
+            << track_report.rejected_junction_conflict + track_report.rejected_segment_conflict
+            << " rejected as inconsistent)";
+  TriangulationReport triangulation_report;
+  result->landmarks = TriangulateTracks(sequence.calibration.camera.K(), result->world_T_camera_odometry,
+                                        result->junctions, result->tracks, options.triangulation,
+                                        &triangulation_report);
+  result->unobservable_lines = triangulation_report.Count(LineStatus::kUnobservable);
+  LOG(INFO) << "triangulated " << result->landmarks.points.size() << " points and "
+            << result->landmarks.lines.size() << " lines (" << result->unobservable_lines
+            << " lines unobservable: parallel to the motion)";
 }
 
 }  // namespace
@@ -189,10 +110,11 @@ Status PipelineOptions::Check() const {
   if (output_dir.empty()) return Status::Error("--output must name a directory");
   SFM_RETURN_IF_ERROR(segments.Check());
   SFM_RETURN_IF_ERROR(junctions.Check());
-  return matching.Check();
+  SFM_RETURN_IF_ERROR(matching.Check());
+  return triangulation.Check();
 }
 
-Status RunPipeline(const PipelineOptions& options) {
+Status RunPipeline(const PipelineOptions& options, PipelineResult* result_out) {
   const Clock::time_point start = Clock::now();
   SFM_RETURN_IF_ERROR(options.Check());
 
@@ -207,23 +129,32 @@ Status RunPipeline(const PipelineOptions& options) {
   SFM_RETURN_IF_ERROR(LoadImages(sequence, &progress, &images));
   SFM_RETURN_IF_ERROR(EnsureWritableDirectory(options.output_dir));
 
-  // 2. Front end and matching.
-  RunResult result;
+  PipelineResult result;
+  result.world_T_camera_odometry = CameraPoses(sequence, /*groundtruth=*/false);
+  if (sequence.has_groundtruth) result.world_T_camera_truth = CameraPoses(sequence, /*groundtruth=*/true);
+
+  // 2. Front end, matching, back end.
   Clock::time_point stage_start = Clock::now();
-  result.features = DetectFeatures(sequence, images, options, &progress);
+  DetectJunctionsOfAllFrames(sequence, images, options, &progress, &result);
   result.times.frontend = SecondsSince(stage_start);
   stage_start = Clock::now();
-  result.pairs = MatchConsecutiveFrames(sequence, result.features, options, &progress);
+  MatchFramePairs(sequence, options, &progress, &result);
   result.times.matching = SecondsSince(stage_start);
-  // Stages of a later issue say plainly that they did not run; no output is faked for them.
-  LOG(WARNING) << "tracks, triangulation and bundle adjustment are not implemented yet; not written: "
-                  "tracks.csv, trajectory_refined.txt, wireframe.ply, colmap/";
+  stage_start = Clock::now();
+  Reconstruct(sequence, options, &result);
+  LOG(WARNING) << "bundle adjustment is not implemented yet: trajectory_refined.txt not written, "
+                  "the wireframe and colmap/ use the odometry poses";
+  result.times.backend = SecondsSince(stage_start);
+  if (result.world_T_camera_truth) {
+    result.drift_odometry = ComputeDrift(result.world_T_camera_odometry, *result.world_T_camera_truth);
+  }
 
   // 3. Outputs.
   result.times.total = SecondsSince(start);
-  SFM_RETURN_IF_ERROR(WriteOutputs(sequence, options, result));
+  SFM_RETURN_IF_ERROR(WriteOutputs(sequence, result, options.output_dir));
   LOG(INFO) << "time: frontend " << result.times.frontend << " s, matching " << result.times.matching
             << " s, backend " << result.times.backend << " s, total " << result.times.total << " s";
+  if (result_out) *result_out = std::move(result);
   return Status::Ok();
 }
 

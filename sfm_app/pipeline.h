@@ -4,10 +4,12 @@
 
 #include <string>
 
+#include "backend/triangulation/triangulation_options.h"
 #include "frontend/junctions/junction_options.h"
 #include "frontend/matching/matching_options.h"
 #include "frontend/segments/segment_detector.h"
 #include "frontend/util/status.h"
+#include "sfm_app/pipeline_result.h"
 
 namespace sfm {
 
@@ -18,6 +20,7 @@ struct PipelineOptions {
   SegmentDetectorOptions segments;
   JunctionDetectorOptions junctions;
   MatchingOptions matching;
+  TriangulationOptions triangulation;
 
   // OK, or a message naming the first bad setting.
   Status Check() const;
@@ -25,7 +28,7 @@ struct PipelineOptions {
 
 // Runs everything. All input is read and validated, and every stage has run, before any output
 // file is written; each output file is written atomically. So a failure never leaves a
-// half-written file.
-Status RunPipeline(const PipelineOptions& options);
+// half-written file. `result` (optional) receives what was computed.
+Status RunPipeline(const PipelineOptions& options, PipelineResult* result = nullptr);
 
 }  // namespace sfm

@@ -1,0 +1,163 @@
+#include "sfm_app/pipeline_outputs.h"
+
+#include <cstdio>
+#include <filesystem>
+#include <sstream>
+
+#include "backend/export/colmap_model.h"
+#include "backend/export/ply_io.h"
+#include "frontend/geometry/tum_io.h"
+#include "frontend/junctions/junctions_json.h"
+#include "frontend/tracks/tracks_csv.h"
+#include "frontend/util/atomic_file.h"
+#include "frontend/util/json_format.h"
+
+namespace sfm {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string FrameFileStem(int frame) {
+  char stem[16];
+  std::snprintf(stem, sizeof(stem), "%06d", frame);
+  return stem;
+}
+
+std::vector<StampedPose> Stamped(const Sequence& sequence, const std::vector<Pose3>& poses) {
+  std::vector<StampedPose> stamped;
+  stamped.reserve(poses.size());
+  for (size_t i = 0; i < poses.size(); ++i) stamped.push_back({sequence.frames[i].timestamp, poses[i]});
+  return stamped;
+}
+
+std::string MatchesCsv(const FramePairMatches& pair, const std::vector<Junctions>& junctions) {
+  const Junctions& a = junctions[pair.frame_a];
+  const Junctions& b = junctions[pair.frame_b];
+  std::string csv = "id_a,id_b,similarity\n";
+  for (const JunctionMatch& match : pair.matches) {
+    csv += std::to_string(a[match.index_a].id) + "," + std::to_string(b[match.index_b].id) + "," +
+           JsonNumber(match.similarity) + "\n";
+  }
+  return csv;
+}
+
+// Junction points are vertices; each 3D line segment is an edge from its junction point (where it
+// has one, so edges meet at junctions) or its own first end, to its far end.
+Wireframe WireframeOf(const Landmarks& landmarks) {
+  Wireframe wireframe;
+  for (const PointLandmark& point : landmarks.points) wireframe.vertices.push_back(point.position);
+  for (const LineLandmark& line : landmarks.lines) {
+    int first = line.point_landmark;
+    if (first < 0) {
+      first = static_cast<int>(wireframe.vertices.size());
+      wireframe.vertices.push_back(line.end0);
+    }
+    wireframe.vertices.push_back(line.end1);
+    wireframe.edges.emplace_back(first, static_cast<int>(wireframe.vertices.size()) - 1);
+  }
+  return wireframe;
+}
+
+ColmapModel ColmapModelOf(const Sequence& sequence, const std::vector<Pose3>& world_T_camera,
+                          const Landmarks& landmarks) {
+  ColmapModel model;
+  model.camera = sequence.calibration.camera;
+  for (size_t i = 0; i < world_T_camera.size(); ++i) {
+    model.images.push_back({sequence.frames[i].image_path, world_T_camera[i]});
+  }
+  for (const PointLandmark& point : landmarks.points) {
+    ColmapPoint colmap_point;
+    colmap_point.position = point.position;
+    for (const PointObservation& observation : point.observations) {
+      colmap_point.track.push_back({observation.frame, observation.pixel});
+    }
+    model.points.push_back(std::move(colmap_point));
+  }
+  return model;
+}
+
+template <typename T, typename Count>
+std::string JsonCountList(const std::vector<T>& items, Count count) {
+  std::string list = "[";
+  for (size_t i = 0; i < items.size(); ++i) list += (i ? ", " : "") + std::to_string(count(items[i]));
+  return list + "]";
+}
+
+std::string RpeJson(const std::optional<DriftMetrics>& drift) {
+  if (!drift) return "null";
+  return "{\"trans_m\": " + JsonNumber(drift->rpe_trans_m) + ", \"rot_rad\": " + JsonNumber(drift->rpe_rot_rad) + "}";
+}
+
+std::optional<double> Ate(const std::optional<DriftMetrics>& drift) {
+  return drift ? std::optional<double>(drift->ate_m) : std::nullopt;
+}
+
+}  // namespace
+
+std::string MetricsJson(const Sequence& sequence, const PipelineResult& result) {
+  const StageTimes& times = result.times;
+  const bool refined = !result.world_T_camera_refined.empty();
+  std::ostringstream json;
+  json << "{\n"
+       << "  \"frames\": " << sequence.frames.size() << ",\n"
+       << "  \"junctions_per_frame\": "
+       << JsonCountList(result.junctions, [](const Junctions& j) { return j.size(); }) << ",\n"
+       << "  \"matches_per_pair\": "
+       << JsonCountList(result.pairs, [](const FramePairMatches& p) { return p.matches.size(); }) << ",\n"
+       << "  \"matched_pairs\": "
+       << "[";
+  for (size_t i = 0; i < result.pairs.size(); ++i) {
+    json << (i ? ", " : "") << "[" << result.pairs[i].frame_a << ", " << result.pairs[i].frame_b << "]";
+  }
+  json << "],\n"
+       << "  \"tracks\": " << result.tracks.size() << ",\n"
+       << "  \"points3d\": " << result.landmarks.points.size() << ",\n"
+       << "  \"lines3d\": " << result.landmarks.lines.size() << ",\n"
+       << "  \"unobservable_lines\": " << result.unobservable_lines << ",\n"
+       << "  \"ate_odometry_m\": " << JsonNumber(Ate(result.drift_odometry)) << ",\n"
+       << "  \"ate_refined_m\": " << JsonNumber(refined ? Ate(result.drift_refined) : std::nullopt) << ",\n"
+       << "  \"rpe_odometry\": " << RpeJson(result.drift_odometry) << ",\n"
+       << "  \"rpe_refined\": " << RpeJson(refined ? result.drift_refined : std::nullopt) << ",\n"
+       << "  \"time_s\": {\"frontend\": " << JsonNumber(times.frontend)
+       << ", \"matching\": " << JsonNumber(times.matching) << ", \"backend\": " << JsonNumber(times.backend)
+       << ", \"total\": " << JsonNumber(times.total) << "}\n"
+       << "}\n";
+  return json.str();
+}
+
+Status WriteOutputs(const Sequence& sequence, const PipelineResult& result, const std::string& output_dir) {
+  const fs::path out(output_dir);
+  SFM_RETURN_IF_ERROR(EnsureWritableDirectory((out / "junctions").string()));
+  SFM_RETURN_IF_ERROR(EnsureWritableDirectory((out / "matches").string()));
+  const Camera& camera = sequence.calibration.camera;
+  for (size_t i = 0; i < result.junctions.size(); ++i) {
+    const std::string json = JunctionsToJson(static_cast<int>(i), sequence.frames[i].image_path, camera.width,
+                                             camera.height, result.junctions[i]);
+    SFM_RETURN_IF_ERROR(WriteFileAtomically((out / "junctions" / (FrameFileStem(i) + ".json")).string(), json));
+  }
+  for (const FramePairMatches& pair : result.pairs) {
+    const std::string name = FrameFileStem(pair.frame_a) + "_" + FrameFileStem(pair.frame_b) + ".csv";
+    SFM_RETURN_IF_ERROR(
+        WriteFileAtomically((out / "matches" / name).string(), MatchesCsv(pair, result.junctions)));
+  }
+  SFM_RETURN_IF_ERROR(
+      WriteFileAtomically((out / "tracks.csv").string(), TracksCsv(result.tracks, result.junctions)));
+
+  SFM_RETURN_IF_ERROR(WriteTumTrajectory((out / "trajectory_odometry.txt").string(),
+                                         Stamped(sequence, result.world_T_camera_odometry)));
+  if (!result.world_T_camera_refined.empty()) {
+    SFM_RETURN_IF_ERROR(WriteTumTrajectory((out / "trajectory_refined.txt").string(),
+                                           Stamped(sequence, result.world_T_camera_refined)));
+  }
+  if (result.world_T_camera_truth) {
+    SFM_RETURN_IF_ERROR(WriteTumTrajectory((out / "trajectory_groundtruth.txt").string(),
+                                           Stamped(sequence, *result.world_T_camera_truth)));
+  }
+  SFM_RETURN_IF_ERROR(WritePly((out / "wireframe.ply").string(), WireframeOf(result.landmarks)));
+  const std::vector<Pose3>& poses =
+      result.world_T_camera_refined.empty() ? result.world_T_camera_odometry : result.world_T_camera_refined;
+  SFM_RETURN_IF_ERROR(WriteColmapModel((out / "colmap").string(), ColmapModelOf(sequence, poses, result.landmarks)));
+  return WriteFileAtomically((out / "metrics.json").string(), MetricsJson(sequence, result));
+}
+
+}  // namespace sfm

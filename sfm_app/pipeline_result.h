@@ -1,0 +1,33 @@
+// What one junction_sfm run computes, stage by stage; the outputs are written from it.
+#pragma once
+
+#include <optional>
+#include <vector>
+
+#include "backend/metrics/drift.h"
+#include "backend/triangulation/landmarks.h"
+#include "frontend/geometry/pose.h"
+#include "frontend/junctions/junction.h"
+#include "frontend/tracks/tracks.h"
+
+namespace sfm {
+
+struct StageTimes {
+  double frontend = 0, matching = 0, backend = 0, total = 0;  // seconds
+};
+
+struct PipelineResult {
+  std::vector<Junctions> junctions;       // per frame
+  std::vector<TopologyGraph> graphs;      // per frame
+  std::vector<FramePairMatches> pairs;    // every pair matched (consecutive and two back)
+  std::vector<JunctionTrack> tracks;
+  Landmarks landmarks;
+  int unobservable_lines = 0;             // segment tracks dropped as parallel to the motion
+  std::vector<Pose3> world_T_camera_odometry;
+  std::vector<Pose3> world_T_camera_refined;               // empty until bundle adjustment ran
+  std::optional<std::vector<Pose3>> world_T_camera_truth;  // when the sequence has ground truth
+  std::optional<DriftMetrics> drift_odometry, drift_refined;  // against the ground truth
+  StageTimes times;
+};
+
+}  // namespace sfm
