@@ -1,0 +1,886 @@
+// benchmark_matching: every figure junction matching must show (issue 4), measured against ground
+// truth in one run, single thread (docs/matching_results.md; scripts/benchmark_matching.sh
+// prepares the sequences and runs it).
+//
+//   build/bin/benchmark_matching --generated <seq>,<seq> --vgg_sequence <imported seq>
+//                                [--vgg_dir ../shared/data/vgg-corridor] --output report.md [flags]
+//
+// a. Generated sequences (make_sequence, with truth/): consecutive pairs, F from the true poses and
+//    from the noisy odometry. Each junction takes the visible wireframe vertex nearest to it within
+//    --radius; precision = matches pairing the same vertex among those whose junctions both take
+//    one; recall = vertices taken in both frames that a match joins.
+// b. VGG Corridor imported with simulated odometry (import_sequence --format vgg): matches under
+//    the odometry F, judged with the F of the true projection matrices (--epipolar_tolerance both
+//    ways) and, where both junctions lie within --radius of ground-truth junctions identified by
+//    their 3D lines, by that identity.
+// c. The paper's Table 2: rho and sigma over tau2 x R on one VGG pair and one generated pair.
+// d. OpenCV line_descriptor (LSD + binary LBD, brute-force Hamming matching) on the same pairs,
+//    judged against the same ground truth, and the time of both methods per pair.
+// e. Time of MatchJunctions on the VGG pairs (about 150 junctions per frame), median of repeats.
+// Markdown tables go to stdout and to --output.
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <map>
+#include <set>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <gflags/gflags.h>
+#include <glog/logging.h>
+#include <opencv2/core.hpp>
+#include <opencv2/imgcodecs.hpp>
+
+#include "frontend/geometry/epipolar.h"
+#include "frontend/geometry/image_undistorter.h"
+#include "frontend/junctions/topology.h"
+#include "frontend/matching/junction_matcher.h"
+#include "frontend/segments/segment_evaluation.h"
+#include "frontend/sequence/sequence.h"
+#include "frontend/util/atomic_file.h"
+#include "sequences/generator/ground_truth.h"
+#include "sfm_app/evaluation/match_overlay.h"
+#include "sfm_app/evaluation/matching_evaluation.h"
+
+namespace {
+const sfm::JunctionDetectorOptions kJunctionDefaults;
+const sfm::MatchingOptions kMatchingDefaults;
+}  // namespace
+
+DEFINE_string(generated, "", "Comma-separated generated sequence directories (with truth/), e.g. a corridor and a room.");
+DEFINE_string(vgg_sequence, "", "VGG Corridor imported by import_sequence --format vgg (odometry and images).");
+DEFINE_string(vgg_dir, "../shared/data/vgg-corridor", "The VGG Corridor data set (bt.NNN.P, bt.NNN.lines, bt_original.nview-lines).");
+DEFINE_string(output, "", "Also write the markdown report here.");
+DEFINE_string(image_dir, "", "If set, write Fig. 6-style pictures of the Table 2 pairs there (wrong matches' numbers in red).");
+DEFINE_double(radius, 3.0, "A junction lies at a true vertex / ground-truth junction within this, px.");
+DEFINE_double(epipolar_tolerance, 2.0, "A correct match lies within this of the true epipolar lines, both ways, px.");
+DEFINE_int32(max_gap, 2, "VGG: also measure pairs up to this many frames apart (1: consecutive only).");
+DEFINE_string(table2_vgg_pair, "0,1", "VGG frames of the Table 2 sweep.");
+DEFINE_string(table2_generated_pair, "10,11", "Frames of the first generated sequence for the Table 2 sweep.");
+DEFINE_string(table2_tau2, "0.05,0.1,0.2,0.3", "tau2 values of the Table 2 sweep.");
+DEFINE_string(table2_R, "4,6,10,15", "R values of the Table 2 sweep, px.");
+DEFINE_int32(speed_repeats, 21, "Time each pair's matching this many times and take the median.");
+DEFINE_double(lbd_min_length, sfm::SegmentDetectorOptions().min_length, "LSD segments shorter than this are dropped, px.");
+DEFINE_string(segments, "fast", "Our segment detector: 'fast' or 'reference'.");
+DEFINE_double(endpoint_lambda, kJunctionDefaults.endpoint_model.lambda, "End-point model eq. (5), t >= 0, 1/px.");
+DEFINE_double(endpoint_mu, kJunctionDefaults.endpoint_model.mu, "End-point model eq. (5), t < 0, 1/px.");
+DEFINE_double(junction_min_probability, kJunctionDefaults.min_probability, "Junction threshold, (0, 1].");
+DEFINE_double(match_max_distance, kMatchingDefaults.max_epipolar_distance_px, "R, px.");
+DEFINE_double(match_tau1, kMatchingDefaults.tau1, "tau1 of rule (38).");
+DEFINE_double(match_tau2, kMatchingDefaults.tau2, "tau2 of rule (38).");
+DEFINE_string(match_rho1, kMatchingDefaults.rho1_kind == sfm::Rho1Kind::kLinear ? "linear" : "exponential",
+              "rho1 of eq. (31): 'exponential' or 'linear'.");
+DEFINE_bool(match_topology, kMatchingDefaults.use_topology, "sigma (true) or rho (false) in rule (38).");
+
+namespace sfm {
+namespace {
+
+
+std::vector<std::string> Split(const std::string& text) {
+  std::vector<std::string> parts;
+  std::stringstream in(text);
+  for (std::string part; std::getline(in, part, ',');) {
+    if (!part.empty()) parts.push_back(part);
+  }
+  return parts;
+}
+
+bool ParseNumbers(const std::string& text, std::vector<double>* values) {
+  values->clear();
+  for (const std::string& part : Split(text)) {
+    char* end = nullptr;
+    const double v = std::strtod(part.c_str(), &end);
+    if (end == part.c_str() || *end != '\0' || !std::isfinite(v)) return false;
+    values->push_back(v);
+  }
+  return !values->empty();
+}
+
+bool ParsePair(const std::string& text, int* a, int* b) {
+  std::vector<double> v;
+  if (!ParseNumbers(text, &v) || v.size() != 2 || v[0] < 0 || v[1] < 0 || v[0] != std::floor(v[0]) ||
+      v[1] != std::floor(v[1]) || v[0] == v[1]) {
+    return false;
+  }
+  *a = static_cast<int>(v[0]);
+  *b = static_cast<int>(v[1]);
+  return true;
+}
+
+std::string Fixed(double value, int digits) {
+  char buffer[64];
+  std::snprintf(buffer, sizeof buffer, "%.*f", digits, value);
+  return buffer;
+}
+std::string Percent(int part, int whole) { return whole > 0 ? Fixed(100.0 * part / whole, 1) + " %" : "-"; }
+std::string Goal(int part, int whole, double goal) {
+  if (whole <= 0) return "-";
+  return 100.0 * part / whole >= goal ? "pass (>= " + Fixed(goal, 0) + " %)" : "**miss** (< " + Fixed(goal, 0) + " %)";
+}
+double Median(std::vector<double> v) { return Quantile(std::move(v), 0.5); }
+
+struct Settings {
+  SegmentDetectorOptions segments;
+  JunctionDetectorOptions junctions;
+  MatchingOptions matching;
+};
+
+struct LoadedFrame {
+  cv::Mat grey;  // undistorted
+  FrameFeatures features;
+  LbdFeatures lbd;
+};
+
+Status LoadFrames(const Sequence& sequence, const Settings& settings, std::vector<LoadedFrame>* frames) {
+  const ImageUndistorter undistorter(sequence.calibration.camera);
+  frames->resize(sequence.frames.size());
+  for (size_t f = 0; f < sequence.frames.size(); ++f) {
+    cv::Mat image;
+    SFM_RETURN_IF_ERROR(LoadFrameImage(sequence, static_cast<int>(f), &image));
+    LoadedFrame& frame = (*frames)[f];
+    frame.grey = undistorter.Apply(image).clone();
+    frame.features = DetectFrameFeatures(frame.grey, settings.segments, settings.junctions);
+    frame.lbd = DetectLbd(frame.grey, FLAGS_lbd_min_length);
+  }
+  return Status::Ok();
+}
+
+Eigen::Matrix3d FundamentalOf(const Sequence& sequence, int i, int j, bool groundtruth) {
+  const Frame& a = sequence.frames[i];
+  const Frame& b = sequence.frames[j];
+  return FundamentalFromOdometry(sequence.calibration.camera.K(), sequence.calibration.base_T_camera,
+                                 groundtruth ? *a.world_T_base_groundtruth : a.world_T_base_odometry,
+                                 groundtruth ? *b.world_T_base_groundtruth : b.world_T_base_odometry);
+}
+
+std::vector<JunctionMatch> Match(const LoadedFrame& a, const LoadedFrame& b, const Eigen::Matrix3d& F,
+                                 const MatchingOptions& options, double* ms = nullptr) {
+  const double start = ThreadCpuMs();
+  std::vector<JunctionMatch> matches =
+      MatchJunctions(a.features.junctions, a.features.graph, b.features.junctions, b.features.graph, F, options);
+  if (ms) *ms = ThreadCpuMs() - start;
+  return matches;
+}
+
+Status WritePng(const std::string& path, const cv::Mat& image) {
+  std::vector<uchar> png;
+  if (!cv::imencode(".png", image, png)) return Status::Error(path + ": PNG encoding failed");
+  return WriteFileAtomically(path, std::string(png.begin(), png.end()));
+}
+
+// ---- Data sets ---------------------------------------------------------------------------------
+
+struct GeneratedData {
+  std::string name;
+  Sequence sequence;
+  GroundTruth truth;
+  std::vector<LoadedFrame> frames;
+  std::vector<std::vector<std::vector<int>>> near_vertices;  // per frame, per junction: true vertices within the radius
+  std::vector<std::vector<int>> lbd_line_id;  // per frame, per LSD segment: 3D line id or -1
+};
+
+Status LoadGenerated(const std::string& directory, const Settings& settings, GeneratedData* data) {
+  data->name = std::filesystem::path(directory).filename().string();
+  SFM_RETURN_IF_ERROR(ReadSequence(directory, &data->sequence));
+  if (!data->sequence.has_groundtruth) return Status::Error(directory + ": no groundtruth.txt");
+  SFM_RETURN_IF_ERROR(ReadGroundTruth(directory, &data->truth));
+  if (data->truth.frames.size() != data->sequence.frames.size()) {
+    return Status::Error(directory + ": truth/frames has " + std::to_string(data->truth.frames.size()) +
+                         " frames but images.txt " + std::to_string(data->sequence.frames.size()));
+  }
+  SFM_RETURN_IF_ERROR(LoadFrames(data->sequence, settings, &data->frames));
+  const std::vector<int> edge_line = WireframeLineIds(data->truth.wireframe);
+  for (size_t f = 0; f < data->frames.size(); ++f) {
+    const FrameTruth& truth = data->truth.frames[f];
+    data->near_vertices.push_back(TrueVerticesNearJunctions(data->frames[f].features.junctions, truth, FLAGS_radius));
+    LineSegments lines;
+    std::vector<int> ids;
+    TrueLinesOfFrame(truth, edge_line, &lines, &ids);
+    std::vector<int> lbd_ids = AssociateSegments(data->frames[f].lbd.segments, lines, LineAssociationOptions());
+    for (int& id : lbd_ids) {
+      if (id >= 0) id = ids[id];
+    }
+    data->lbd_line_id.push_back(lbd_ids);
+  }
+  return Status::Ok();
+}
+
+struct VggData {
+  Sequence sequence;
+  VggTruth truth;
+  std::vector<LoadedFrame> frames;
+  std::vector<std::vector<int>> gt_junction_of;  // per frame, per junction: GT junction within radius, or -1
+  std::vector<std::vector<std::vector<int>>> near_points;  // per frame, per junction: 3D points of corners within radius
+  std::vector<std::vector<int>> lbd_line_id;     // per frame, per LSD segment: 3D line (bt.l3d row) or -1
+
+  Eigen::Matrix3d TrueF(int i, int j) const { return FundamentalFromProjections(truth.views[i].P, truth.views[j].P); }
+};
+
+Status LoadVgg(const std::string& sequence_dir, const std::string& data_dir, const Settings& settings, VggData* data) {
+  SFM_RETURN_IF_ERROR(ReadSequence(sequence_dir, &data->sequence));
+  SFM_RETURN_IF_ERROR(ReadVggTruth(data_dir, SegmentJunctionOptions(), &data->truth));
+  if (data->truth.views.size() != data->sequence.frames.size()) {
+    return Status::Error(sequence_dir + ": " + std::to_string(data->sequence.frames.size()) + " frames but " +
+                         data_dir + " has " + std::to_string(data->truth.views.size()) + " views");
+  }
+  SFM_RETURN_IF_ERROR(LoadFrames(data->sequence, settings, &data->frames));
+  for (size_t f = 0; f < data->frames.size(); ++f) {
+    const VggView& view = data->truth.views[f];
+    if (data->frames[f].grey.cols != 512 || data->frames[f].grey.rows != 512) {
+      return Status::Error(sequence_dir + ": frame " + std::to_string(f) +
+                           " is not 512x512: import without scaling so that pixels agree with bt.NNN.P");
+    }
+    std::vector<Eigen::Vector2d> gt_points;
+    for (const SegmentJunction& j : view.junctions) gt_points.push_back(j.location);
+    const std::vector<Eigen::Vector2d> locations = JunctionLocations(data->frames[f].features.junctions);
+    data->gt_junction_of.push_back(NearestWithin(locations, gt_points, FLAGS_radius));
+    data->near_points.push_back(VggPointsNear(view, locations, FLAGS_radius));
+    std::vector<int> ids = AssociateSegments(data->frames[f].lbd.segments, view.lines, LineAssociationOptions());
+    for (int& id : ids) {
+      if (id >= 0) id = view.line3d[id];
+    }
+    data->lbd_line_id.push_back(ids);
+  }
+  return Status::Ok();
+}
+
+// The image line of a 3D line (a wireframe edge's line id; a bt.l3d row) in one frame.
+LineOfId GeneratedLineOf(const GeneratedData& d, int frame) {
+  const Eigen::Matrix<double, 3, 4> P =
+      d.sequence.calibration.camera.K() * d.truth.frames.at(frame).world_T_camera.Inverse().Matrix3x4();
+  return [&d, P](int id) {
+    const WireEdge& e = d.truth.wireframe.edges.at(id);
+    return ProjectLine(P, d.truth.wireframe.vertices[e.vertex_a], d.truth.wireframe.vertices[e.vertex_b]);
+  };
+}
+LineOfId VggLineOf(const VggData& d, int frame) {
+  const Eigen::Matrix<double, 3, 4> P = d.truth.views.at(frame).P;
+  return [&d, P](int id) { return ProjectLine(P, d.truth.lines3d.at(id).first, d.truth.lines3d.at(id).second); };
+}
+
+SameFeature GeneratedSame(const std::vector<std::vector<int>>& near_a, const std::vector<std::vector<int>>& near_b) {
+  return [&near_a, &near_b](int ia, int ib) { return SameTrueVertex(near_a.at(ia), near_b.at(ib)); };
+}
+
+// Identity from the reconstructed corners (3D points) and from the GT junctions with 3D lines:
+// different if either says so, the same if either says so, else unknown.
+SameFeature VggSame(const VggData& d, int i, int j) {
+  return [&d, i, j](int ia, int ib) {
+    const int by_points = SameTrueVertex(d.near_points[i].at(ia), d.near_points[j].at(ib));
+    const int ga = d.gt_junction_of[i].at(ia), gb = d.gt_junction_of[j].at(ib);
+    const int by_lines = ga < 0 || gb < 0 ? -1 : SameVggJunction(d.truth.views[i], ga, d.truth.views[j], gb);
+    if (by_points == 0 || by_lines == 0) return 0;
+    return std::max(by_points, by_lines);
+  };
+}
+
+// The same data with the junctions `drop` says dropped (topology graphs rebuilt), for diagnosis.
+template <typename Drop>
+VggData WithoutJunctions(const VggData& data, Drop drop) {
+  VggData out = data;
+  for (size_t f = 0; f < out.frames.size(); ++f) {
+    FrameFeatures& features = out.frames[f].features;
+    Junctions kept;
+    std::vector<int> gt;
+    std::vector<std::vector<int>> points;
+    for (size_t k = 0; k < features.junctions.size(); ++k) {
+      if (drop(out.frames[f].grey, features.junctions[k])) continue;
+      kept.push_back(features.junctions[k]);
+      gt.push_back(data.gt_junction_of[f][k]);
+      points.push_back(data.near_points[f][k]);
+    }
+    features.junctions = kept;
+    features.graph = BuildTopologyGraph(kept);
+    out.gt_junction_of[f] = gt;
+    out.near_points[f] = points;
+  }
+  return out;
+}
+
+// Distances of true vertices seen in both frames from each other's epipolar lines under F (the
+// larger of the two), px: how far F is from the truth where it matters.
+void TrueVertexEpipolarErrors(const FrameTruth& a, const FrameTruth& b, const Eigen::Matrix3d& F,
+                              std::vector<double>* errors) {
+  std::map<int, Eigen::Vector2d> in_b;
+  for (const VisibleVertex& v : b.vertices) in_b[v.vertex] = v.pixel;
+  for (const VisibleVertex& v : a.vertices) {
+    const auto it = in_b.find(v.vertex);
+    if (it == in_b.end()) continue;
+    errors->push_back(std::max(PointLineDistance(EpipolarLineInImage2(F, v.pixel), it->second),
+                               PointLineDistance(EpipolarLineInImage1(F, it->second), v.pixel)));
+  }
+}
+
+// ---- Comparison with LSD + LBD (d) --------------------------------------------------------------
+
+struct MethodStats {
+  int pairs = 0;
+  double features = 0;  // per frame, summed over both frames of every pair
+  MatchVerdicts verdicts;
+  FeatureRecall recall;
+  std::vector<double> detect_ms, match_ms;  // per pair
+};
+
+std::string MethodRow(const std::string& data, const std::string& method, const MethodStats& s) {
+  std::ostringstream row;
+  const double pairs = std::max(1, s.pairs);
+  row << "| " << data << " | " << method << " | " << s.pairs << " | " << Fixed(s.features / (2 * pairs), 0) << " | "
+      << Fixed(s.verdicts.matches / pairs, 1) << " | " << s.verdicts.correct << " / " << s.verdicts.matches << " = **"
+      << Percent(s.verdicts.correct, s.verdicts.matches) << "** | " << Percent(s.verdicts.identity_known, s.verdicts.matches)
+      << " | " << Percent(s.verdicts.correct_known, s.verdicts.identity_known) << " | " << s.recall.matched << " / " << s.recall.seen_both << " = **" << Percent(s.recall.matched, s.recall.seen_both)
+      << "** | " << Fixed(Median(s.detect_ms), 1) << " | " << Fixed(Median(s.match_ms), 2) << " | "
+      << Fixed(Median(s.detect_ms) + Median(s.match_ms), 1) << " |\n";
+  return row.str();
+}
+
+// One pair for LBD: nearest-neighbour and mutual matches, judged; appended to the two stats.
+void AddLbdPair(const LoadedFrame& a, const LoadedFrame& b, const std::vector<int>& id_a, const std::vector<int>& id_b,
+                const LineOfId& line_in_a, const LineOfId& line_in_b, const Eigen::Matrix3d& F_true,
+                MethodStats* nearest, MethodStats* mutual) {
+  for (auto [stats, is_mutual] : {std::pair{nearest, false}, std::pair{mutual, true}}) {
+    const double start = ThreadCpuMs();
+    const std::vector<std::pair<int, int>> matches = MatchLbd(a.lbd.descriptors, b.lbd.descriptors, is_mutual);
+    stats->match_ms.push_back(ThreadCpuMs() - start);
+    stats->detect_ms.push_back(a.lbd.detect_ms + b.lbd.detect_ms);
+    ++stats->pairs;
+    stats->features += a.lbd.segments.size() + b.lbd.segments.size();
+    const LineMatchScore score =
+        ScoreLineMatches(a.lbd.segments, b.lbd.segments, matches, id_a, id_b, line_in_a, line_in_b, F_true,
+                         FLAGS_epipolar_tolerance);
+    stats->verdicts.Add(score.verdicts);
+    stats->recall.Add({score.seen_both, score.matched});
+  }
+}
+
+// ---- Table 2 (c) -------------------------------------------------------------------------------
+
+struct SweepCell {
+  MatchVerdicts rho, sigma;
+};
+
+struct Sweep {
+  std::vector<double> R, tau2;
+  std::vector<std::vector<SweepCell>> cells;  // [R][tau2]
+};
+
+Sweep RunSweep(const LoadedFrame& a, const LoadedFrame& b, const Eigen::Matrix3d& F, const Eigen::Matrix3d& F_true,
+               const SameFeature& same, const MatchingOptions& base, const std::vector<double>& R_values,
+               const std::vector<double>& tau2_values) {
+  Sweep sweep{R_values, tau2_values, {}};
+  const std::vector<Eigen::Vector2d> pa = JunctionLocations(a.features.junctions), pb = JunctionLocations(b.features.junctions);
+  for (double R : R_values) {
+    sweep.cells.emplace_back();
+    for (double tau2 : tau2_values) {
+      SweepCell cell;
+      for (bool topology : {false, true}) {
+        MatchingOptions options = base;
+        options.max_epipolar_distance_px = R;
+        options.tau2 = tau2;
+        options.use_topology = topology;
+        const std::vector<JunctionMatch> matches = Match(a, b, F, options);
+        (topology ? cell.sigma : cell.rho) =
+            JudgeMatches(MatchPairs(matches), pa, pb, F_true, FLAGS_epipolar_tolerance, same);
+      }
+      sweep.cells.back().push_back(cell);
+    }
+  }
+  return sweep;
+}
+
+std::string SweepTable(const Sweep& s) {
+  std::ostringstream t;
+  t << "| R (px) | tau2 | rho: matches | correct | mismatches | sigma: matches | correct | mismatches |\n"
+    << "|---|---|---|---|---|---|---|---|\n";
+  for (size_t r = 0; r < s.R.size(); ++r) {
+    for (size_t k = 0; k < s.tau2.size(); ++k) {
+      const SweepCell& c = s.cells[r][k];
+      t << "| " << Fixed(s.R[r], 0) << " | " << Fixed(s.tau2[k], 2) << " | " << c.rho.matches << " | " << c.rho.correct
+        << " | " << c.rho.Wrong() << " | " << c.sigma.matches << " | " << c.sigma.correct << " | " << c.sigma.Wrong()
+        << " |\n";
+    }
+  }
+  // Summary: what each measure keeps from the smallest tau2 to the largest, and its mismatch rate.
+  int rho_first = 0, rho_last = 0, sigma_first = 0, sigma_last = 0, rho_all = 0, rho_wrong = 0, sigma_all = 0,
+      sigma_wrong = 0;
+  for (size_t r = 0; r < s.R.size(); ++r) {
+    rho_first += s.cells[r].front().rho.correct;
+    rho_last += s.cells[r].back().rho.correct;
+    sigma_first += s.cells[r].front().sigma.correct;
+    sigma_last += s.cells[r].back().sigma.correct;
+    for (const SweepCell& c : s.cells[r]) {
+      rho_all += c.rho.matches;
+      rho_wrong += c.rho.Wrong();
+      sigma_all += c.sigma.matches;
+      sigma_wrong += c.sigma.Wrong();
+    }
+  }
+  t << "\nSummed over R: correct matches at tau2 = " << Fixed(s.tau2.front(), 2) << " -> " << Fixed(s.tau2.back(), 2)
+    << ": rho " << rho_first << " -> " << rho_last << " (keeps " << Percent(rho_last, rho_first) << "), sigma "
+    << sigma_first << " -> " << sigma_last << " (keeps " << Percent(sigma_last, sigma_first)
+    << "). Mismatches over the whole grid: rho " << rho_wrong << " of " << rho_all << " (" << Percent(rho_wrong, rho_all)
+    << "), sigma " << sigma_wrong << " of " << sigma_all << " (" << Percent(sigma_wrong, sigma_all) << ").\n";
+  return t.str();
+}
+
+// A Fig. 6-style picture with each match's verdict.
+Status WriteVerdictPicture(const std::string& path, const LoadedFrame& a, const LoadedFrame& b,
+                           const std::vector<JunctionMatch>& matches, const Eigen::Matrix3d& F_true,
+                           const SameFeature& same) {
+  std::vector<bool> correct;
+  for (const JunctionMatch& m : matches) {
+    const MatchVerdicts v = JudgeMatches({{m.index_a, m.index_b}}, JunctionLocations(a.features.junctions),
+                                         JunctionLocations(b.features.junctions), F_true, FLAGS_epipolar_tolerance, same);
+    correct.push_back(v.correct == 1);
+  }
+  return WritePng(path, DrawMatchOverlay(a.grey, a.features.junctions, b.grey, b.features.junctions, matches, 2, correct));
+}
+
+
+// Wrong matches by junction type (in image 1), and how far they are from the true epipolar geometry.
+struct WrongTally {
+  int matches = 0, wrong = 0;
+  int by_type[6] = {}, matches_by_type[6] = {};
+  int epipolar_ok = 0;  // wrong, yet within the tolerance of the true epipolar lines (along them)
+  int at_border = 0;    // wrong, with a junction within 5 px of the image border
+};
+
+// Counts the wrong matches: with identity_only, those ground truth identifies as two different
+// features; else those JudgeMatches does not call correct.
+void TallyWrong(const LoadedFrame& a, const LoadedFrame& b, const std::vector<JunctionMatch>& matches,
+                const Eigen::Matrix3d& F_true, const SameFeature& same, bool identity_only, WrongTally* tally) {
+  auto near_border = [](const cv::Mat& image, const Eigen::Vector2d& p) {
+    return p.x() < 5 || p.y() < 5 || p.x() > image.cols - 6 || p.y() > image.rows - 6;
+  };
+  for (const JunctionMatch& m : matches) {
+    const Junction& ja = a.features.junctions[m.index_a];
+    const Junction& jb = b.features.junctions[m.index_b];
+    const int type = static_cast<int>(ja.type);
+    const int identity = same(m.index_a, m.index_b);
+    const bool epipolar_ok = EpipolarConsistent(F_true, ja.location, jb.location, FLAGS_epipolar_tolerance);
+    if (identity_only && identity < 0) continue;
+    ++tally->matches;
+    ++tally->matches_by_type[type];
+    const bool wrong = identity_only ? identity == 0 : (!epipolar_ok || identity == 0);
+    if (!wrong) continue;
+    ++tally->wrong;
+    ++tally->by_type[type];
+    if (epipolar_ok) ++tally->epipolar_ok;
+    if (near_border(a.grey, ja.location) || near_border(b.grey, jb.location)) ++tally->at_border;
+  }
+}
+
+std::string WrongTable(const WrongTally& t) {
+  std::ostringstream table;
+  table << "| | L | Y | ARROW | T | X | N | all | within " << FLAGS_epipolar_tolerance
+        << " px of the true epipolar lines | within 5 px of the border |\n|---|---|---|---|---|---|---|---|---|---|\n"
+        << "| matches |";
+  for (int k = 0; k < 6; ++k) table << " " << t.matches_by_type[k] << " |";
+  table << " " << t.matches << " | | |\n| wrong |";
+  for (int k = 0; k < 6; ++k) table << " " << t.by_type[k] << " (" << Percent(t.by_type[k], t.matches_by_type[k]) << ") |";
+  table << " " << t.wrong << " (" << Percent(t.wrong, t.matches) << ") | " << t.epipolar_ok << " | " << t.at_border
+        << " |\n";
+  return table.str();
+}
+
+}  // namespace
+}  // namespace sfm
+
+int main(int argc, char** argv) {
+  using namespace sfm;
+  gflags::SetUsageMessage(
+      "junction matching against ground truth, Table 2, LSD + LBD, speed (docs/matching_results.md).\n"
+      "  benchmark_matching --generated <seq>,<seq> --vgg_sequence <imported vgg> --output report.md");
+  gflags::ParseCommandLineFlags(&argc, &argv, true);
+  FLAGS_logtostderr = true;
+  google::InitGoogleLogging(argv[0]);
+  cv::setNumThreads(1);
+  auto fail = [](int code, const std::string& message) {
+    std::fprintf(stderr, "benchmark_matching: %s\n", message.c_str());
+    return code;
+  };
+
+  // Flags.
+  if (argc > 1) return fail(2, std::string("unexpected argument '") + argv[1] + "' (flags are --name=value)");
+  const std::vector<std::string> generated_dirs = Split(FLAGS_generated);
+  if (generated_dirs.empty() && FLAGS_vgg_sequence.empty()) {
+    return fail(2, "give --generated and/or --vgg_sequence (scripts/benchmark_matching.sh prepares both)");
+  }
+  Settings settings;
+  if (FLAGS_segments == "fast") {
+    settings.segments.method = SegmentMethod::kFast;
+  } else if (FLAGS_segments == "reference") {
+    settings.segments.method = SegmentMethod::kReference;
+  } else {
+    return fail(2, "--segments must be 'fast' or 'reference', not '" + FLAGS_segments + "'");
+  }
+  const EndpointModel model{FLAGS_endpoint_lambda, FLAGS_endpoint_mu};
+  settings.junctions.endpoint_model = model;
+  settings.junctions.min_probability = FLAGS_junction_min_probability;
+  MatchingOptions& matching = settings.matching;
+  matching.endpoint_model = model;
+  matching.max_epipolar_distance_px = FLAGS_match_max_distance;
+  matching.tau1 = FLAGS_match_tau1;
+  matching.tau2 = FLAGS_match_tau2;
+  matching.use_topology = FLAGS_match_topology;
+  if (FLAGS_match_rho1 == "linear") {
+    matching.rho1_kind = Rho1Kind::kLinear;
+  } else if (FLAGS_match_rho1 == "exponential") {
+    matching.rho1_kind = Rho1Kind::kExponential;
+  } else {
+    return fail(2, "--match_rho1 must be 'exponential' or 'linear', not '" + FLAGS_match_rho1 + "'");
+  }
+  for (const Status& check : {settings.segments.Check(), settings.junctions.Check(), matching.Check()}) {
+    if (!check.ok()) return fail(2, check.message());
+  }
+  std::vector<double> sweep_R, sweep_tau2;
+  if (!ParseNumbers(FLAGS_table2_R, &sweep_R)) return fail(2, "--table2_R must list numbers, e.g. 4,6,10,15");
+  if (!ParseNumbers(FLAGS_table2_tau2, &sweep_tau2)) return fail(2, "--table2_tau2 must list numbers");
+  int vgg_a = 0, vgg_b = 0, gen_a = 0, gen_b = 0;
+  if (!ParsePair(FLAGS_table2_vgg_pair, &vgg_a, &vgg_b)) return fail(2, "--table2_vgg_pair must be two frames, e.g. 0,1");
+  if (!ParsePair(FLAGS_table2_generated_pair, &gen_a, &gen_b)) {
+    return fail(2, "--table2_generated_pair must be two frames, e.g. 10,11");
+  }
+  if (FLAGS_radius <= 0 || FLAGS_epipolar_tolerance <= 0 || FLAGS_speed_repeats < 1 || FLAGS_max_gap < 1) {
+    return fail(2, "--radius and --epipolar_tolerance must be > 0, --speed_repeats and --max_gap >= 1");
+  }
+  if (!FLAGS_image_dir.empty()) {
+    if (const Status s = EnsureWritableDirectory(FLAGS_image_dir); !s.ok()) return fail(1, s.message());
+  }
+
+  // Data.
+  std::vector<GeneratedData> generated(generated_dirs.size());
+  for (size_t k = 0; k < generated_dirs.size(); ++k) {
+    std::fprintf(stderr, "benchmark_matching: loading %s\n", generated_dirs[k].c_str());
+    if (const Status s = LoadGenerated(generated_dirs[k], settings, &generated[k]); !s.ok()) return fail(1, s.message());
+  }
+  VggData vgg;
+  const bool have_vgg = !FLAGS_vgg_sequence.empty();
+  if (have_vgg) {
+    std::fprintf(stderr, "benchmark_matching: loading %s and %s\n", FLAGS_vgg_sequence.c_str(), FLAGS_vgg_dir.c_str());
+    if (const Status s = LoadVgg(FLAGS_vgg_sequence, FLAGS_vgg_dir, settings, &vgg); !s.ok()) return fail(1, s.message());
+  }
+
+  std::ostringstream report;
+  report << "Settings: " << FLAGS_segments << " segments; R = " << matching.max_epipolar_distance_px
+         << " px, tau1 = " << matching.tau1 << ", tau2 = " << matching.tau2 << ", rho1 "
+         << (matching.rho1_kind == Rho1Kind::kLinear ? "linear" : "exponential") << ", "
+         << (matching.use_topology ? "sigma (topology)" : "rho") << ", lambda = " << model.lambda
+         << ", mu = " << model.mu << " /px. Radius " << FLAGS_radius << " px, epipolar tolerance "
+         << FLAGS_epipolar_tolerance << " px. Single thread.\n";
+
+  // ---- a. Generated sequences ----
+  MethodStats ours_generated, lbd_generated, lbd_mutual_generated;
+  if (!generated.empty()) {
+    report << "\n## a. Generated sequences: matches at true vertices\n\n"
+           << "Consecutive pairs. A junction is at a vertex when a visible wireframe vertex lies within " << FLAGS_radius
+           << " px of it (two vertices can: a poster corner 5 mm in front of a cabinet corner, far door frames). "
+           << "Precision: of the matches whose two junctions are both at vertices, those at one same vertex "
+           << "(\"nearest\": the nearest vertices are the same, stricter). Recall: of the vertices with a junction "
+           << "within " << FLAGS_radius << " px in both frames, those joined by a match between such junctions; "
+           << "\"equal counts\": of those whose junctions have the same number of segments in both frames (only "
+           << "these can be matched). F error: for the vertices visible in both frames, the larger distance of the "
+           << "true pixels from the other's epipolar line under the F used, median / 95 %.\n\n"
+           << "| sequence | F from | pairs | matches | both at vertices | same vertex | **precision** | goal | "
+           << "precision, nearest | vertices in both | equal counts | matched | **recall** | goal | recall, equal counts "
+           << "| F error (px) |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+    auto row = [&](const std::string& name, const char* source, const VertexMatchCounts& c, const std::string& error) {
+      report << "| " << name << " | " << source << " | " << c.pairs << " | " << c.matches << " | " << c.associated
+             << " | " << c.same_vertex << " | **" << Percent(c.same_vertex, c.associated) << "** | "
+             << Goal(c.same_vertex, c.associated, 99) << " | " << Percent(c.same_nearest, c.associated) << " | "
+             << c.seen_both << " | " << c.seen_both_same_count << " | " << c.matched << " | **"
+             << Percent(c.matched, c.seen_both) << "** | " << Goal(c.matched, c.seen_both, 90) << " | "
+             << Percent(c.matched, c.seen_both_same_count) << " | " << error << " |\n";
+    };
+    std::ostringstream misses;
+    misses << "\nWhy vertices seen in both frames were not matched (first reason that applies, for the pair of "
+              "junctions at the vertex that got farthest):\n\n| sequence | F from |";
+    for (int k = 0; k < static_cast<int>(MissReason::kNumReasons); ++k) {
+      misses << " " << MissReasonName(static_cast<MissReason>(k)) << " |";
+    }
+    misses << "\n|---|---|---|---|---|---|\n";
+    VertexMatchCounts totals[2];
+    WrongTally wrong_generated;
+    for (const GeneratedData& d : generated) {
+      for (int use_truth = 1; use_truth >= 0; --use_truth) {
+        VertexMatchCounts counts;
+        std::vector<double> errors;
+        for (size_t i = 0; i + 1 < d.frames.size(); ++i) {
+          const int j = static_cast<int>(i) + 1;
+          const Eigen::Matrix3d F = FundamentalOf(d.sequence, i, j, use_truth);
+          double match_ms = 0;
+          const std::vector<JunctionMatch> matches = Match(d.frames[i], d.frames[j], F, matching, &match_ms);
+          const VertexMatchCounts pair_counts =
+              ScoreVertexMatches(d.frames[i].features.junctions, d.frames[j].features.junctions, d.near_vertices[i],
+                                 d.near_vertices[j], matches, F, matching);
+          counts.Add(pair_counts);
+          TrueVertexEpipolarErrors(d.truth.frames[i], d.truth.frames[j], F, &errors);
+          if (!use_truth) {
+            // d: ours with the odometry F, judged like the line matches.
+            const Eigen::Matrix3d F_true = FundamentalOf(d.sequence, i, j, true);
+            const SameFeature same = GeneratedSame(d.near_vertices[i], d.near_vertices[j]);
+            ++ours_generated.pairs;
+            ours_generated.features += d.frames[i].features.junctions.size() + d.frames[j].features.junctions.size();
+            ours_generated.verdicts.Add(JudgeMatches(MatchPairs(matches), JunctionLocations(d.frames[i].features.junctions),
+                                                     JunctionLocations(d.frames[j].features.junctions), F_true,
+                                                     FLAGS_epipolar_tolerance, same));
+            ours_generated.recall.Add({pair_counts.seen_both, pair_counts.matched});
+            ours_generated.detect_ms.push_back(d.frames[i].features.detect_ms + d.frames[j].features.detect_ms);
+            ours_generated.match_ms.push_back(match_ms);
+            AddLbdPair(d.frames[i], d.frames[j], d.lbd_line_id[i], d.lbd_line_id[j], GeneratedLineOf(d, i),
+                       GeneratedLineOf(d, j), F_true, &lbd_generated, &lbd_mutual_generated);
+            TallyWrong(d.frames[i], d.frames[j], matches, F_true, same, /*identity_only=*/true, &wrong_generated);
+          }
+        }
+        totals[use_truth].Add(counts);
+        const char* source = use_truth ? "true poses" : "odometry";
+        row(d.name, source, counts, Fixed(Quantile(errors, 0.5), 2) + " / " + Fixed(Quantile(errors, 0.95), 2));
+        misses << "| " << d.name << " | " << source << " |";
+        for (int k = 0; k < static_cast<int>(MissReason::kNumReasons); ++k) misses << " " << counts.misses[k] << " |";
+        misses << "\n";
+      }
+    }
+    for (int use_truth = 1; use_truth >= 0; --use_truth) {
+      row("**all**", use_truth ? "true poses" : "odometry", totals[use_truth], "");
+    }
+    report << misses.str() << "\nThe wrong matches of the precision column (odometry F), by junction type in the "
+           << "first frame, with their distance from the true epipolar geometry:\n\n"
+           << WrongTable(wrong_generated);
+  }
+
+  // ---- b. VGG Corridor ----
+  MethodStats ours_vgg, lbd_vgg, lbd_mutual_vgg;
+  if (have_vgg) {
+    int identified = 0, gt_junctions = 0;
+    for (const VggView& v : vgg.truth.views) {
+      gt_junctions += static_cast<int>(v.junctions.size());
+      for (const auto& ids : v.junction_lines3d) identified += ids.size() >= 2;
+    }
+    int tracked = 0, corners = 0;
+    for (const VggView& v : vgg.truth.views) {
+      corners += static_cast<int>(v.corners.size());
+      for (int p : v.corner_point3d) tracked += p >= 0;
+    }
+    report << "\n## b. VGG Corridor: precision against the true projection matrices\n\n"
+           << "Matches made with F from the imported sequence (its median K with the simulated odometry, or with its "
+           << "true poses) or from bt.NNN.P; judged with F = FundamentalFromProjections(bt.i.P, bt.j.P): correct when "
+           << "both locations lie within " << FLAGS_epipolar_tolerance << " px of the other's epipolar line and, where "
+           << "ground truth identifies both junctions, they are the same. Identity: the reconstructed Harris corners "
+           << "(bt.NNN.corners on a bt.nview-corners track, i.e. a bt.p3d point; " << tracked << " of " << corners
+           << " corners) within " << FLAGS_radius << " px of the junction, and ground-truth junctions (JunctionsFromSegments "
+           << "on bt.NNN.lines, contact 3 px: " << gt_junctions << " in " << vgg.truth.views.size() << " views, "
+           << identified << " of them identified by two 3D lines of bt_original.nview-lines) within " << FLAGS_radius
+           << " px. Recall: 3D points with a junction within " << FLAGS_radius
+           << " px of one of their corners in both views, joined by a match.\n\n"
+           << "| frames apart | F from | pairs | junctions/frame | matches | wrong: epipolar (of which the same 3D point) "
+           << "| wrong: identity | "
+           << "correct | **precision** | goal | identity known | precision there | 3D points in both | matched | recall |\n"
+           << "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+    // Diagnostic variants: the same matching on fewer junctions.
+    const VggData no_border = WithoutJunctions(vgg, [](const cv::Mat& image, const Junction& j) {
+      return j.location.x() < 5 || j.location.y() < 5 || j.location.x() > image.cols - 6 || j.location.y() > image.rows - 6;
+    });
+    const VggData no_t = WithoutJunctions(vgg, [](const cv::Mat&, const Junction& j) { return j.type == JunctionType::kT; });
+    struct Variant {
+      const char* source;
+      const VggData* data;
+      const char* label;
+    };
+    const Variant variants[] = {{"odometry", &vgg, "odometry"},
+                                {"true poses", &vgg, "true poses (median K)"},
+                                {"bt.NNN.P", &vgg, "bt.NNN.P (exact)"},
+                                {"odometry", &no_border, "odometry, junctions within 5 px of the border dropped"},
+                                {"odometry", &no_t, "odometry, T junctions dropped"}};
+    WrongTally wrong_vgg;
+    const int n = static_cast<int>(vgg.frames.size());
+    for (int gap = 1; gap <= FLAGS_max_gap; ++gap) {
+      for (const Variant& variant : variants) {
+        const VggData& d = *variant.data;
+        const std::string source = variant.source;
+        const bool main_row = gap == 1 && variant.data == &vgg && source == "odometry";
+        if (gap > 1 && variant.data != &vgg) continue;
+        MatchVerdicts verdicts;
+        FeatureRecall recall;
+        int pairs = 0;
+        double junctions = 0;
+        for (int i = 0; i + gap < n; ++i) {
+          const int j = i + gap;
+          const Eigen::Matrix3d F_true = d.TrueF(i, j);
+          const Eigen::Matrix3d F = source == "bt.NNN.P" ? F_true : FundamentalOf(d.sequence, i, j, source == "true poses");
+          double match_ms = 0;
+          const std::vector<JunctionMatch> matches = Match(d.frames[i], d.frames[j], F, matching, &match_ms);
+          const MatchVerdicts v = JudgeMatches(MatchPairs(matches), JunctionLocations(d.frames[i].features.junctions),
+                                               JunctionLocations(d.frames[j].features.junctions), F_true,
+                                               FLAGS_epipolar_tolerance, VggSame(d, i, j));
+          const VertexMatchCounts points = ScoreVertexMatches(d.frames[i].features.junctions, d.frames[j].features.junctions,
+                                                              d.near_points[i], d.near_points[j], matches, F, matching);
+          const FeatureRecall r{points.seen_both, points.matched};
+          verdicts.Add(v);
+          recall.Add(r);
+          ++pairs;
+          junctions += d.frames[i].features.junctions.size() + d.frames[j].features.junctions.size();
+          if (main_row) {
+            ++ours_vgg.pairs;
+            ours_vgg.features += d.frames[i].features.junctions.size() + d.frames[j].features.junctions.size();
+            ours_vgg.verdicts.Add(v);
+            ours_vgg.recall.Add(r);
+            ours_vgg.detect_ms.push_back(d.frames[i].features.detect_ms + d.frames[j].features.detect_ms);
+            ours_vgg.match_ms.push_back(match_ms);
+            AddLbdPair(d.frames[i], d.frames[j], d.lbd_line_id[i], d.lbd_line_id[j], VggLineOf(d, i), VggLineOf(d, j),
+                       F_true, &lbd_vgg, &lbd_mutual_vgg);
+            TallyWrong(d.frames[i], d.frames[j], matches, F_true, VggSame(d, i, j), /*identity_only=*/false, &wrong_vgg);
+          }
+        }
+        report << "| " << gap << " | " << variant.label << " | " << pairs << " | "
+               << Fixed(junctions / (2.0 * std::max(1, pairs)), 0) << " | " << verdicts.matches << " | "
+               << verdicts.epipolar_wrong << " (" << verdicts.epipolar_wrong_same << ") | " << verdicts.identity_wrong
+               << " | " << verdicts.correct << " | **"
+               << Percent(verdicts.correct, verdicts.matches) << "** | "
+               << (main_row ? Goal(verdicts.correct, verdicts.matches, 97) : "") << " | "
+               << Percent(verdicts.identity_known, verdicts.matches) << " | "
+               << Percent(verdicts.correct_known, verdicts.identity_known) << " | " << recall.seen_both << " | "
+               << recall.matched << " | " << Percent(recall.matched, recall.seen_both) << " |\n";
+      }
+    }
+    report << "\nThe wrong matches of the first row, by junction type in the first frame:\n\n" << WrongTable(wrong_vgg);
+    // How many of the wrong ones are just beyond the tolerance.
+    report << "\nPrecision of the consecutive pairs (odometry F) against the epipolar tolerance of the judgement:\n\n"
+           << "| matches of | 1 px | 2 px | 3 px | 5 px |\n|---|---|---|---|---|\n";
+    for (const Variant& variant : {variants[0], variants[3]}) {
+      const VggData& d = *variant.data;
+      report << "| " << variant.label << " |";
+      for (double tolerance : {1.0, 2.0, 3.0, 5.0}) {
+        MatchVerdicts verdicts;
+        for (int i = 0; i + 1 < n; ++i) {
+          const std::vector<JunctionMatch> matches =
+              Match(d.frames[i], d.frames[i + 1], FundamentalOf(d.sequence, i, i + 1, false), matching);
+          verdicts.Add(JudgeMatches(MatchPairs(matches), JunctionLocations(d.frames[i].features.junctions),
+                                    JunctionLocations(d.frames[i + 1].features.junctions), d.TrueF(i, i + 1), tolerance,
+                                    VggSame(d, i, i + 1)));
+        }
+        report << " " << Percent(verdicts.correct, verdicts.matches) << " |";
+      }
+      report << "\n";
+    }
+  }
+
+  // ---- c. Table 2 ----
+  report << "\n## c. The paper's Table 2: rho against sigma over tau2 and R\n\n"
+         << "F from the odometry; tau1 = " << matching.tau1 << ", rho1 "
+         << (matching.rho1_kind == Rho1Kind::kLinear ? "linear" : "exponential")
+         << "; correct as in b (true epipolar geometry within " << FLAGS_epipolar_tolerance
+         << " px, and the same true vertex / ground-truth junction where known); mismatches = matches - correct.\n";
+  if (have_vgg) {
+    if (vgg_a >= static_cast<int>(vgg.frames.size()) || vgg_b >= static_cast<int>(vgg.frames.size())) {
+      return fail(2, "--table2_vgg_pair names a frame the VGG sequence does not have");
+    }
+    const Eigen::Matrix3d F = FundamentalOf(vgg.sequence, vgg_a, vgg_b, false);
+    const Sweep sweep = RunSweep(vgg.frames[vgg_a], vgg.frames[vgg_b], F, vgg.TrueF(vgg_a, vgg_b), VggSame(vgg, vgg_a, vgg_b),
+                                 matching, sweep_R, sweep_tau2);
+    report << "\n### VGG Corridor, frames " << vgg_a << " and " << vgg_b << " ("
+           << vgg.frames[vgg_a].features.junctions.size() << " and " << vgg.frames[vgg_b].features.junctions.size()
+           << " junctions)\n\n"
+           << SweepTable(sweep);
+    if (!FLAGS_image_dir.empty()) {
+      const std::vector<JunctionMatch> matches = Match(vgg.frames[vgg_a], vgg.frames[vgg_b], F, matching);
+      const std::string path = FLAGS_image_dir + "/vgg_" + std::to_string(vgg_a) + "_" + std::to_string(vgg_b) + ".png";
+      if (const Status s = WriteVerdictPicture(path, vgg.frames[vgg_a], vgg.frames[vgg_b], matches,
+                                               vgg.TrueF(vgg_a, vgg_b), VggSame(vgg, vgg_a, vgg_b));
+          !s.ok()) {
+        return fail(1, s.message());
+      }
+    }
+  }
+  if (!generated.empty()) {
+    const GeneratedData& d = generated[0];
+    if (gen_a >= static_cast<int>(d.frames.size()) || gen_b >= static_cast<int>(d.frames.size())) {
+      return fail(2, "--table2_generated_pair names a frame " + d.name + " does not have");
+    }
+    const Eigen::Matrix3d F = FundamentalOf(d.sequence, gen_a, gen_b, false);
+    const Eigen::Matrix3d F_true = FundamentalOf(d.sequence, gen_a, gen_b, true);
+    const SameFeature same = GeneratedSame(d.near_vertices[gen_a], d.near_vertices[gen_b]);
+    const Sweep sweep = RunSweep(d.frames[gen_a], d.frames[gen_b], F, F_true, same, matching, sweep_R, sweep_tau2);
+    report << "\n### Generated " << d.name << ", frames " << gen_a << " and " << gen_b << " ("
+           << d.frames[gen_a].features.junctions.size() << " and " << d.frames[gen_b].features.junctions.size()
+           << " junctions)\n\n"
+           << SweepTable(sweep);
+    if (!FLAGS_image_dir.empty()) {
+      const std::vector<JunctionMatch> matches = Match(d.frames[gen_a], d.frames[gen_b], F, matching);
+      const std::string path =
+          FLAGS_image_dir + "/" + d.name + "_" + std::to_string(gen_a) + "_" + std::to_string(gen_b) + ".png";
+      if (const Status s = WriteVerdictPicture(path, d.frames[gen_a], d.frames[gen_b], matches, F_true, same); !s.ok()) {
+        return fail(1, s.message());
+      }
+    }
+  }
+
+  // ---- d. LSD + LBD ----
+  report << "\n## d. Against OpenCV line_descriptor (LSD + binary LBD, brute-force Hamming)\n\n"
+         << "Same pairs (generated: all consecutive pairs of the sequences above; VGG: consecutive pairs), same "
+         << "ground truth. Ours: junction matches with the odometry F. LBD: LSDDetector (scale 2, one octave, "
+         << "segments >= " << FLAGS_lbd_min_length << " px), BinaryDescriptor::compute, "
+         << "BinaryDescriptorMatcher::match (each line of image 1 to its nearest; mutual: kept when each is the "
+         << "other's nearest); no epipolar information. A line match is correct when the epipolar band of each "
+         << "segment (between its end-points' epipolar lines under the true F) meets the other segment within "
+         << FLAGS_epipolar_tolerance << " px and, when both segments lie on true segments with known 3D lines "
+         << "(generated: wireframe edges; VGG: bt_original.nview-lines), on the same 3D line. A detected segment lies "
+         << "on a true one when both ends are within 2 px of its line, within 3 degrees, overlapping it by half its "
+         << "length. Recall: true features (vertices / VGG identified junctions; 3D lines) with a detection on them "
+         << "in both images, joined by a match. Times per pair: detection in both images, then matching; "
+         << "processor time of the one thread, median over pairs.\n\n"
+         << "| data | method | pairs | features/frame | matches/pair | **precision** | identity known | precision there | "
+         << "**recall** | detection ms | matching ms | total ms |\n|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+  if (!generated.empty()) {
+    report << MethodRow("generated", "junctions (ours, sigma)", ours_generated)
+           << MethodRow("generated", "LSD + LBD, nearest", lbd_generated)
+           << MethodRow("generated", "LSD + LBD, mutual", lbd_mutual_generated);
+  }
+  if (have_vgg) {
+    report << MethodRow("VGG", "junctions (ours, sigma)", ours_vgg) << MethodRow("VGG", "LSD + LBD, nearest", lbd_vgg)
+           << MethodRow("VGG", "LSD + LBD, mutual", lbd_mutual_vgg);
+  }
+
+  // ---- e. Speed ----
+  report << "\n## e. Speed of MatchJunctions\n\n"
+         << "One pair of frames, processor time of the one thread, odometry F, junctions and topology graphs given (detection not "
+         << "included); median of " << FLAGS_speed_repeats << " runs per pair.\n\n"
+         << "| data | pairs | junctions per frame (min..max) | sigma: median over pairs (ms) | max (ms) | "
+         << "rho: median (ms) | max (ms) | goal |\n|---|---|---|---|---|---|---|---|\n";
+  auto time_pairs = [&](const std::string& name, const std::vector<LoadedFrame>& frames, const Sequence& sequence) {
+    std::vector<double> sigma_ms, rho_ms;
+    size_t fewest = SIZE_MAX, most = 0;
+    for (size_t i = 0; i + 1 < frames.size(); ++i) {
+      const Eigen::Matrix3d F = FundamentalOf(sequence, i, i + 1, false);
+      for (bool topology : {true, false}) {
+        MatchingOptions options = matching;
+        options.use_topology = topology;
+        std::vector<double> runs;
+        for (int r = 0; r < FLAGS_speed_repeats; ++r) {
+          double ms = 0;
+          Match(frames[i], frames[i + 1], F, options, &ms);
+          runs.push_back(ms);
+        }
+        (topology ? sigma_ms : rho_ms).push_back(Median(runs));
+      }
+      for (size_t k : {i, i + 1}) {
+        fewest = std::min(fewest, frames[k].features.junctions.size());
+        most = std::max(most, frames[k].features.junctions.size());
+      }
+    }
+    const double sigma_median = Median(sigma_ms);
+    report << "| " << name << " | " << sigma_ms.size() << " | " << fewest << ".." << most << " | **"
+           << Fixed(sigma_median, 3) << "** | " << Fixed(Quantile(sigma_ms, 1.0), 3) << " | " << Fixed(Median(rho_ms), 3)
+           << " | " << Fixed(Quantile(rho_ms, 1.0), 3) << " | " << (sigma_median < 1.0 ? "pass (< 1 ms)" : "**miss** (>= 1 ms)")
+           << " |\n";
+  };
+  if (have_vgg) time_pairs("VGG Corridor, consecutive", vgg.frames, vgg.sequence);
+  for (const GeneratedData& d : generated) time_pairs(d.name + ", consecutive", d.frames, d.sequence);
+
+  const std::string text = report.str();
+  std::fputs(text.c_str(), stdout);
+  if (!FLAGS_output.empty()) {
+    if (const Status s = WriteFileAtomically(FLAGS_output, text); !s.ok()) return fail(1, s.message());
+  }
+  return 0;
+}

@@ -1,0 +1,226 @@
+// match_junctions: junction matches between any two frames of a sequence (docs/matching.md,
+// docs/matching_results.md).
+//
+//   build/bin/match_junctions --sequence <dir> --frame_a i --frame_b j [--csv out.csv] [--image out.png]
+//                             [--fundamental odometry|groundtruth] [detection and matching flags]
+//
+// Both images are undistorted (ImageUndistorter), segments, junctions and topology graphs are
+// detected, and the junctions matched (paper sections 3-4) under F from the calibration and the two
+// frames' odometry poses (FundamentalFromOdometry; --fundamental=groundtruth uses groundtruth.txt
+// instead). Writes the matches as SPEC section 3 CSV (header id_a,id_b,similarity; junction ids
+// of frame_a and frame_b) and a side-by-side PNG in the style of the paper's Fig. 6: each matched
+// pair numbered, corresponding junction segments in the same colour, unmatched junctions in grey.
+// Errors are one line on stderr and a non-zero exit, with nothing written: 2 for bad flags, 1 for
+// bad input or an output that cannot be written.
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <gflags/gflags.h>
+#include <glog/logging.h>
+#include <opencv2/core.hpp>
+#include <opencv2/imgcodecs.hpp>
+
+#include "frontend/geometry/epipolar.h"
+#include "frontend/geometry/image_undistorter.h"
+#include "frontend/junctions/junction_detector.h"
+#include "frontend/junctions/topology.h"
+#include "frontend/matching/junction_matcher.h"
+#include "frontend/segments/segment_detector.h"
+#include "frontend/sequence/sequence.h"
+#include "frontend/util/atomic_file.h"
+#include "frontend/util/json_format.h"
+#include "sfm_app/evaluation/match_overlay.h"
+
+namespace {
+const sfm::JunctionDetectorOptions kJunctionDefaults;
+const sfm::MatchingOptions kMatchingDefaults;
+}  // namespace
+
+DEFINE_string(sequence, "", "Sequence directory (SPEC section 1). Required.");
+DEFINE_int32(frame_a, -1, "First frame (0-based index into images.txt). Required.");
+DEFINE_int32(frame_b, -1, "Second frame, any other frame of the sequence. Required.");
+DEFINE_string(csv, "", "Write the matches here (SPEC section 3: id_a,id_b,similarity).");
+DEFINE_string(image, "", "Write the side-by-side match picture here (.png).");
+DEFINE_int32(image_scale, 1, "Enlarge the picture this many times (1..4).");
+DEFINE_string(fundamental, "odometry",
+              "Where F comes from: 'odometry' (odometry.txt, as junction_sfm) or 'groundtruth' (groundtruth.txt).");
+DEFINE_string(segments, "fast", "Line segment detector: 'fast' or 'reference'.");
+DEFINE_double(endpoint_lambda, kJunctionDefaults.endpoint_model.lambda,
+              "End-point model eq. (5): decay, 1/px, of a detected end-point beyond the true one (detection and matching).");
+DEFINE_double(endpoint_mu, kJunctionDefaults.endpoint_model.mu,
+              "End-point model eq. (5): decay, 1/px, of a detected end-point short of the true one (detection and matching).");
+DEFINE_double(junction_min_probability, kJunctionDefaults.min_probability,
+              "Junction threshold: least junction probability of a pair of segments, (0, 1].");
+DEFINE_double(match_max_distance, kMatchingDefaults.max_epipolar_distance_px,
+              "R: largest distance, px, of a junction from its partner's epipolar line.");
+DEFINE_double(match_tau1, kMatchingDefaults.tau1, "tau1 of rule (38): least similarity of a match.");
+DEFINE_double(match_tau2, kMatchingDefaults.tau2, "tau2 of rule (38): how much the best candidate must beat the second, both ways.");
+DEFINE_string(match_rho1, kMatchingDefaults.rho1_kind == sfm::Rho1Kind::kLinear ? "linear" : "exponential",
+              "rho1 of eq. (31): 'exponential' or 'linear' (footnote 10).");
+DEFINE_bool(match_topology, kMatchingDefaults.use_topology,
+            "Match on sigma (junction topology, section 4.2) rather than on plain rho (34).");
+
+namespace {
+
+int Fail(int code, const std::string& message) {
+  std::fprintf(stderr, "match_junctions: %s\n", message.c_str());
+  return code;
+}
+
+std::string ParentOf(const std::string& path) {
+  const std::filesystem::path parent = std::filesystem::path(path).parent_path();
+  return parent.empty() ? "." : parent.string();
+}
+
+// Flags -> options; false with a one-line message for a bad value.
+bool OptionsFromFlags(sfm::SegmentDetectorOptions* segments, sfm::JunctionDetectorOptions* junctions,
+                      sfm::MatchingOptions* matching, std::string* error) {
+  if (FLAGS_segments == "fast") {
+    segments->method = sfm::SegmentMethod::kFast;
+  } else if (FLAGS_segments == "reference") {
+    segments->method = sfm::SegmentMethod::kReference;
+  } else {
+    *error = "--segments must be 'fast' or 'reference', not '" + FLAGS_segments + "'";
+    return false;
+  }
+  const sfm::EndpointModel model{FLAGS_endpoint_lambda, FLAGS_endpoint_mu};
+  junctions->endpoint_model = model;
+  junctions->min_probability = FLAGS_junction_min_probability;
+  matching->endpoint_model = model;
+  matching->max_epipolar_distance_px = FLAGS_match_max_distance;
+  matching->tau1 = FLAGS_match_tau1;
+  matching->tau2 = FLAGS_match_tau2;
+  matching->use_topology = FLAGS_match_topology;
+  if (FLAGS_match_rho1 == "exponential") {
+    matching->rho1_kind = sfm::Rho1Kind::kExponential;
+  } else if (FLAGS_match_rho1 == "linear") {
+    matching->rho1_kind = sfm::Rho1Kind::kLinear;
+  } else {
+    *error = "--match_rho1 must be 'exponential' or 'linear', not '" + FLAGS_match_rho1 + "'";
+    return false;
+  }
+  for (const sfm::Status& check : {segments->Check(), junctions->Check(), matching->Check()}) {
+    if (!check.ok()) {
+      *error = check.message();
+      return false;
+    }
+  }
+  return true;
+}
+
+std::string MatchesCsv(const sfm::Junctions& a, const sfm::Junctions& b, const std::vector<sfm::JunctionMatch>& matches) {
+  std::string csv = "id_a,id_b,similarity\n";
+  for (const sfm::JunctionMatch& m : matches) {
+    csv += std::to_string(a[m.index_a].id) + "," + std::to_string(b[m.index_b].id) + "," +
+           sfm::JsonNumber(m.similarity) + "\n";
+  }
+  return csv;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  gflags::SetUsageMessage(
+      "junction matches between two frames of a sequence, as CSV and a Fig. 6-style picture.\n"
+      "  match_junctions --sequence <dir> --frame_a i --frame_b j [--csv out.csv] [--image out.png] [flags]");
+  gflags::ParseCommandLineFlags(&argc, &argv, true);
+  FLAGS_logtostderr = true;
+  google::InitGoogleLogging(argv[0]);
+
+  // Flags.
+  if (argc > 1) return Fail(2, std::string("unexpected argument '") + argv[1] + "' (flags are --name=value; see --help)");
+  if (FLAGS_sequence.empty()) return Fail(2, "--sequence is required: the sequence directory");
+  if (FLAGS_frame_a < 0 || FLAGS_frame_b < 0) return Fail(2, "--frame_a and --frame_b are required: frame indices >= 0");
+  if (FLAGS_frame_a == FLAGS_frame_b) return Fail(2, "--frame_a and --frame_b must be two different frames");
+  if (FLAGS_image_scale < 1 || FLAGS_image_scale > 4) return Fail(2, "--image_scale must be in 1..4");
+  if (!FLAGS_image.empty() && std::filesystem::path(FLAGS_image).extension() != ".png") {
+    return Fail(2, "--image must name a .png file, not '" + FLAGS_image + "'");
+  }
+  if (FLAGS_fundamental != "odometry" && FLAGS_fundamental != "groundtruth") {
+    return Fail(2, "--fundamental must be 'odometry' or 'groundtruth', not '" + FLAGS_fundamental + "'");
+  }
+  sfm::SegmentDetectorOptions segment_options;
+  sfm::JunctionDetectorOptions junction_options;
+  sfm::MatchingOptions matching_options;
+  std::string error;
+  if (!OptionsFromFlags(&segment_options, &junction_options, &matching_options, &error)) return Fail(2, error);
+
+  // Input, and output places, all checked before any work.
+  sfm::Sequence sequence;
+  if (const sfm::Status s = sfm::ReadSequence(FLAGS_sequence, &sequence); !s.ok()) return Fail(1, s.message());
+  const int n = static_cast<int>(sequence.frames.size());
+  for (int frame : {FLAGS_frame_a, FLAGS_frame_b}) {
+    if (frame >= n) {
+      return Fail(1, FLAGS_sequence + ": has " + std::to_string(n) + " frames (0.." + std::to_string(n - 1) +
+                         "), no frame " + std::to_string(frame));
+    }
+  }
+  const bool use_groundtruth = FLAGS_fundamental == "groundtruth";
+  if (use_groundtruth && !sequence.has_groundtruth) {
+    return Fail(1, FLAGS_sequence + ": --fundamental=groundtruth but the sequence has no groundtruth.txt");
+  }
+  const sfm::Frame& frame_a = sequence.frames[FLAGS_frame_a];
+  const sfm::Frame& frame_b = sequence.frames[FLAGS_frame_b];
+  const sfm::Calibration& calibration = sequence.calibration;
+  const sfm::Pose3& base_a = use_groundtruth ? *frame_a.world_T_base_groundtruth : frame_a.world_T_base_odometry;
+  const sfm::Pose3& base_b = use_groundtruth ? *frame_b.world_T_base_groundtruth : frame_b.world_T_base_odometry;
+  const sfm::Pose3 camera_b_T_camera_a =
+      (base_b * calibration.base_T_camera).Inverse() * (base_a * calibration.base_T_camera);
+  // F of a pure rotation is zero: no epipolar geometry to match with. 1e-9 of the scene's units.
+  if (!(camera_b_T_camera_a.translation.norm() > 1e-9)) {
+    return Fail(1, "frames " + std::to_string(FLAGS_frame_a) + " and " + std::to_string(FLAGS_frame_b) +
+                       ": the camera does not move between them (per " + FLAGS_fundamental +
+                       "), so F is undefined");
+  }
+  const Eigen::Matrix3d F =
+      sfm::FundamentalFromOdometry(calibration.camera.K(), calibration.base_T_camera, base_a, base_b);
+  cv::Mat image_a, image_b;
+  if (const sfm::Status s = sfm::LoadFrameImage(sequence, FLAGS_frame_a, &image_a); !s.ok()) return Fail(1, s.message());
+  if (const sfm::Status s = sfm::LoadFrameImage(sequence, FLAGS_frame_b, &image_b); !s.ok()) return Fail(1, s.message());
+  std::error_code fs_error;
+  for (const std::string* output : {&FLAGS_csv, &FLAGS_image}) {
+    if (output->empty()) continue;
+    if (std::filesystem::is_directory(*output, fs_error)) return Fail(1, *output + ": is a directory, not a file");
+    if (const sfm::Status s = sfm::EnsureWritableDirectory(ParentOf(*output)); !s.ok()) return Fail(1, s.message());
+  }
+
+  // Detection and matching.
+  const auto start = std::chrono::steady_clock::now();
+  const sfm::ImageUndistorter undistorter(calibration.camera);
+  const cv::Mat grey_a = undistorter.Apply(image_a), grey_b = undistorter.Apply(image_b);
+  const sfm::LineSegments segments_a = sfm::DetectLineSegments(grey_a, segment_options);
+  const sfm::LineSegments segments_b = sfm::DetectLineSegments(grey_b, segment_options);
+  const sfm::Junctions junctions_a = sfm::DetectJunctions(segments_a, junction_options);
+  const sfm::Junctions junctions_b = sfm::DetectJunctions(segments_b, junction_options);
+  const sfm::TopologyGraph graph_a = sfm::BuildTopologyGraph(junctions_a);
+  const sfm::TopologyGraph graph_b = sfm::BuildTopologyGraph(junctions_b);
+  const auto matched = std::chrono::steady_clock::now();
+  const std::vector<sfm::JunctionMatch> matches =
+      sfm::MatchJunctions(junctions_a, graph_a, junctions_b, graph_b, F, matching_options);
+  const double detect_ms = std::chrono::duration<double, std::milli>(matched - start).count();
+  const double match_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - matched).count();
+
+  // Output.
+  if (!FLAGS_csv.empty()) {
+    if (const sfm::Status s = sfm::WriteFileAtomically(FLAGS_csv, MatchesCsv(junctions_a, junctions_b, matches)); !s.ok()) {
+      return Fail(1, s.message());
+    }
+  }
+  if (!FLAGS_image.empty()) {
+    const cv::Mat picture =
+        sfm::DrawMatchOverlay(grey_a, junctions_a, grey_b, junctions_b, matches, FLAGS_image_scale);
+    std::vector<uchar> png;
+    if (!cv::imencode(".png", picture, png)) return Fail(1, FLAGS_image + ": PNG encoding failed");
+    if (const sfm::Status s = sfm::WriteFileAtomically(FLAGS_image, std::string(png.begin(), png.end())); !s.ok()) {
+      return Fail(1, s.message());
+    }
+  }
+  std::printf("match_junctions: frames %d and %d: %zu and %zu junctions, %zu matches (F from %s; %s; "
+              "detection %.1f ms, matching %.2f ms)\n",
+              FLAGS_frame_a, FLAGS_frame_b, junctions_a.size(), junctions_b.size(), matches.size(),
+              FLAGS_fundamental.c_str(), matching_options.use_topology ? "sigma" : "rho", detect_ms, match_ms);
+  return 0;
+}
