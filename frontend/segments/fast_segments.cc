@@ -104,6 +104,9 @@ class FastDetector {
       chain_.assign(backward_.rbegin(), backward_.rend());
       chain_.push_back(anchor);
       chain_.insert(chain_.end(), forward_.begin(), forward_.end());
+      // Every sub-run of the chain is a candidate segment: L (L + 1) / 2 tests.
+      const double length = static_cast<double>(chain_.size());
+      num_tests_ += 0.5 * length * (length + 1);
       const size_t first_piece = pieces_.size();
       const size_t first_break = SplitChain();
       // A closed contour has no natural start: the anchor may lie mid-side, which would cut that
@@ -114,7 +117,10 @@ class FastDetector {
         SplitChain();
       }
     }
+    // A piece joined across chains is one more candidate: count every piece once more.
+    num_tests_ += static_cast<double>(pieces_.size());
     MergeCollinearPieces(options_.max_gap, options_.fast.line_tolerance, &pieces_);
+    log10_tests_ = std::log10(std::max(num_tests_, 1.0));
     LineSegments segments;
     for (const LinePiece& piece : pieces_) {
       if (!piece.merged_away) Validate(piece, &segments);
@@ -300,13 +306,14 @@ class FastDetector {
       const double along = g_x * normal.x() + g_y * normal.y();
       if (along > 0 && along * along >= kAlignedCos2 * (g_x * g_x + g_y * g_y)) ++aligned;
     }
-    if (Log10Nfa(samples, aligned, kAlignedProbability, cols_, rows_) > options_.fast.log10_nfa_max) return;
+    if (Log10Nfa(samples, aligned, kAlignedProbability, log10_tests_) > options_.fast.log10_nfa_max) return;
     segments->push_back(segment);
   }
 
   const SegmentDetectorOptions& options_;
   const int rows_, cols_;
   int low_ = 0, high_ = 0, min_pixels_ = 0;
+  double num_tests_ = 0, log10_tests_ = 0;  // candidate segments tested by the NFA (see Run)
   // Views of the workspace's buffers (see Workspace for their contents).
   cv::Mat& gx_;
   cv::Mat& gy_;

@@ -28,4 +28,6 @@ double Log10Nfa(int n, int k, double p, int width, int height) {
   return 2 * std::log10(static_cast<double>(width) * height) + Log10BinomialTail(n, k, p);
 }
 
+double Log10Nfa(int n, int k, double p, double log10_tests) { return log10_tests + Log10BinomialTail(n, k, p); }
+
 }  // namespace sfm

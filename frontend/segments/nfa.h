@@ -12,4 +12,8 @@ double Log10BinomialTail(int n, int k, double p);
 // tests is (width*height)^2, one per pair of end-points.
 double Log10Nfa(int n, int k, double p, int width, int height);
 
+// The same with the number of tests given (log10): for candidates that are sub-runs of edge chains,
+// the number of such sub-runs (see fast_segments.cc), not every pair of pixels.
+double Log10Nfa(int n, int k, double p, double log10_tests);
+
 }  // namespace sfm

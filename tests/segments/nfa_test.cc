@@ -34,5 +34,12 @@ TEST(NfaTest, ShortestMeaningfulAlignedSegment) {
   EXPECT_GT(Log10Nfa(20, 10, 0.125, 512, 512), 0);
 }
 
+// The number of tests may be given: (512*512)^2 tests is the image form; fewer tests, fewer samples.
+TEST(NfaTest, GivenNumberOfTests) {
+  EXPECT_NEAR(Log10Nfa(15, 13, 0.125, 4 * std::log10(512.0)), Log10Nfa(15, 13, 0.125, 512, 512), 1e-12);
+  EXPECT_NEAR(Log10Nfa(8, 8, 0.125, 8 * std::log10(8.0)), 0, 1e-9);
+  EXPECT_GT(Log10Nfa(7, 7, 0.125, 8 * std::log10(8.0)), 0.5);
+}
+
 }  // namespace
 }  // namespace sfm

@@ -125,6 +125,19 @@ TEST_P(DetectorTest, FindsNothingInNoise) {
   EXPECT_EQ(DetectLineSegments(image, Options()).size(), 0u);
 }
 
+// Heavy noise (sigma 4: 5 % and more of the pixels pass the low threshold, so chains form) gives at
+// most a stray segment: the NFA, with the chains' sub-runs as its tests, still guards.
+TEST_P(DetectorTest, FindsAlmostNothingInHeavyNoise) {
+  SyntheticImageOptions image_options;
+  image_options.blur_sigma = 0;
+  image_options.noise_sigma = 4;
+  for (int seed = 1; seed <= 3; ++seed) {
+    image_options.seed = seed;
+    const cv::Mat image = testing::RenderPolygons({}, image_options);
+    EXPECT_LE(DetectLineSegments(image, Options()).size(), 1u) << "seed " << seed;
+  }
+}
+
 TEST_P(DetectorTest, LeavesTheInputUnchanged) {
   const cv::Mat image = testing::RenderPolygons(Scene(), SyntheticImageOptions());
   const cv::Mat copy = image.clone();
