@@ -5,7 +5,9 @@
 //   f(t) = exp(-lambda * t)  for t >= 0
 //   f(t) = exp( mu * t)      for t <  0
 // The normalising factor lambda*mu/(lambda+mu) is dropped, as in the paper, so f(0) = 1.
-// See docs/endpoint_model.md for how the defaults were estimated.
+// The defaults are the maximum-likelihood fit (FitEndpointModel) to the vertex ends of the generated
+// sequences of benchmark_junctions with the fast segments at commit 2db1a25; see
+// docs/endpoint_model.md.
 #pragma once
 
 #include <cmath>
@@ -13,8 +15,8 @@
 namespace sfm {
 
 struct EndpointModel {
-  double lambda = 1.0;  // 1/pixels: decay for detected end-points beyond the true one (t >= 0)
-  double mu = 0.2;      // 1/pixels: decay for detected end-points short of the true one (t < 0)
+  double lambda = 0.844;  // 1/pixels: decay for detected end-points beyond the true one (t >= 0)
+  double mu = 0.353;      // 1/pixels: decay for detected end-points short of the true one (t < 0)
 
   double F(double t) const { return t >= 0 ? std::exp(-lambda * t) : std::exp(mu * t); }
   bool Check() const { return lambda > 0 && mu > 0 && std::isfinite(lambda) && std::isfinite(mu); }

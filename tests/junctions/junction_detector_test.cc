@@ -27,10 +27,12 @@ LineSegment Spoke(const Eigen::Vector2d& center, double angle_deg, double gap) {
   return s;
 }
 
+// Hand-built cases with round numbers, independent of the fitted defaults.
 JunctionDetectorOptions Options() {
   JunctionDetectorOptions options;
   options.endpoint_model.lambda = 1.0;
   options.endpoint_model.mu = 0.2;
+  options.min_probability = 0.1;
   return options;
 }
 
@@ -39,6 +41,23 @@ Junctions DetectSpokes(std::initializer_list<double> angles, double gap) {
   LineSegments segments;
   for (double a : angles) segments.push_back(Spoke(center, a, gap));
   return DetectJunctions(segments, Options());
+}
+
+// The default threshold's rule (junction_options.h): with end-point offsets t drawn from the default
+// model (density proportional to f), 90 % of pairs have a probability f(t1) f(t2) at or above it.
+TEST(JunctionDetectorTest, DefaultThresholdKeepsNinetyPercentOfModelPairs) {
+  const JunctionDetectorOptions options;
+  const EndpointModel& model = options.endpoint_model;
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> uniform(0, 1);
+  std::exponential_distribution<double> too_long(model.lambda), too_short(model.mu);
+  auto draw = [&] {  // P(t >= 0) = mu / (lambda + mu) for the normalised two-sided density
+    return uniform(rng) < model.mu / (model.lambda + model.mu) ? too_long(rng) : -too_short(rng);
+  };
+  const int n = 200000;
+  int kept = 0;
+  for (int i = 0; i < n; ++i) kept += model.F(draw()) * model.F(draw()) >= options.min_probability;
+  EXPECT_NEAR(static_cast<double>(kept) / n, 0.90, 0.005);
 }
 
 TEST(JunctionDetectorTest, OptionsCheck) {

@@ -52,10 +52,12 @@ TEST(PairProbabilityTest, HandComputedPairs) {
   EXPECT_NEAR(PairProbability(SegmentLine(Segment(0, 0, 14, 0)), b, p0, model), std::exp(-1.4), 1e-15);
 }
 
+// Hand-built cases with round numbers, independent of the fitted defaults.
 JunctionDetectorOptions Options() {
   JunctionDetectorOptions options;
   options.endpoint_model.lambda = 1.0;
   options.endpoint_model.mu = 0.2;
+  options.min_probability = 0.1;
   return options;
 }
 

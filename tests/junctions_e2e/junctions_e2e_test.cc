@@ -89,11 +89,12 @@ FrameResult RunFrame(SegmentMethod method) {
 }
 
 // Measured when written: 25 detectable vertices; found within 3 px 22 with fast segments (88 %,
-// median error 0.11 px) and 23 with reference segments (92 %, 0.08 px). The three misses are corners
-// of the dark box's top face, whose edges with its sides are of low contrast. The floor, 80 %
-// (20 of 25), tolerates two more misses from changes in the segment detector; the median error
-// must stay below the benchmark's goal of 0.7 px.
-constexpr double kRecallFloor = 0.80;
+// median error 0.11 px) and 23 with reference segments (92 %, 0.08 px); the three misses were corners
+// of the dark box's top face, whose edges with its sides are of low contrast. Since the NFA counts
+// chain sub-runs (commit 2db1a25) and the end-point model and threshold are the fitted ones, both
+// find all 25 (median 0.15 / 0.08 px). The floor, 88 % (22 of 25), tolerates three misses from
+// changes in the segment detector; the median error must stay below the benchmark's goal of 0.7 px.
+constexpr double kRecallFloor = 0.88;
 constexpr double kMaxMedianError = 0.7;  // px
 
 TEST(JunctionsEndToEndTest, GeneratedFrameFastSegments) {
