@@ -36,7 +36,8 @@ DEFINE_double(match_max_distance, kDefaults.matching.max_epipolar_distance_px,
 DEFINE_double(match_tau1, kDefaults.matching.tau1, "tau1 of rule (38): least similarity of a match.");
 DEFINE_double(match_tau2, kDefaults.matching.tau2,
               "tau2 of rule (38): how much the best candidate must beat the second, both ways.");
-DEFINE_string(match_rho1, "exponential", "rho1 of eq. (31): 'exponential' or 'linear'.");
+DEFINE_string(match_rho1, kDefaults.matching.rho1_kind == sfm::Rho1Kind::kLinear ? "linear" : "exponential",
+              "rho1 of eq. (31): 'exponential' or 'linear' (more tolerant of a poor epipolar geometry).");
 DEFINE_bool(match_topology, kDefaults.matching.use_topology,
             "Match on sigma (junction topology, section 4.2) rather than on plain rho (34).");
 
