@@ -1,0 +1,489 @@
+#include "backend/bundle_adjustment/bundle_adjuster.h"
+
+#include <ceres/ceres.h>
+#include <glog/logging.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <memory>
+#include <string>
+
+#include "backend/bundle_adjustment/line_manifold.h"
+#include "backend/bundle_adjustment/line_reprojection_cost.h"
+#include "backend/bundle_adjustment/observability.h"
+#include "backend/bundle_adjustment/odometry_prior_cost.h"
+#include "backend/bundle_adjustment/point_reprojection_cost.h"
+#include "backend/bundle_adjustment/pose_parameters.h"
+
+namespace sfm {
+namespace {
+
+bool Finite(const Eigen::Vector2d& v) { return std::isfinite(v.x()) && std::isfinite(v.y()); }
+bool Finite(const Eigen::Vector3d& v) { return v.allFinite(); }
+
+Status CheckInput(const Calibration& calibration, const std::vector<Pose3>& odometry,
+                  const Landmarks& landmarks) {
+  auto error = [](const std::string& what) { return Status::Error("bundle adjustment: " + what); };
+  const Camera& camera = calibration.camera;
+  if (!(camera.fx > 0 && camera.fy > 0 && std::isfinite(camera.cx) && std::isfinite(camera.cy))) {
+    return error("the camera's fx and fy must be > 0, cx and cy finite");
+  }
+  const OdometryNoise& noise = calibration.odometry_noise;
+  if (!(noise.translation_sigma > 0 && std::isfinite(noise.translation_sigma))) {
+    return error("odometry translation_sigma must be > 0");
+  }
+  if (!(noise.rotation_sigma > 0 && std::isfinite(noise.rotation_sigma))) {
+    return error("odometry rotation_sigma must be > 0 rad");
+  }
+  if (odometry.empty()) return error("no odometry pose");
+  const int frames = static_cast<int>(odometry.size());
+  for (int f = 0; f < frames; ++f) {
+    if (!odometry[f].translation.allFinite() || !odometry[f].rotation.coeffs().allFinite() ||
+        !(odometry[f].rotation.norm() > 0)) {
+      return error("odometry pose " + std::to_string(f) + " is not a finite rigid transform");
+    }
+  }
+  auto bad_frame = [frames](int frame) { return frame < 0 || frame >= frames; };
+  for (size_t i = 0; i < landmarks.points.size(); ++i) {
+    const PointLandmark& point = landmarks.points[i];
+    if (!Finite(point.position)) return error("point " + std::to_string(i) + " is not finite");
+    for (const PointObservation& observation : point.observations) {
+      if (bad_frame(observation.frame) || !Finite(observation.pixel)) {
+        return error("point " + std::to_string(i) + " has an observation of frame " +
+                     std::to_string(observation.frame) + " (of " + std::to_string(frames) +
+                     ") or a pixel that is not finite");
+      }
+    }
+  }
+  for (size_t i = 0; i < landmarks.lines.size(); ++i) {
+    const LineLandmark& line = landmarks.lines[i];
+    if (!Finite(line.point) || !Finite(line.direction) || !(line.direction.norm() > 0)) {
+      return error("line " + std::to_string(i) + " needs a finite point and a non-zero direction");
+    }
+    if (line.point_landmark < -1 || line.point_landmark >= static_cast<int>(landmarks.points.size())) {
+      return error("line " + std::to_string(i) + " refers to point " + std::to_string(line.point_landmark));
+    }
+    for (const LineObservation& observation : line.observations) {
+      if (bad_frame(observation.frame) || !Finite(observation.p0) || !Finite(observation.p1)) {
+        return error("line " + std::to_string(i) + " has an observation of frame " +
+                     std::to_string(observation.frame) + " (of " + std::to_string(frames) +
+                     ") or an end-point that is not finite");
+      }
+    }
+  }
+  return Status::Ok();
+}
+
+// The closest point of the line (point, unit direction) to x.
+Eigen::Vector3d ProjectOntoLine(const Eigen::Vector3d& point, const Eigen::Vector3d& direction,
+                                const Eigen::Vector3d& x) {
+  return point + direction * direction.dot(x - point);
+}
+
+class BundleAdjuster {
+ public:
+  BundleAdjuster(const Calibration& calibration, const std::vector<Pose3>& odometry,
+                 const BundleAdjustmentOptions& options, Landmarks* landmarks,
+                 BundleAdjustmentSummary* summary)
+      : camera_(calibration.base_T_camera, calibration.camera.fx, calibration.camera.fy,
+                calibration.camera.cx, calibration.camera.cy),
+        base_T_camera_(calibration.base_T_camera),
+        K_(calibration.camera.K()),
+        noise_(calibration.odometry_noise),
+        odometry_(odometry),
+        options_(options),
+        landmarks_(landmarks),
+        summary_(summary) {
+    for (const Pose3& pose : odometry) poses_.push_back(PoseParameters::FromPose(pose));
+  }
+
+  Status Run() {
+    summary_->frames = static_cast<int>(poses_.size());
+    DropUnusableObservations();
+    RemoveLandmarksWithFewViews();
+    DropUnobservableLandmarks();
+    summary_->points = static_cast<int>(landmarks_->points.size());
+    summary_->lines = static_cast<int>(landmarks_->lines.size());
+    summary_->observations = CountObservations();
+    if (poses_.size() < 2 || summary_->observations == 0) {
+      summary_->solver_report = "nothing to solve: no observable landmark in two frames";
+      return Status::Ok();
+    }
+    // 1. Poses and points at the coarse loss scale: from the odometry, errors of tens of pixels
+    //    are drift, not outliers. Lines are left out: triangulated on drifting poses they start far
+    //    worse than points (degrees, decimetres) and trap a joint solve in wrong minima.
+    // 2. Each line alone on those poses (with no point, on the odometry's; then a coarse joint
+    //    solve refines the poses with the lines before step 3 judges anything by its error).
+    // 3. Observations beyond the coarse scale go (that loss already treated them as outliers),
+    //    and landmarks that the refined poses show unobservable (the odometry's drift can hide a
+    //    line parallel to the motion; a near-degenerate landmark makes the joint system singular).
+    // 4. Everything at the fine loss scale, then the outlier rounds.
+    const double coarse_scale_px = std::max(options_.coarse_loss_scale_px, options_.robust_loss_scale_px);
+    if (!landmarks_->points.empty()) SFM_RETURN_IF_ERROR(Solve(coarse_scale_px, /*with_lines=*/false));
+    RefineLinesOnFixedPoses(coarse_scale_px);
+    if (landmarks_->points.empty()) SFM_RETURN_IF_ERROR(Solve(coarse_scale_px, /*with_lines=*/true));
+    RemoveOutliers(std::max(coarse_scale_px, options_.outlier_threshold_px));
+    RemoveLandmarksWithFewViews();
+    DropUnobservableLandmarks();
+    if (CountObservations() == 0) return RevertToOdometry("no landmark left observable on the refined poses");
+    SFM_RETURN_IF_ERROR(Solve(options_.robust_loss_scale_px, /*with_lines=*/true));
+    for (int round = 0; round < options_.outlier_rounds; ++round) {
+      const int outliers = RemoveOutliers(options_.outlier_threshold_px);
+      RemoveLandmarksWithFewViews();
+      const int unobservable = DropUnobservableLandmarks();
+      if (outliers + unobservable == 0) break;
+      if (CountObservations() == 0) return RevertToOdometry("every landmark was removed after solving");
+      SFM_RETURN_IF_ERROR(Solve(options_.robust_loss_scale_px, /*with_lines=*/true));
+    }
+    ComputeRms();
+    return Status::Ok();
+  }
+
+  // With no landmark left, the poses they gave are no better than the odometry's.
+  Status RevertToOdometry(const std::string& why) {
+    for (size_t f = 0; f < poses_.size(); ++f) poses_[f] = PoseParameters::FromPose(odometry_[f]);
+    summary_->solver_report = why + "; the trajectory is the odometry's";
+    return Status::Ok();
+  }
+
+  std::vector<Pose3> RefinedPoses() const {
+    std::vector<Pose3> poses;
+    for (const PoseParameters& pose : poses_) poses.push_back(pose.ToPose());
+    return poses;
+  }
+
+ private:
+  // The residuals of one observation at the current parameters; false when it cannot be evaluated.
+  bool PointResiduals(const PointLandmark& point, const PointObservation& observation,
+                      Eigen::Vector2d* r) const {
+    const PoseParameters& pose = poses_[observation.frame];
+    return PointReprojectionCost(camera_, observation.pixel)(pose.rotation.data(), pose.translation.data(),
+                                                             point.position.data(), r->data()) &&
+           Finite(*r);
+  }
+  bool LineResiduals(const OrthonormalLine& line, const LineObservation& observation,
+                     Eigen::Vector2d* r) const {
+    const PoseParameters& pose = poses_[observation.frame];
+    return LineReprojectionCost(camera_, observation.p0, observation.p1)(
+               pose.rotation.data(), pose.translation.data(), line.data(), r->data()) &&
+           Finite(*r);
+  }
+
+  int CountObservations() const {
+    int count = 0;
+    for (const PointLandmark& point : landmarks_->points)
+      count += static_cast<int>(point.observations.size());
+    for (const LineLandmark& line : landmarks_->lines) count += static_cast<int>(line.observations.size());
+    return count;
+  }
+
+  // Removes the observations that `keep` rejects; returns how many.
+  template <typename Landmark, typename Keep>
+  static int RemoveObservations(Landmark* landmark, Keep keep) {
+    auto& observations = landmark->observations;
+    const size_t before = observations.size();
+    observations.erase(std::remove_if(observations.begin(), observations.end(),
+                                      [&keep](const auto& observation) { return !keep(observation); }),
+                       observations.end());
+    return static_cast<int>(before - observations.size());
+  }
+
+  void DropUnusableObservations() {
+    Eigen::Vector2d r;
+    for (PointLandmark& point : landmarks_->points) {
+      summary_->observations_unusable += RemoveObservations(&point, [&](const PointObservation& observation) {
+        return PointResiduals(point, observation, &r);
+      });
+    }
+    for (LineLandmark& line : landmarks_->lines) {
+      const OrthonormalLine parameters = OrthonormalLineFromPointDirection(line.point, line.direction);
+      summary_->observations_unusable += RemoveObservations(&line, [&](const LineObservation& observation) {
+        return LineResiduals(parameters, observation, &r);
+      });
+    }
+  }
+
+  // Removes the landmarks that `keep_point` / `keep_line` reject, renumbering point_landmark.
+  // Returns the numbers of points and lines removed.
+  template <typename KeepPoint, typename KeepLine>
+  std::pair<int, int> RemoveLandmarks(KeepPoint keep_point, KeepLine keep_line) {
+    std::vector<PointLandmark>& points = landmarks_->points;
+    std::vector<int> new_index(points.size(), -1);
+    size_t kept = 0;
+    for (size_t i = 0; i < points.size(); ++i) {
+      if (!keep_point(points[i])) continue;
+      new_index[i] = static_cast<int>(kept);
+      if (kept != i) points[kept] = std::move(points[i]);
+      ++kept;
+    }
+    const int points_removed = static_cast<int>(points.size() - kept);
+    points.resize(kept);
+    std::vector<LineLandmark>& lines = landmarks_->lines;
+    const size_t lines_before = lines.size();
+    lines.erase(std::remove_if(lines.begin(), lines.end(),
+                               [&](const LineLandmark& line) { return !keep_line(line); }),
+                lines.end());
+    for (LineLandmark& line : lines) {
+      if (line.point_landmark >= 0) line.point_landmark = new_index[line.point_landmark];
+    }
+    return {points_removed, static_cast<int>(lines_before - lines.size())};
+  }
+
+  void RemoveLandmarksWithFewViews() {
+    const auto [points, lines] =
+        RemoveLandmarks([](const PointLandmark& point) { return point.observations.size() >= 2; },
+                        [](const LineLandmark& line) { return line.observations.size() >= 2; });
+    summary_->points_removed += points;
+    summary_->lines_removed += lines;
+  }
+
+  template <typename Observations>
+  std::vector<Eigen::Vector3d> CameraCentres(const Observations& observations) const {
+    std::vector<Eigen::Vector3d> centres;
+    for (const auto& observation : observations) {
+      const Pose3 world_T_camera = poses_[observation.frame].ToPose() * base_T_camera_;
+      centres.push_back(world_T_camera.translation);
+    }
+    return centres;
+  }
+
+  // Returns the number of landmarks dropped.
+  int DropUnobservableLandmarks() {
+    const auto [points, lines] = RemoveLandmarks(
+        [&](const PointLandmark& point) {
+          return PointTriangulationAngleDeg(point.position, CameraCentres(point.observations)) >=
+                 options_.min_point_triangulation_angle_deg;
+        },
+        [&](const LineLandmark& line) {
+          // The estimate of a degenerate line can be anywhere (its triangulation has no unique
+          // solution), so the planes of its image lines must also meet at a large enough angle.
+          std::vector<Eigen::Vector3d> normals;
+          for (const LineObservation& observation : line.observations) {
+            const Eigen::Matrix3d world_R_camera =
+                (poses_[observation.frame].ToPose() * base_T_camera_).RotationMatrix();
+            normals.push_back(BackProjectedPlaneNormal(K_, world_R_camera, observation.p0, observation.p1));
+          }
+          const double angle_deg = std::min(
+              LineTriangulationAngleDeg(line.point, line.direction, CameraCentres(line.observations)),
+              LargestPlaneAngleDeg(normals));
+          return angle_deg >= options_.min_line_triangulation_angle_deg;
+        });
+    summary_->points_unobservable += points;
+    summary_->lines_unobservable += lines;
+    return points + lines;
+  }
+
+  ceres::LinearSolverType LinearSolverType() const {
+    switch (options_.linear_solver) {
+      case BundleAdjustmentLinearSolver::kDenseSchur:
+        return ceres::DENSE_SCHUR;
+      case BundleAdjustmentLinearSolver::kSparseSchur:
+        return ceres::SPARSE_SCHUR;
+      case BundleAdjustmentLinearSolver::kAuto:
+        break;
+    }
+    return static_cast<int>(poses_.size()) <= options_.dense_schur_max_frames ? ceres::DENSE_SCHUR
+                                                                              : ceres::SPARSE_SCHUR;
+  }
+
+  std::unique_ptr<ceres::LossFunction> MakeLoss(double scale_px) const {
+    if (options_.robust_loss == RobustLoss::kHuber) return std::make_unique<ceres::HuberLoss>(scale_px);
+    return std::make_unique<ceres::CauchyLoss>(scale_px);
+  }
+
+  ceres::Solver::Options SolverOptions(ceres::LinearSolverType type) const {
+    ceres::Solver::Options solver_options;
+    solver_options.linear_solver_type = type;
+    solver_options.max_num_iterations = options_.max_iterations;
+    solver_options.num_threads = options_.num_threads;
+    solver_options.logging_type = ceres::SILENT;
+    return solver_options;
+  }
+
+  // Each line alone, the poses held where they are (one small problem per line, 4 unknowns). A
+  // line whose solve fails keeps its estimate.
+  void RefineLinesOnFixedPoses(double loss_scale_px) {
+    const std::unique_ptr<ceres::LossFunction> loss = MakeLoss(loss_scale_px);
+    ceres::Problem::Options problem_options;
+    problem_options.loss_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
+    problem_options.manifold_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
+    const ceres::Solver::Options solver_options = SolverOptions(ceres::DENSE_QR);
+    for (LineLandmark& line : landmarks_->lines) {
+      OrthonormalLine parameters = OrthonormalLineFromPointDirection(line.point, line.direction);
+      ceres::Problem problem(problem_options);
+      problem.AddParameterBlock(parameters.data(), 6, &line_manifold_);
+      for (const LineObservation& observation : line.observations) {
+        PoseParameters& pose = poses_[observation.frame];
+        problem.AddResidualBlock(LineReprojectionCost::Create(camera_, observation.p0, observation.p1),
+                                 loss.get(), pose.rotation.data(), pose.translation.data(),
+                                 parameters.data());
+        problem.SetParameterBlockConstant(pose.rotation.data());
+        problem.SetParameterBlockConstant(pose.translation.data());
+      }
+      ceres::Solver::Summary ceres_summary;
+      ceres::Solve(solver_options, &problem, &ceres_summary);
+      if (ceres_summary.IsSolutionUsable()) WriteBackLine(parameters, &line);
+    }
+  }
+
+  // Poses, points and (with_lines) lines together.
+  Status Solve(double loss_scale_px, bool with_lines) {
+    const std::unique_ptr<ceres::LossFunction> loss = MakeLoss(loss_scale_px);
+    ceres::Problem::Options problem_options;
+    problem_options.loss_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
+    problem_options.manifold_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
+    ceres::Problem problem(problem_options);
+    auto ordering = std::make_shared<ceres::ParameterBlockOrdering>();
+
+    for (PoseParameters& pose : poses_) {
+      problem.AddParameterBlock(pose.rotation.data(), 4, &quaternion_manifold_);
+      problem.AddParameterBlock(pose.translation.data(), 3);
+      ordering->AddElementToGroup(pose.rotation.data(), 1);
+      ordering->AddElementToGroup(pose.translation.data(), 1);
+    }
+    problem.SetParameterBlockConstant(poses_[0].rotation.data());
+    problem.SetParameterBlockConstant(poses_[0].translation.data());
+
+    for (PointLandmark& point : landmarks_->points) {
+      double* position = point.position.data();
+      for (const PointObservation& observation : point.observations) {
+        PoseParameters& pose = poses_[observation.frame];
+        problem.AddResidualBlock(PointReprojectionCost::Create(camera_, observation.pixel), loss.get(),
+                                 pose.rotation.data(), pose.translation.data(), position);
+      }
+      ordering->AddElementToGroup(position, 0);
+    }
+
+    std::vector<OrthonormalLine> lines;
+    lines.reserve(landmarks_->lines.size());
+    for (const LineLandmark& line : landmarks_->lines) {
+      if (!with_lines) break;
+      lines.push_back(OrthonormalLineFromPointDirection(line.point, line.direction));
+      double* parameters = lines.back().data();
+      problem.AddParameterBlock(parameters, 6, &line_manifold_);
+      for (const LineObservation& observation : line.observations) {
+        PoseParameters& pose = poses_[observation.frame];
+        problem.AddResidualBlock(LineReprojectionCost::Create(camera_, observation.p0, observation.p1),
+                                 loss.get(), pose.rotation.data(), pose.translation.data(), parameters);
+      }
+      ordering->AddElementToGroup(parameters, 0);
+    }
+
+    for (size_t f = 0; f + 1 < poses_.size(); ++f) {
+      const Pose3 motion = odometry_[f].Inverse() * odometry_[f + 1];
+      const double translation_sigma_m =
+          noise_.translation_sigma * std::max(motion.translation.norm(), options_.odometry_min_distance_m);
+      problem.AddResidualBlock(OdometryPriorCost::Create(motion, noise_.rotation_sigma, translation_sigma_m),
+                               nullptr, poses_[f].rotation.data(), poses_[f].translation.data(),
+                               poses_[f + 1].rotation.data(), poses_[f + 1].translation.data());
+    }
+
+    ceres::Solver::Options solver_options = SolverOptions(LinearSolverType());
+    solver_options.linear_solver_ordering = ordering;
+    ceres::Solver::Summary ceres_summary;
+    ceres::Solve(solver_options, &problem, &ceres_summary);
+    if (!ceres_summary.IsSolutionUsable()) {
+      return Status::Error("bundle adjustment: Ceres failed: " + ceres_summary.message);
+    }
+
+    if (summary_->solves == 0) {
+      summary_->initial_cost = ceres_summary.initial_cost;
+      summary_->converged = true;
+    }
+    ++summary_->solves;
+    summary_->iterations += ceres_summary.num_successful_steps + ceres_summary.num_unsuccessful_steps;
+    summary_->final_cost = ceres_summary.final_cost;
+    summary_->converged = summary_->converged && ceres_summary.termination_type == ceres::CONVERGENCE;
+    summary_->solver_report = ceres_summary.BriefReport();
+
+    for (size_t i = 0; i < lines.size(); ++i) WriteBackLine(lines[i], &landmarks_->lines[i]);
+    return Status::Ok();
+  }
+
+  void WriteBackLine(const OrthonormalLine& parameters, LineLandmark* line) const {
+    Eigen::Vector3d point, direction;
+    OrthonormalLineToPointDirection(parameters, &point, &direction);
+    if (direction.dot(line->direction) < 0) direction = -direction;
+    line->point = point;
+    line->direction = direction;
+    line->end0 = line->point_landmark >= 0 ? landmarks_->points[line->point_landmark].position
+                                           : ProjectOntoLine(point, direction, line->end0);
+    line->end1 = ProjectOntoLine(point, direction, line->end1);
+  }
+
+  // Removes the observations whose error (norm of the two residuals) exceeds threshold_px.
+  int RemoveOutliers(double threshold_px) {
+    Eigen::Vector2d r;
+    int removed = 0;
+    for (PointLandmark& point : landmarks_->points) {
+      removed += RemoveObservations(&point, [&](const PointObservation& observation) {
+        return PointResiduals(point, observation, &r) && r.norm() <= threshold_px;
+      });
+    }
+    for (LineLandmark& line : landmarks_->lines) {
+      const OrthonormalLine parameters = OrthonormalLineFromPointDirection(line.point, line.direction);
+      removed += RemoveObservations(&line, [&](const LineObservation& observation) {
+        return LineResiduals(parameters, observation, &r) && r.norm() <= threshold_px;
+      });
+    }
+    summary_->observations_removed += removed;
+    return removed;
+  }
+
+  void ComputeRms() {
+    Eigen::Vector2d r;
+    double point_sum = 0, line_sum = 0;
+    int point_count = 0, line_count = 0;
+    for (const PointLandmark& point : landmarks_->points) {
+      for (const PointObservation& observation : point.observations) {
+        if (!PointResiduals(point, observation, &r)) continue;
+        point_sum += r.squaredNorm();
+        ++point_count;
+      }
+    }
+    for (const LineLandmark& line : landmarks_->lines) {
+      const OrthonormalLine parameters = OrthonormalLineFromPointDirection(line.point, line.direction);
+      for (const LineObservation& observation : line.observations) {
+        if (!LineResiduals(parameters, observation, &r)) continue;
+        line_sum += r.squaredNorm();
+        line_count += 2;  // two end-points
+      }
+    }
+    summary_->point_rms_px = point_count > 0 ? std::sqrt(point_sum / point_count) : 0;
+    summary_->line_rms_px = line_count > 0 ? std::sqrt(line_sum / line_count) : 0;
+  }
+
+  const CameraModel camera_;
+  const Pose3 base_T_camera_;
+  const Eigen::Matrix3d K_;
+  const OdometryNoise noise_;
+  const std::vector<Pose3>& odometry_;
+  const BundleAdjustmentOptions& options_;
+  Landmarks* landmarks_;
+  BundleAdjustmentSummary* summary_;
+  std::vector<PoseParameters> poses_;
+  ceres::EigenQuaternionManifold quaternion_manifold_;
+  OrthonormalLineManifold line_manifold_;
+};
+
+}  // namespace
+
+Status BundleAdjust(const Calibration& calibration, const std::vector<Pose3>& world_T_base_odometry,
+                    const BundleAdjustmentOptions& options, Landmarks* landmarks,
+                    std::vector<Pose3>* world_T_base_refined, BundleAdjustmentSummary* summary) {
+  CHECK(landmarks != nullptr);
+  CHECK(world_T_base_refined != nullptr);
+  CHECK(summary != nullptr);
+  const auto start = std::chrono::steady_clock::now();
+  *summary = BundleAdjustmentSummary();
+  SFM_RETURN_IF_ERROR(options.Check());
+  SFM_RETURN_IF_ERROR(CheckInput(calibration, world_T_base_odometry, *landmarks));
+  BundleAdjuster adjuster(calibration, world_T_base_odometry, options, landmarks, summary);
+  const Status status = adjuster.Run();
+  *world_T_base_refined = adjuster.RefinedPoses();
+  summary->time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return status;
+}
+
+}  // namespace sfm

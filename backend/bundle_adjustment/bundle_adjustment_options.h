@@ -1,0 +1,69 @@
+// Options and summary of the bundle adjustment (bundle_adjuster.h). Defaults and how they were
+// chosen: docs/bundle_adjustment.md.
+#pragma once
+
+#include <string>
+
+#include "frontend/util/status.h"
+
+namespace sfm {
+
+enum class RobustLoss { kHuber, kCauchy };
+
+enum class BundleAdjustmentLinearSolver {
+  kAuto,         // DENSE_SCHUR up to dense_schur_max_frames frames, SPARSE_SCHUR above
+  kDenseSchur,   // ceres::DENSE_SCHUR
+  kSparseSchur,  // ceres::SPARSE_SCHUR (SuiteSparse or Eigen sparse, whichever Ceres has)
+};
+
+struct BundleAdjustmentOptions {
+  RobustLoss robust_loss = RobustLoss::kHuber;  // on the image residuals only
+  double robust_loss_scale_px = 1.0;            // px, where the loss leaves the quadratic
+  // px, the loss scale of the first solves from the odometry, where errors of tens of pixels are
+  // drift, not outliers; observations beyond it are removed after them.
+  double coarse_loss_scale_px = 20.0;
+  int max_iterations = 100;           // per Ceres solve
+  double outlier_threshold_px = 3.0;  // px, an observation's error (norm of its 2 residuals)
+  int outlier_rounds = 1;             // remove-outliers-and-solve-again rounds after the joint solve
+  BundleAdjustmentLinearSolver linear_solver = BundleAdjustmentLinearSolver::kAuto;
+  int dense_schur_max_frames = 100;  // frames, kAuto's switch to SPARSE_SCHUR
+  int num_threads = 1;               // Ceres threads
+  // m, floor on the distance travelled between two frames when the odometry prior's translation
+  // sigma is set to translation_sigma * distance (a robot turning in place still slips).
+  double odometry_min_distance_m = 0.05;
+  double min_point_triangulation_angle_deg = 1.0;  // deg, points with less are dropped before solving
+  double min_line_triangulation_angle_deg = 2.0;   // deg, lines with less are dropped (unobservable)
+
+  // An error naming the first bad field, or OK.
+  Status Check() const;
+};
+
+struct BundleAdjustmentSummary {
+  int frames = 0;
+  int points = 0;        // point landmarks after the removals before the first solve
+  int lines = 0;         // line landmarks after the removals before the first solve
+  int observations = 0;  // point and line observations then
+  // Ceres solves of the poses (0 when nothing was left to solve) and their iterations; the
+  // per-line solves on fixed poses are not counted.
+  int solves = 0;
+  int iterations = 0;
+  double initial_cost = 0;  // Ceres cost (1/2 sum of robustified squares) before the first solve
+  double final_cost = 0;    // after the last solve (fine loss scale, the observations left then)
+  bool converged = false;   // every counted solve ended by a convergence test, not max_iterations
+  // Observations removed before solving: a point behind the camera, a line through its centre.
+  int observations_unusable = 0;
+  // Outliers removed: error above the coarse scale after the coarse solves, above
+  // outlier_threshold_px after a joint one.
+  int observations_removed = 0;
+  int points_removed = 0;  // left with fewer than 2 views
+  int lines_removed = 0;   // left with fewer than 2 views
+  // Dropped with a triangulation angle below the minimum (before solving, or on refined poses).
+  int points_unobservable = 0;
+  int lines_unobservable = 0;
+  double point_rms_px = 0;    // RMS reprojection error of the point observations kept, at the end
+  double line_rms_px = 0;     // RMS end-point-to-line distance of the line observations kept
+  double time_s = 0;          // wall-clock seconds, the whole call
+  std::string solver_report;  // Ceres's BriefReport of the last solve, or why nothing was solved
+};
+
+}  // namespace sfm

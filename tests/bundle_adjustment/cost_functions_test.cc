@@ -1,0 +1,280 @@
+// Every residual twice: values on hand-built numbers, then its derivatives against numeric ones
+// with ceres::GradientChecker at random points (through the manifolds the solver uses).
+#include <ceres/gradient_checker.h>
+#include <ceres/manifold.h>
+#include <gtest/gtest.h>
+
+#include <memory>
+#include <random>
+#include <vector>
+
+#include "backend/bundle_adjustment/line_manifold.h"
+#include "backend/bundle_adjustment/line_reprojection_cost.h"
+#include "backend/bundle_adjustment/odometry_prior_cost.h"
+#include "backend/bundle_adjustment/point_reprojection_cost.h"
+#include "backend/bundle_adjustment/pose_parameters.h"
+#include "tests/bundle_adjustment/synthetic_room.h"
+
+namespace sfm {
+namespace {
+
+// Relative precision asked of GradientChecker: the automatic derivatives against its Ridders
+// extrapolation, started at a relative step of 1e-4 as in Ceres's manifold_test_utils.h (its default
+// 1e-2 is too coarse for the quaternion blocks: errors up to 4e-2). Observed worst: about 1e-10.
+constexpr double kGradientTolerance = 1e-7;
+constexpr int kRandomTrials = 20;
+
+ceres::NumericDiffOptions RiddersOptions() {
+  ceres::NumericDiffOptions options;
+  options.ridders_relative_initial_step_size = 1e-4;
+  return options;
+}
+
+Eigen::Vector2d Residuals(const ceres::CostFunction& cost, std::vector<const double*> parameters) {
+  Eigen::Vector2d r;
+  EXPECT_TRUE(cost.Evaluate(parameters.data(), r.data(), nullptr));
+  return r;
+}
+
+class Random {
+ public:
+  double Uniform(double low, double high) {
+    return std::uniform_real_distribution<double>(low, high)(engine_);
+  }
+  Eigen::Vector3d Vector(double low, double high) {
+    return Eigen::Vector3d(Uniform(low, high), Uniform(low, high), Uniform(low, high));
+  }
+  Eigen::Quaterniond Rotation() {
+    return Eigen::Quaterniond(Eigen::AngleAxisd(Uniform(0, M_PI), Vector(-1, 1).normalized()));
+  }
+  Pose3 Pose() { return Pose3(Rotation(), Vector(-5, 5)); }
+
+ private:
+  std::mt19937 engine_{12345};
+};
+
+// The camera of the synthetic room on an identity base pose, a hand-computable case.
+CameraModel SimpleCamera() { return CameraModel(Pose3::Identity(), 500, 400, 320, 240); }
+
+CameraModel RigCamera() {
+  const Calibration calibration = testing::RobotCalibration();
+  const Camera& camera = calibration.camera;
+  return CameraModel(calibration.base_T_camera, camera.fx, camera.fy, camera.cx, camera.cy);
+}
+
+TEST(PointReprojectionCostTest, HandBuiltValues) {
+  const PoseParameters pose = PoseParameters::FromPose(Pose3::Identity());
+  const double point[3] = {1, 2, 10};
+  // u = 500 * 1/10 + 320 = 370, v = 400 * 2/10 + 240 = 320.
+  std::unique_ptr<ceres::CostFunction> exact(PointReprojectionCost::Create(SimpleCamera(), {370, 320}));
+  EXPECT_NEAR(Residuals(*exact, {pose.rotation.data(), pose.translation.data(), point}).norm(), 0, 1e-12);
+  std::unique_ptr<ceres::CostFunction> offset(PointReprojectionCost::Create(SimpleCamera(), {371, 320}));
+  const Eigen::Vector2d r = Residuals(*offset, {pose.rotation.data(), pose.translation.data(), point});
+  EXPECT_NEAR(r.x(), -1, 1e-12);  // projection - observed
+  EXPECT_NEAR(r.y(), 0, 1e-12);
+}
+
+TEST(PointReprojectionCostTest, RigAndPoseZeroWhenSeenExactlyOnePixelOff) {
+  const CameraModel camera = RigCamera();
+  const Pose3 world_T_base(Eigen::Quaterniond(Eigen::AngleAxisd(0.7, Eigen::Vector3d::UnitZ())),
+                           Eigen::Vector3d(2, -1, 0));
+  const Pose3 world_T_camera = world_T_base * testing::RobotCalibration().base_T_camera;
+  const Eigen::Vector3d point_camera(0.4, -0.3, 3.5);
+  const Eigen::Vector3d point_world = world_T_camera * point_camera;
+  const Eigen::Vector2d pixel(camera.fx * 0.4 / 3.5 + camera.cx, camera.fy * -0.3 / 3.5 + camera.cy);
+  const PoseParameters pose = PoseParameters::FromPose(world_T_base);
+  const std::vector<const double*> parameters = {pose.rotation.data(), pose.translation.data(),
+                                                 point_world.data()};
+  std::unique_ptr<ceres::CostFunction> exact(PointReprojectionCost::Create(camera, pixel));
+  EXPECT_NEAR(Residuals(*exact, parameters).norm(), 0, 1e-9);
+  const Eigen::Vector2d offset_px = Eigen::Vector2d(0.6, -0.8);  // 1 px
+  std::unique_ptr<ceres::CostFunction> offset(PointReprojectionCost::Create(camera, pixel + offset_px));
+  EXPECT_NEAR(Residuals(*offset, parameters).norm(), 1, 1e-9);
+}
+
+TEST(PointReprojectionCostTest, BehindTheCameraIsRejected) {
+  const PoseParameters pose = PoseParameters::FromPose(Pose3::Identity());
+  const double point[3] = {1, 2, -10};
+  std::unique_ptr<ceres::CostFunction> cost(PointReprojectionCost::Create(SimpleCamera(), {370, 320}));
+  Eigen::Vector2d r;
+  const double* parameters[] = {pose.rotation.data(), pose.translation.data(), point};
+  EXPECT_FALSE(cost->Evaluate(parameters, r.data(), nullptr));
+}
+
+TEST(PointReprojectionCostTest, GradientCheck) {
+  Random random;
+  const CameraModel camera = RigCamera();
+  const Pose3 base_T_camera = testing::RobotCalibration().base_T_camera;
+  ceres::EigenQuaternionManifold quaternion;
+  const std::vector<const ceres::Manifold*> manifolds = {&quaternion, nullptr, nullptr};
+  for (int trial = 0; trial < kRandomTrials; ++trial) {
+    const Pose3 world_T_base = random.Pose();
+    const Eigen::Vector3d point_camera(random.Uniform(-2, 2), random.Uniform(-1.5, 1.5),
+                                       random.Uniform(1, 8));
+    const Eigen::Vector3d point = (world_T_base * base_T_camera) * point_camera;
+    const Eigen::Vector2d observed(random.Uniform(0, 640), random.Uniform(0, 480));
+    std::unique_ptr<ceres::CostFunction> cost(PointReprojectionCost::Create(camera, observed));
+    const PoseParameters pose = PoseParameters::FromPose(world_T_base);
+    const double* parameters[] = {pose.rotation.data(), pose.translation.data(), point.data()};
+    ceres::GradientChecker checker(cost.get(), &manifolds, RiddersOptions());
+    ceres::GradientChecker::ProbeResults results;
+    EXPECT_TRUE(checker.Probe(parameters, kGradientTolerance, &results))
+        << "trial " << trial << ": " << results.error_log;
+  }
+}
+
+TEST(LineReprojectionCostTest, HandBuiltValues) {
+  const PoseParameters pose = PoseParameters::FromPose(Pose3::Identity());
+  // The line x = 1, z = 5 (direction y) projects to the image column u = 500 * 1/5 + 320 = 420.
+  const OrthonormalLine line = OrthonormalLineFromPointDirection({1, 0, 5}, {0, 1, 0});
+  const std::vector<const double*> parameters = {pose.rotation.data(), pose.translation.data(), line.data()};
+  std::unique_ptr<ceres::CostFunction> exact(
+      LineReprojectionCost::Create(SimpleCamera(), {420, 100}, {420, 300}));
+  EXPECT_NEAR(Residuals(*exact, parameters).norm(), 0, 1e-9);
+  std::unique_ptr<ceres::CostFunction> offset(
+      LineReprojectionCost::Create(SimpleCamera(), {421, 100}, {419, 300}));
+  const Eigen::Vector2d r = Residuals(*offset, parameters);
+  EXPECT_NEAR(std::abs(r.x()), 1, 1e-9);
+  EXPECT_NEAR(std::abs(r.y()), 1, 1e-9);
+  EXPECT_LT(r.x() * r.y(), 0);  // on either side of the line
+  // Moving the end-points along the line changes nothing.
+  std::unique_ptr<ceres::CostFunction> along(
+      LineReprojectionCost::Create(SimpleCamera(), {420, -50}, {420, 900}));
+  EXPECT_NEAR(Residuals(*along, parameters).norm(), 0, 1e-9);
+}
+
+TEST(LineReprojectionCostTest, RigAndPoseZeroWhenSeenExactlyOnePixelOff) {
+  const CameraModel camera = RigCamera();
+  const Pose3 world_T_base(Eigen::Quaterniond(Eigen::AngleAxisd(-1.2, Eigen::Vector3d::UnitZ())),
+                           Eigen::Vector3d(-3, 4, 0));
+  const Pose3 world_T_camera = world_T_base * testing::RobotCalibration().base_T_camera;
+  const Eigen::Vector3d a_camera(-0.8, 0.5, 4), b_camera(1.1, -0.4, 6);
+  auto project = [&](const Eigen::Vector3d& p) {
+    return Eigen::Vector2d(camera.fx * p.x() / p.z() + camera.cx, camera.fy * p.y() / p.z() + camera.cy);
+  };
+  const Eigen::Vector2d a = project(a_camera), b = project(b_camera);
+  const Eigen::Vector2d normal = Eigen::Vector2d(-(b - a).y(), (b - a).x()).normalized();
+  const OrthonormalLine line = OrthonormalLineFromPointDirection(
+      world_T_camera * a_camera, world_T_camera * b_camera - world_T_camera * a_camera);
+  const PoseParameters pose = PoseParameters::FromPose(world_T_base);
+  const std::vector<const double*> parameters = {pose.rotation.data(), pose.translation.data(), line.data()};
+  std::unique_ptr<ceres::CostFunction> exact(LineReprojectionCost::Create(camera, a, b));
+  EXPECT_NEAR(Residuals(*exact, parameters).norm(), 0, 1e-9);
+  std::unique_ptr<ceres::CostFunction> offset(LineReprojectionCost::Create(camera, a + normal, b + normal));
+  const Eigen::Vector2d r = Residuals(*offset, parameters);
+  EXPECT_NEAR(std::abs(r.x()), 1, 1e-9);
+  EXPECT_NEAR(r.y(), r.x(), 1e-9);  // same side, same distance
+}
+
+TEST(LineReprojectionCostTest, LineThroughTheCameraCentreIsRejected) {
+  const PoseParameters pose = PoseParameters::FromPose(Pose3::Identity());
+  const OrthonormalLine line = OrthonormalLineFromPointDirection({0, 0, 0}, {0, 0, 1});
+  std::unique_ptr<ceres::CostFunction> cost(
+      LineReprojectionCost::Create(SimpleCamera(), {320, 240}, {330, 250}));
+  Eigen::Vector2d r;
+  const double* parameters[] = {pose.rotation.data(), pose.translation.data(), line.data()};
+  EXPECT_FALSE(cost->Evaluate(parameters, r.data(), nullptr));
+}
+
+TEST(LineReprojectionCostTest, GradientCheck) {
+  Random random;
+  const CameraModel camera = RigCamera();
+  const Pose3 base_T_camera = testing::RobotCalibration().base_T_camera;
+  ceres::EigenQuaternionManifold quaternion;
+  OrthonormalLineManifold line_manifold;
+  const std::vector<const ceres::Manifold*> manifolds = {&quaternion, nullptr, &line_manifold};
+  for (int trial = 0; trial < kRandomTrials; ++trial) {
+    const Pose3 world_T_base = random.Pose();
+    const Pose3 world_T_camera = world_T_base * base_T_camera;
+    const Eigen::Vector3d a(random.Uniform(-2, 2), random.Uniform(-1.5, 1.5), random.Uniform(1, 8));
+    const Eigen::Vector3d b(random.Uniform(-2, 2), random.Uniform(-1.5, 1.5), random.Uniform(1, 8));
+    const OrthonormalLine line =
+        OrthonormalLineFromPointDirection(world_T_camera * a, world_T_camera * b - world_T_camera * a);
+    const Eigen::Vector2d p0(random.Uniform(0, 640), random.Uniform(0, 480));
+    const Eigen::Vector2d p1(random.Uniform(0, 640), random.Uniform(0, 480));
+    std::unique_ptr<ceres::CostFunction> cost(LineReprojectionCost::Create(camera, p0, p1));
+    const PoseParameters pose = PoseParameters::FromPose(world_T_base);
+    const double* parameters[] = {pose.rotation.data(), pose.translation.data(), line.data()};
+    ceres::GradientChecker checker(cost.get(), &manifolds, RiddersOptions());
+    ceres::GradientChecker::ProbeResults results;
+    EXPECT_TRUE(checker.Probe(parameters, kGradientTolerance, &results))
+        << "trial " << trial << ": " << results.error_log;
+  }
+}
+
+TEST(OdometryPriorCostTest, HandBuiltValues) {
+  const Pose3 odom_i(Eigen::Quaterniond(Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitZ())),
+                     Eigen::Vector3d(1, 2, 0));
+  const Pose3 motion(Eigen::Quaterniond(Eigen::AngleAxisd(0.1, Eigen::Vector3d::UnitZ())),
+                     Eigen::Vector3d(0.2, 0, 0));
+  const double rotation_sigma = 0.02, translation_sigma = 0.01;
+  std::unique_ptr<ceres::CostFunction> cost(
+      OdometryPriorCost::Create(motion, rotation_sigma, translation_sigma));
+  auto residuals = [&](const Pose3& est_i, const Pose3& est_j) {
+    const PoseParameters i = PoseParameters::FromPose(est_i), j = PoseParameters::FromPose(est_j);
+    const double* parameters[] = {i.rotation.data(), i.translation.data(), j.rotation.data(),
+                                  j.translation.data()};
+    Eigen::Matrix<double, 6, 1> r;
+    EXPECT_TRUE(cost->Evaluate(parameters, r.data(), nullptr));
+    return r;
+  };
+  // Moving exactly as the odometry says, from anywhere: zero.
+  EXPECT_NEAR(residuals(odom_i, odom_i * motion).norm(), 0, 1e-12);
+  const Pose3 elsewhere =
+      Pose3(Eigen::Quaterniond(Eigen::AngleAxisd(2.0, Eigen::Vector3d(1, 1, 0).normalized())),
+            Eigen::Vector3d(-4, 1, 3));
+  EXPECT_NEAR(residuals(elsewhere, elsewhere * motion).norm(), 0, 1e-12);
+  // One sigma too far along the motion: translation residual (1, 0, 0) in base_j.
+  const Pose3 too_far(Eigen::Quaterniond::Identity(), Eigen::Vector3d(translation_sigma, 0, 0));
+  Eigen::Matrix<double, 6, 1> r = residuals(odom_i, odom_i * too_far * motion);
+  EXPECT_NEAR(r.head<3>().norm(), 0, 1e-12);
+  EXPECT_NEAR(r.tail<3>().norm(), 1, 1e-9);
+  // One sigma of extra yaw at the end: rotation residual (0, 0, 1).
+  const Pose3 turned(Eigen::Quaterniond(Eigen::AngleAxisd(rotation_sigma, Eigen::Vector3d::UnitZ())),
+                     Eigen::Vector3d::Zero());
+  r = residuals(odom_i, odom_i * motion * turned);
+  EXPECT_NEAR(r(2), 1, 1e-9);
+  EXPECT_NEAR(r.head<2>().norm() + r.tail<3>().norm(), 0, 1e-9);
+}
+
+TEST(OdometryPriorCostTest, GradientCheck) {
+  Random random;
+  ceres::EigenQuaternionManifold quaternion;
+  const std::vector<const ceres::Manifold*> manifolds = {&quaternion, nullptr, &quaternion, nullptr};
+  for (int trial = 0; trial < kRandomTrials; ++trial) {
+    const Pose3 est_i = random.Pose(), est_j = random.Pose();
+    // A measurement near the estimated motion, so that the rotation error stays below pi.
+    const Pose3 perturbation(
+        Eigen::Quaterniond(Eigen::AngleAxisd(random.Uniform(0, 0.5), random.Vector(-1, 1).normalized())),
+        random.Vector(-0.3, 0.3));
+    const Pose3 measured = est_i.Inverse() * est_j * perturbation;
+    std::unique_ptr<ceres::CostFunction> cost(
+        OdometryPriorCost::Create(measured, random.Uniform(0.001, 0.1), random.Uniform(0.001, 0.1)));
+    const PoseParameters i = PoseParameters::FromPose(est_i), j = PoseParameters::FromPose(est_j);
+    const double* parameters[] = {i.rotation.data(), i.translation.data(), j.rotation.data(),
+                                  j.translation.data()};
+    ceres::GradientChecker checker(cost.get(), &manifolds, RiddersOptions());
+    ceres::GradientChecker::ProbeResults results;
+    EXPECT_TRUE(checker.Probe(parameters, kGradientTolerance, &results))
+        << "trial " << trial << ": " << results.error_log;
+  }
+}
+
+// At zero error the angle-axis conversion takes its small-angle branch; its derivatives must still
+// be exact there (the solver ends near it).
+TEST(OdometryPriorCostTest, GradientCheckAtZeroError) {
+  Random random;
+  ceres::EigenQuaternionManifold quaternion;
+  const std::vector<const ceres::Manifold*> manifolds = {&quaternion, nullptr, &quaternion, nullptr};
+  const Pose3 est_i = random.Pose(), est_j = random.Pose();
+  std::unique_ptr<ceres::CostFunction> cost(OdometryPriorCost::Create(est_i.Inverse() * est_j, 0.01, 0.02));
+  const PoseParameters i = PoseParameters::FromPose(est_i), j = PoseParameters::FromPose(est_j);
+  const double* parameters[] = {i.rotation.data(), i.translation.data(), j.rotation.data(),
+                                j.translation.data()};
+  ceres::GradientChecker checker(cost.get(), &manifolds, RiddersOptions());
+  ceres::GradientChecker::ProbeResults results;
+  EXPECT_TRUE(checker.Probe(parameters, kGradientTolerance, &results)) << results.error_log;
+}
+
+}  // namespace
+}  // namespace sfm
