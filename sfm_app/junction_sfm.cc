@@ -41,6 +41,14 @@ DEFINE_string(match_rho1, kDefaults.matching.rho1_kind == sfm::Rho1Kind::kLinear
 DEFINE_bool(match_topology, kDefaults.matching.use_topology,
             "Match on sigma (junction topology, section 4.2) rather than on plain rho (34).");
 
+DEFINE_bool(bundle_adjustment, kDefaults.bundle_adjustment,
+            "Refine poses, points and lines with the Ceres bundle adjustment (false: outputs use the odometry).");
+DEFINE_double(ba_outlier_threshold, kDefaults.bundle_adjustment_options.outlier_threshold_px,
+              "Bundle adjustment: observations with a larger error (px) are removed and the problem solved again.");
+DEFINE_double(ba_loss_scale, kDefaults.bundle_adjustment_options.robust_loss_scale_px,
+              "Bundle adjustment: scale (px) of the robust loss on image residuals.");
+DEFINE_int32(threads, kDefaults.bundle_adjustment_options.num_threads, "Threads for the bundle adjustment.");
+
 namespace {
 
 // Flags -> options; a one-line message for a flag value that is not one of the choices.
@@ -64,6 +72,10 @@ bool OptionsFromFlags(sfm::PipelineOptions* options, std::string* error) {
   options->matching.tau1 = FLAGS_match_tau1;
   options->matching.tau2 = FLAGS_match_tau2;
   options->matching.use_topology = FLAGS_match_topology;
+  options->bundle_adjustment = FLAGS_bundle_adjustment;
+  options->bundle_adjustment_options.outlier_threshold_px = FLAGS_ba_outlier_threshold;
+  options->bundle_adjustment_options.robust_loss_scale_px = FLAGS_ba_loss_scale;
+  options->bundle_adjustment_options.num_threads = FLAGS_threads;
   if (FLAGS_match_rho1 == "exponential") {
     options->matching.rho1_kind = sfm::Rho1Kind::kExponential;
   } else if (FLAGS_match_rho1 == "linear") {

@@ -6,6 +6,7 @@
 #include <glog/logging.h>
 #include <opencv2/core.hpp>
 
+#include "backend/bundle_adjustment/bundle_adjuster.h"
 #include "backend/metrics/drift.h"
 #include "backend/triangulation/triangulate_tracks.h"
 #include "frontend/geometry/epipolar.h"
@@ -104,6 +105,27 @@ void Reconstruct(const Sequence& sequence, const PipelineOptions& options, Pipel
             << " lines unobservable: parallel to the motion)";
 }
 
+// Bundle adjustment from the odometry: refined poses and landmarks.
+Status Refine(const Sequence& sequence, const PipelineOptions& options, PipelineResult* result) {
+  std::vector<Pose3> world_T_base_odometry;
+  for (const Frame& frame : sequence.frames) world_T_base_odometry.push_back(frame.world_T_base_odometry);
+  std::vector<Pose3> world_T_base_refined;
+  BundleAdjustmentSummary summary;
+  SFM_RETURN_IF_ERROR(BundleAdjust(sequence.calibration, world_T_base_odometry, options.bundle_adjustment_options,
+                                   &result->landmarks, &world_T_base_refined, &summary));
+  result->unobservable_lines += summary.lines_unobservable;
+  result->world_T_camera_refined.clear();
+  for (const Pose3& world_T_base : world_T_base_refined) {
+    result->world_T_camera_refined.push_back(world_T_base * sequence.calibration.base_T_camera);
+  }
+  LOG(INFO) << "bundle adjustment: " << summary.points << " points, " << summary.lines << " lines, "
+            << summary.observations << " observations; " << summary.observations_removed
+            << " outlier observations removed, " << summary.lines_unobservable << " more lines unobservable; "
+            << "RMS " << summary.point_rms_px << " px (points), " << summary.line_rms_px << " px (lines); "
+            << summary.solver_report;
+  return Status::Ok();
+}
+
 }  // namespace
 
 Status PipelineOptions::Check() const {
@@ -111,7 +133,8 @@ Status PipelineOptions::Check() const {
   SFM_RETURN_IF_ERROR(segments.Check());
   SFM_RETURN_IF_ERROR(junctions.Check());
   SFM_RETURN_IF_ERROR(matching.Check());
-  return triangulation.Check();
+  SFM_RETURN_IF_ERROR(triangulation.Check());
+  return bundle_adjustment_options.Check();
 }
 
 Status RunPipeline(const PipelineOptions& options, PipelineResult* result_out) {
@@ -142,11 +165,13 @@ Status RunPipeline(const PipelineOptions& options, PipelineResult* result_out) {
   result.times.matching = SecondsSince(stage_start);
   stage_start = Clock::now();
   Reconstruct(sequence, options, &result);
-  LOG(WARNING) << "bundle adjustment is not implemented yet: trajectory_refined.txt not written, "
-                  "the wireframe and colmap/ use the odometry poses";
+  if (options.bundle_adjustment) SFM_RETURN_IF_ERROR(Refine(sequence, options, &result));
   result.times.backend = SecondsSince(stage_start);
   if (result.world_T_camera_truth) {
     result.drift_odometry = ComputeDrift(result.world_T_camera_odometry, *result.world_T_camera_truth);
+    if (!result.world_T_camera_refined.empty()) {
+      result.drift_refined = ComputeDrift(result.world_T_camera_refined, *result.world_T_camera_truth);
+    }
   }
 
   // 3. Outputs.

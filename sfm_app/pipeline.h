@@ -4,6 +4,7 @@
 
 #include <string>
 
+#include "backend/bundle_adjustment/bundle_adjustment_options.h"
 #include "backend/triangulation/triangulation_options.h"
 #include "frontend/junctions/junction_options.h"
 #include "frontend/matching/matching_options.h"
@@ -21,6 +22,8 @@ struct PipelineOptions {
   JunctionDetectorOptions junctions;
   MatchingOptions matching;
   TriangulationOptions triangulation;
+  bool bundle_adjustment = true;  // false: the outputs use the odometry poses and the first triangulation
+  BundleAdjustmentOptions bundle_adjustment_options;
 
   // OK, or a message naming the first bad setting.
   Status Check() const;
