@@ -43,8 +43,8 @@ std::string MatchesCsv(const FramePairMatches& pair, const std::vector<Junctions
 
 // Junction points are vertices; each 3D line segment is an edge from its junction point (where it
 // has one, so edges meet at junctions) or its own first end, to its far end.
-Wireframe WireframeOf(const Landmarks& landmarks) {
-  Wireframe wireframe;
+ReconstructedWireframe WireframeOf(const Landmarks& landmarks) {
+  ReconstructedWireframe wireframe;
   for (const PointLandmark& point : landmarks.points) wireframe.vertices.push_back(point.position);
   for (const LineLandmark& line : landmarks.lines) {
     int first = line.point_landmark;

@@ -100,7 +100,7 @@ Status ReadHeader(std::istream& in, const std::string& path, int* line_number,
 
 }  // namespace
 
-Status FormatPly(const Wireframe& wireframe, std::string* text) {
+Status FormatPly(const ReconstructedWireframe& wireframe, std::string* text) {
   const size_t vertex_count = wireframe.vertices.size();
   std::string out = "ply\nformat ascii 1.0\n";
   out += "element vertex " + std::to_string(vertex_count) + "\n";
@@ -127,14 +127,14 @@ Status FormatPly(const Wireframe& wireframe, std::string* text) {
   return Status::Ok();
 }
 
-Status WritePly(const std::string& path, const Wireframe& wireframe) {
+Status WritePly(const std::string& path, const ReconstructedWireframe& wireframe) {
   std::string text;
   const Status formatted = FormatPly(wireframe, &text);
   if (!formatted.ok()) return Status::Error(path + ": " + formatted.message());
   return WriteFileAtomically(path, text);
 }
 
-Status ReadPly(const std::string& path, Wireframe* wireframe) {
+Status ReadPly(const std::string& path, ReconstructedWireframe* wireframe) {
   wireframe->vertices.clear();
   wireframe->edges.clear();
   std::ifstream in(path);

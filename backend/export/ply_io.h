@@ -16,15 +16,15 @@ namespace sfm {
 // (one item per line), then one "x y z" line per vertex (metres, shortest round-trip numbers) and
 // one "vertex1 vertex2" line per edge. Fails on a non-finite vertex coordinate or an edge index
 // outside [0, N), naming the vertex or edge.
-Status FormatPly(const Wireframe& wireframe, std::string* text);
+Status FormatPly(const ReconstructedWireframe& wireframe, std::string* text);
 
 // FormatPly written atomically to `path` (frontend/util/atomic_file.h); errors are prefixed by the path.
-Status WritePly(const std::string& path, const Wireframe& wireframe);
+Status WritePly(const std::string& path, const ReconstructedWireframe& wireframe);
 
 // Reads an ASCII PLY file holding `element vertex` with scalar properties x, y, z (others are
 // ignored) and optionally `element edge` with vertex1, vertex2; other elements are skipped.
 // Enough for our own files and the tests; binary PLY is reported as unsupported. Fails, naming the
 // file and line, on a malformed header or data line and on an edge index outside the vertices.
-Status ReadPly(const std::string& path, Wireframe* wireframe);
+Status ReadPly(const std::string& path, ReconstructedWireframe* wireframe);
 
 }  // namespace sfm

@@ -7,7 +7,7 @@
 
 namespace sfm {
 
-struct Wireframe {
+struct ReconstructedWireframe {
   // 3D junction points and segment end-points, world frame, metres.
   std::vector<Eigen::Vector3d> vertices;
   // 3D line segments as pairs of 0-based indices into `vertices`.

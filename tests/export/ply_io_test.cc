@@ -24,7 +24,7 @@ void WriteText(const std::string& path, const std::string& text) { std::ofstream
 
 TEST(PlyTest, WritesTheSpecHeaderAndShortestNumbers) {
   const std::string path = testing::MakeScratchDir("ply_header") + "/wireframe.ply";
-  Wireframe wireframe;
+  ReconstructedWireframe wireframe;
   wireframe.vertices = {{0.1, -2, 3.5}, {1e-7, 0, 12345678.25}, {-0.0, 1, 2}};
   wireframe.edges = {{0, 1}, {1, 2}};
   ASSERT_TRUE(WritePly(path, wireframe).ok());
@@ -48,11 +48,11 @@ TEST(PlyTest, WritesTheSpecHeaderAndShortestNumbers) {
 
 TEST(PlyTest, WriteReadRoundTripIsExact) {
   const std::string path = testing::MakeScratchDir("ply_round_trip") + "/wireframe.ply";
-  Wireframe wireframe;
+  ReconstructedWireframe wireframe;
   for (int i = 0; i < 50; ++i) wireframe.vertices.push_back(Eigen::Vector3d::Random() * 100);
   for (int i = 0; i + 1 < 50; i += 2) wireframe.edges.emplace_back(i, i + 1);
   ASSERT_TRUE(WritePly(path, wireframe).ok());
-  Wireframe back;
+  ReconstructedWireframe back;
   const Status read = ReadPly(path, &back);
   ASSERT_TRUE(read.ok()) << read.message();
   EXPECT_EQ(back.vertices, wireframe.vertices);
@@ -61,8 +61,8 @@ TEST(PlyTest, WriteReadRoundTripIsExact) {
 
 TEST(PlyTest, AnEmptyWireframeIsAValidFile) {
   const std::string path = testing::MakeScratchDir("ply_empty") + "/wireframe.ply";
-  ASSERT_TRUE(WritePly(path, Wireframe()).ok());
-  Wireframe back;
+  ASSERT_TRUE(WritePly(path, ReconstructedWireframe()).ok());
+  ReconstructedWireframe back;
   ASSERT_TRUE(ReadPly(path, &back).ok());
   EXPECT_TRUE(back.vertices.empty());
   EXPECT_TRUE(back.edges.empty());
@@ -70,14 +70,14 @@ TEST(PlyTest, AnEmptyWireframeIsAValidFile) {
 
 TEST(PlyTest, BadWireframesAreRejectedWithoutAFile) {
   const std::string dir = testing::MakeScratchDir("ply_bad");
-  Wireframe out_of_range;
+  ReconstructedWireframe out_of_range;
   out_of_range.vertices = {{0, 0, 0}, {1, 1, 1}};
   out_of_range.edges = {{0, 2}};
   const Status edge = WritePly(dir + "/edge.ply", out_of_range);
   EXPECT_FALSE(edge.ok());
   EXPECT_NE(edge.message().find("edge 0 refers to vertex 2"), std::string::npos) << edge.message();
 
-  Wireframe not_finite;
+  ReconstructedWireframe not_finite;
   not_finite.vertices = {{0, std::numeric_limits<double>::quiet_NaN(), 0}};
   const Status nan = WritePly(dir + "/nan.ply", not_finite);
   EXPECT_FALSE(nan.ok());
@@ -106,7 +106,7 @@ TEST(PlyTest, ReadsOtherWritersFilesWithExtraProperties) {
             "4 5 6 0\n"
             "3 0 1 1\n"
             "1 0\n");
-  Wireframe back;
+  ReconstructedWireframe back;
   const Status read = ReadPly(path, &back);
   ASSERT_TRUE(read.ok()) << read.message();
   ASSERT_EQ(back.vertices.size(), 2u);
@@ -134,7 +134,7 @@ TEST(PlyTest, ReaderNamesTheFileAndLineOfAProblem) {
   };
   for (const auto& c : cases) {
     WriteText(dir + "/bad.ply", c.text);
-    Wireframe back;
+    ReconstructedWireframe back;
     const Status read = ReadPly(dir + "/bad.ply", &back);
     EXPECT_FALSE(read.ok()) << c.text;
     EXPECT_NE(read.message().find(c.expected), std::string::npos) << read.message();
