@@ -66,6 +66,11 @@ DEFINE_double(log10_nfa_max, sfm::SegmentDetectorOptions().fast.log10_nfa_max, "
 DEFINE_double(line_tolerance, sfm::SegmentDetectorOptions().fast.line_tolerance, "Fast segments: splitting tolerance, px.");
 DEFINE_string(overlay_dir, "", "If set, write overlays there (every 10th generated frame, every VGG image), "
                                "with missed true junctions circled in white.");
+DEFINE_double(noise_sigma, sfm::RenderOptions().noise_sigma,
+              "Generated images: sensor noise sigma, grey levels (the generator's; the contrast rule's unit).");
+DEFINE_double(min_contrast_sigmas, 3.0,
+              "Contrast-visible reading: a true edge counts when its noise-free grey-level step is at least this "
+              "many noise sigmas.");
 DEFINE_double(radius, 3.0, "A true junction is found when a detected one lies within this, px.");
 DEFINE_double(min_edge_px, kTruthDefaults.min_edge_px,
               "Generated: a vertex is detectable when at least two visible edges at least this long (px) meet there.");
@@ -176,10 +181,30 @@ struct Method {
 
 // What one detector did on one set of generated frames.
 // Stricter readings of "detectable", reported beside the main one.
-constexpr int kNumVariants = 3;
-const char* const kVariantNames[kNumVariants] = {
-    "main, and isolated: no other true junction within 2 x radius", "at least two edges of at least 20 px",
-    "at least two edges of at least 20 px, isolated"};
+// 3 and 4: the contrast-visible readings (counted edges also of measurable contrast in the
+// noise-free image), at min_contrast_sigmas x noise_sigma and at the segment detectors' high
+// contrast threshold.
+constexpr int kNumVariants = 5;
+std::string VariantName(int k) {
+  switch (k) {
+    case 0: return "main, and isolated: no other true junction within 2 x radius";
+    case 1: return "at least two edges of at least 20 px";
+    case 2: return "at least two edges of at least 20 px, isolated";
+    case 3: {
+      char text[200];
+      std::snprintf(text, sizeof text,
+                    "contrast-visible: main, counting only edges with a step >= %g sigma = %g grey levels",
+                    FLAGS_min_contrast_sigmas, FLAGS_min_contrast_sigmas * FLAGS_noise_sigma);
+      return text;
+    }
+    default: {
+      char text[200];
+      std::snprintf(text, sizeof text, "main, counting only edges with a step >= %g grey levels (detector's high threshold)",
+                    FLAGS_edge_contrast_high);
+      return text;
+    }
+  }
+}
 
 struct GeneratedStats {
   std::array<int, kNumVariants> variant_count{}, variant_found{};
@@ -199,10 +224,14 @@ struct GeneratedStats {
   EndpointOffsets vertex_ends, occlusion_ends;
   std::array<int, kNumMissKinds> misses{};  // missed detectable vertices by MissKind
   std::array<int, kNumCrowdedKinds> crowded{};  // crowded misses by kCrowdedNames
+  std::array<int, kNumMissKinds> contrast_misses{};  // missed contrast-visible vertices by MissKind
+  bool has_contrast = false;  // a noise-free twin was measured
 
   void Add(const GeneratedStats& o) {
     for (int k = 0; k < kNumMissKinds; ++k) misses[k] += o.misses[k];
     for (int k = 0; k < kNumCrowdedKinds; ++k) crowded[k] += o.crowded[k];
+    for (int k = 0; k < kNumMissKinds; ++k) contrast_misses[k] += o.contrast_misses[k];
+    has_contrast = has_contrast || o.has_contrast;
     for (int k = 0; k < kNumVariants; ++k) {
       variant_count[k] += o.variant_count[k];
       variant_found[k] += o.variant_found[k];
@@ -332,9 +361,11 @@ std::vector<std::pair<std::string, GeneratorOptions>> StandardSequences(int fram
 }
 
 // Measures one generated sequence with each method.
-Status MeasureSequence(const std::string& directory, const std::vector<Method>& methods,
-                       const JunctionDetectorOptions& junction_options, const std::string& overlay_prefix,
-                       std::vector<GeneratedStats>* stats) {
+// `clean_directory`: the same sequence rendered without noise (for the contrast-visible reading), or
+// empty.
+Status MeasureSequence(const std::string& directory, const std::string& clean_directory,
+                       const std::vector<Method>& methods, const JunctionDetectorOptions& junction_options,
+                       const std::string& overlay_prefix, std::vector<GeneratedStats>* stats) {
   Sequence sequence;
   SFM_RETURN_IF_ERROR(ReadSequence(directory, &sequence));
   GroundTruth truth;
@@ -342,6 +373,13 @@ Status MeasureSequence(const std::string& directory, const std::vector<Method>& 
   if (truth.frames.size() != sequence.frames.size()) {
     return Status::Error(directory + ": truth/frames has " + std::to_string(truth.frames.size()) +
                          " frames but images.txt " + std::to_string(sequence.frames.size()));
+  }
+  Sequence clean_sequence;
+  if (!clean_directory.empty()) {
+    SFM_RETURN_IF_ERROR(ReadSequence(clean_directory, &clean_sequence));
+    if (clean_sequence.frames.size() != sequence.frames.size()) {
+      return Status::Error(clean_directory + ": not the noise-free twin of " + directory);
+    }
   }
   const Camera& camera = sequence.calibration.camera;
   const ImageUndistorter undistorter(camera);
@@ -358,7 +396,19 @@ Status MeasureSequence(const std::string& directory, const std::vector<Method>& 
     const cv::Mat grey = undistorter.Apply(image);
     // True vertices count where the undistorted image shows them (with distortion, some of the
     // stored image's field of view falls outside the undistorted frame), radius px inside.
-    FrameTrueJunctions true_junctions = TrueJunctionsOfFrame(truth.wireframe, truth.frames[f], truth_options);
+    // Contrast of every visible segment, measured in the undistorted noise-free twin.
+    std::vector<double> contrast;
+    if (!clean_directory.empty()) {
+      cv::Mat clean;
+      SFM_RETURN_IF_ERROR(LoadFrameImage(clean_sequence, static_cast<int>(f), &clean));
+      contrast = EdgeContrasts(undistorter.Apply(clean), truth.frames[f], EdgeContrastOptions());
+    }
+    TrueJunctionOptions contrast_options = truth_options;
+    if (!contrast.empty()) {
+      contrast_options.segment_contrast = &contrast;
+      contrast_options.min_contrast = FLAGS_min_contrast_sigmas * FLAGS_noise_sigma;
+    }
+    FrameTrueJunctions true_junctions = TrueJunctionsOfFrame(truth.wireframe, truth.frames[f], contrast_options);
     auto outside = [&](const TrueVertexJunction& v) { return !InMask(valid, v.location); };
     true_junctions.vertices.erase(
         std::remove_if(true_junctions.vertices.begin(), true_junctions.vertices.end(), outside),
@@ -371,11 +421,13 @@ Status MeasureSequence(const std::string& directory, const std::vector<Method>& 
     std::vector<Eigen::Vector2d> detectable, visible, any_truth;
     std::vector<int> detectable_type;
     std::vector<const TrueVertexJunction*> detectable_vertex;
+    std::vector<bool> detectable_seen;  // contrast-visible
     for (const TrueVertexJunction& v : true_junctions.vertices) {
       visible.push_back(v.location);
       if (v.detectable) {
         detectable.push_back(v.location);
         detectable_vertex.push_back(&v);
+        detectable_seen.push_back(v.contrast_detectable);
         detectable_type.push_back(static_cast<int>(v.type));
       }
     }
@@ -399,10 +451,21 @@ Status MeasureSequence(const std::string& directory, const std::vector<Method>& 
       variant_points[1].push_back(v.location);
       if (Isolated(v.location, any_truth)) variant_points[2].push_back(v.location);
     }
+    if (!contrast.empty()) {
+      for (const TrueVertexJunction& v : true_junctions.vertices) {
+        if (v.contrast_detectable) variant_points[3].push_back(v.location);
+      }
+      TrueJunctionOptions high_options = contrast_options;
+      high_options.min_contrast = FLAGS_edge_contrast_high;
+      for (const TrueVertexJunction& v : TrueJunctionsOfFrame(truth.wireframe, truth.frames[f], high_options).vertices) {
+        if (v.contrast_detectable && InMask(valid, v.location)) variant_points[4].push_back(v.location);
+      }
+    }
 
     for (size_t m = 0; m < methods.size(); ++m) {
       GeneratedStats& s = (*stats)[m];
       ++s.frames;
+      s.has_contrast = s.has_contrast || !contrast.empty();
       auto start = Clock::now();
       const LineSegments segments = DetectLineSegments(grey, methods[m].options);
       s.segment_ms += Ms(start);
@@ -434,6 +497,7 @@ Status MeasureSequence(const std::string& directory, const std::vector<Method>& 
         if (detectable_found[i]) continue;
         const MissKind kind = WhyMissed(*detectable_vertex[i], any_truth, segments, junction_options.max_gap_px);
         ++s.misses[kind];
+        if (!contrast.empty() && detectable_seen[i]) ++s.contrast_misses[kind];
         if (kind != kCrowded) continue;
         const MissKind inner = WhySegmentsMissed(*detectable_vertex[i], segments, junction_options.max_gap_px);
         if (inner != kNotJoined) {
@@ -494,6 +558,13 @@ Status MeasureSequence(const std::string& directory, const std::vector<Method>& 
     }
   }
   return Status::Ok();
+}
+
+// "count | found |" of the contrast-visible reading (variant 3), "- | - |" without a noise-free twin.
+std::string ContrastCells(const GeneratedStats& s, bool bold) {
+  if (!s.has_contrast) return "- | - | ";
+  const std::string b = bold ? "**" : "";
+  return std::to_string(s.variant_count[3]) + " | " + b + Percent(s.variant_found[3], s.variant_count[3]) + b + " | ";
 }
 
 // Measures the VGG Corridor images with each method, against the ground-truth junctions of each
@@ -700,17 +771,29 @@ int main(int argc, char** argv) {
   }
 
   // The sequences: given, or generated.
-  std::vector<std::pair<std::string, std::string>> sequences;  // name, directory
+  // name, directory, noise-free twin (<directory>-noise-free when it exists; the benchmark writes
+  // one for each sequence it generates: same seeds, render noise 0, so the same scene and poses).
+  struct SequenceDirs {
+    std::string name, directory, clean;
+  };
+  std::vector<SequenceDirs> sequences;
   if (!FLAGS_sequences.empty()) {
     for (const std::string& directory : Split(FLAGS_sequences)) {
-      sequences.emplace_back(std::filesystem::path(directory).filename().string(), directory);
+      const std::string clean = directory + "-noise-free";
+      sequences.push_back({std::filesystem::path(directory).filename().string(), directory,
+                           std::filesystem::exists(clean + "/images.txt") ? clean : ""});
     }
   } else {
     for (const auto& [name, options] : StandardSequences(FLAGS_frames)) {
       const std::string directory = FLAGS_work_dir + "/" + name;
       std::fprintf(stderr, "benchmark_junctions: generating %s\n", directory.c_str());
       if (const Status s = GenerateSequence(options, directory, true); !s.ok()) return fail(1, s.message());
-      sequences.emplace_back(name, directory);
+      GeneratorOptions clean_options = options;
+      clean_options.render.noise_sigma = 0;
+      if (const Status s = GenerateSequence(clean_options, directory + "-noise-free", true); !s.ok()) {
+        return fail(1, s.message());
+      }
+      sequences.push_back({name, directory, directory + "-noise-free"});
     }
   }
 
@@ -729,15 +812,16 @@ int main(int argc, char** argv) {
          << FLAGS_min_edge_px << " px disappears behind a nearer face. Precision: detections matched to a visible "
          << "vertex junction or an occlusion T (of any length).\n\n"
          << "| sequence | segments | frames | detectable vertices | found within " << FLAGS_radius
-         << " px | any within " << FLAGS_radius << " px (literal) | median error (px) | 90 % error (px) | all visible vertex junctions | found | occlusion T's | found "
+         << " px | any within " << FLAGS_radius << " px (literal) | contrast-visible (step >= "
+         << FLAGS_min_contrast_sigmas << " sigma) | found | median error (px) | 90 % error (px) | all visible vertex junctions | found | occlusion T's | found "
          << "| detected | precision | segments/frame | ms/frame segments + junctions |\n"
-         << "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+         << "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   std::vector<GeneratedStats> pooled(methods.size());
-  for (const auto& [name, directory] : sequences) {
+  for (const auto& [name, directory, clean] : sequences) {
     std::fprintf(stderr, "benchmark_junctions: measuring %s\n", directory.c_str());
     std::vector<GeneratedStats> stats;
     const std::string prefix = FLAGS_overlay_dir.empty() ? "" : FLAGS_overlay_dir + "/" + name;
-    if (const Status s = MeasureSequence(directory, methods, junction_options, prefix, &stats); !s.ok()) {
+    if (const Status s = MeasureSequence(directory, clean, methods, junction_options, prefix, &stats); !s.ok()) {
       return fail(1, s.message());
     }
     for (size_t m = 0; m < methods.size(); ++m) pooled[m].Add(stats[m]);
@@ -745,6 +829,7 @@ int main(int argc, char** argv) {
       const GeneratedStats& s = stats[m];
       report << "| " << name << " | " << methods[m].name << " | " << s.frames << " | " << s.detectable << " | "
              << Percent(s.detectable_found, s.detectable) << " | " << Percent(s.detectable_near, s.detectable) << " | "
+             << ContrastCells(s, false)
              << Fixed(Quantile(s.errors, 0.5), 3) << " | "
              << Fixed(Quantile(s.errors, 0.9), 3) << " | " << s.visible << " | " << Percent(s.visible_found, s.visible)
              << " | " << s.occlusions << " | " << Percent(s.occlusions_found, s.occlusions) << " | " << s.detected << " | " << Percent(s.detected_correct, s.detected_valid) << " | "
@@ -755,7 +840,8 @@ int main(int argc, char** argv) {
   for (size_t m = 0; m < methods.size(); ++m) {
     const GeneratedStats& s = pooled[m];
     report << "| **all** | " << methods[m].name << " | " << s.frames << " | " << s.detectable << " | **"
-           << Percent(s.detectable_found, s.detectable) << "** | " << Percent(s.detectable_near, s.detectable) << " | **"
+           << Percent(s.detectable_found, s.detectable) << "** | " << Percent(s.detectable_near, s.detectable) << " | "
+           << ContrastCells(s, true) << "**"
            << Fixed(Quantile(s.errors, 0.5), 3) << "** | "
            << Fixed(Quantile(s.errors, 0.9), 3) << " | " << s.visible << " | " << Percent(s.visible_found, s.visible)
            << " | " << s.occlusions << " | " << Percent(s.occlusions_found, s.occlusions) << " | " << s.detected << " | " << Percent(s.detected_correct, s.detected_valid) << " | "
@@ -773,7 +859,7 @@ int main(int argc, char** argv) {
            << s.detectable << " | " << s.detectable_found << " | " << Percent(s.detectable_found, s.detectable) << " | "
            << Fixed(Quantile(s.errors, 0.5), 3) << " |\n";
     for (int k = 0; k < kNumVariants; ++k) {
-      report << "| " << kVariantNames[k] << " | " << methods[m].name << " | " << s.variant_count[k] << " | "
+      report << "| " << VariantName(k) << " | " << methods[m].name << " | " << s.variant_count[k] << " | "
              << s.variant_found[k] << " | " << Percent(s.variant_found[k], s.variant_count[k]) << " | "
              << Fixed(Quantile(s.variant_errors[k], 0.5), 3) << " |\n";
     }
@@ -796,6 +882,16 @@ int main(int argc, char** argv) {
       report << " " << pooled[m].crowded[k] << " (" << Percent(pooled[m].crowded[k], pooled[m].detectable) << " of all) |";
     }
     report << "\n";
+  }
+  if (pooled[0].has_contrast) {
+    for (int k = 0; k < kNumMissKinds; ++k) {
+      report << "| contrast-visible vertices only: " << kMissNames[k] << " |";
+      for (size_t m = 0; m < methods.size(); ++m) {
+        report << " " << pooled[m].contrast_misses[k] << " ("
+               << Percent(pooled[m].contrast_misses[k], pooled[m].variant_count[3]) << " of contrast-visible) |";
+      }
+      report << "\n";
+    }
   }
   for (size_t m = 0; m < methods.size(); ++m) {
     const GeneratedStats& s = pooled[m];

@@ -14,17 +14,20 @@ namespace {
 struct Arm {
   Eigen::Vector2d far = Eigen::Vector2d::Zero();
   double length = 0;
+  int segment = -1;  // index into FrameTruth::segments
 };
 
 // For every vertex of the frame, the visible edge parts that start at it.
 std::map<int, std::vector<Arm>> ArmsOfVertices(const Wireframe& wireframe, const FrameTruth& frame) {
   std::map<int, std::vector<Arm>> arms;
-  for (const VisibleSegment& s : frame.segments) {
+  for (size_t i = 0; i < frame.segments.size(); ++i) {
+    const VisibleSegment& s = frame.segments[i];
     const WireEdge& edge = wireframe.edges.at(s.edge);
     const double length = (s.pixel[1] - s.pixel[0]).norm();
+    const int index = static_cast<int>(i);
     // end[0] is at t[0]; it is the edge's own end (vertex_a) only when marked kVertex.
-    if (s.end[0] == SegmentEnd::kVertex) arms[edge.vertex_a].push_back({s.pixel[1], length});
-    if (s.end[1] == SegmentEnd::kVertex) arms[edge.vertex_b].push_back({s.pixel[0], length});
+    if (s.end[0] == SegmentEnd::kVertex) arms[edge.vertex_a].push_back({s.pixel[1], length, index});
+    if (s.end[1] == SegmentEnd::kVertex) arms[edge.vertex_b].push_back({s.pixel[0], length, index});
   }
   return arms;
 }
@@ -67,7 +70,45 @@ int Find(std::vector<int>& parent, int i) {
   return i;
 }
 
+// Bilinear interpolation of an 8-bit image; false outside it.
+bool Bilinear(const cv::Mat& image, const Eigen::Vector2d& p, double* value) {
+  const double x = p.x(), y = p.y();
+  if (!(x >= 0 && y >= 0 && x <= image.cols - 1 && y <= image.rows - 1)) return false;
+  const int x0 = std::min(static_cast<int>(x), image.cols - 2), y0 = std::min(static_cast<int>(y), image.rows - 2);
+  const double ax = x - x0, ay = y - y0;
+  const uchar* r0 = image.ptr<uchar>(y0);
+  const uchar* r1 = image.ptr<uchar>(y0 + 1);
+  *value = (1 - ay) * ((1 - ax) * r0[x0] + ax * r0[x0 + 1]) + ay * ((1 - ax) * r1[x0] + ax * r1[x0 + 1]);
+  return true;
+}
+
 }  // namespace
+
+std::vector<double> EdgeContrasts(const cv::Mat& image, const FrameTruth& frame, const EdgeContrastOptions& options) {
+  if (image.type() != CV_8UC1) return std::vector<double>(frame.segments.size(), -1.0);
+  std::vector<double> contrasts;
+  contrasts.reserve(frame.segments.size());
+  for (const VisibleSegment& s : frame.segments) {
+    const Eigen::Vector2d d = s.pixel[1] - s.pixel[0];
+    const double length = d.norm();
+    double sum = 0;
+    int samples = 0;
+    if (length > 2 * options.end_margin_px) {
+      const Eigen::Vector2d u = d / length, n(-u.y(), u.x());
+      for (double a = options.end_margin_px; a <= length - options.end_margin_px + 1e-9; a += 1.0) {
+        const Eigen::Vector2d p = s.pixel[0] + a * u;
+        double plus = 0, minus = 0;
+        if (!Bilinear(image, p + options.offset_px * n, &plus) || !Bilinear(image, p - options.offset_px * n, &minus)) {
+          continue;
+        }
+        sum += std::abs(plus - minus);
+        ++samples;
+      }
+    }
+    contrasts.push_back(samples > 0 ? sum / samples : -1.0);
+  }
+  return contrasts;
+}
 
 FrameTrueJunctions TrueJunctionsOfFrame(const Wireframe& wireframe, const FrameTruth& frame,
                                         const TrueJunctionOptions& options) {
@@ -89,6 +130,15 @@ FrameTrueJunctions TrueJunctionsOfFrame(const Wireframe& wireframe, const FrameT
     junction.num_long_edges = static_cast<int>(long_arms.size());
     junction.detectable =
         long_arms.size() >= 2 && !TwoCollinear(v.pixel, long_arms, options.collinear_tolerance_rad);
+    junction.contrast_detectable = junction.detectable;
+    if (options.segment_contrast != nullptr && junction.detectable) {
+      std::vector<Arm> seen_arms;
+      for (const Arm& arm : long_arms) {
+        if (options.segment_contrast->at(arm.segment) >= options.min_contrast) seen_arms.push_back(arm);
+      }
+      junction.contrast_detectable =
+          seen_arms.size() >= 2 && !TwoCollinear(v.pixel, seen_arms, options.collinear_tolerance_rad);
+    }
     for (const Arm& arm : long_arms) junction.long_edge_ends.push_back(arm.far);
     junction.type = TypeOf(v.pixel, junction.detectable ? long_arms : arms, options.collinear_tolerance_rad);
     result.vertices.push_back(junction);

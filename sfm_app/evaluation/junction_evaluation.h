@@ -11,6 +11,7 @@
 #include <vector>
 
 #include <Eigen/Core>
+#include <opencv2/core.hpp>
 
 #include "frontend/junctions/junction.h"
 #include "frontend/segments/line_segment.h"
@@ -28,6 +29,11 @@ struct TrueJunctionOptions {
   // Two edges pointing within this of opposite ways are one straight line (radians; the
   // generator's own VisibilityOptions::collinear_tolerance, 8 degrees).
   double collinear_tolerance_rad = 0.14;
+  // Optional image contrast of each visible segment of the frame (EdgeContrasts, same order as
+  // FrameTruth::segments, grey levels). When given, a vertex is also judged contrast-detectable:
+  // as detectable, counting only long edges whose contrast is at least min_contrast.
+  const std::vector<double>* segment_contrast = nullptr;
+  double min_contrast = 0;
 };
 
 // A visible wireframe vertex where at least two visible edges meet, not just two collinear ones.
@@ -40,6 +46,9 @@ struct TrueVertexJunction {
   // found by any detector that needs segments of some length; the benchmark's main recall is over
   // these.
   bool detectable = false;
+  // Detectable counting only long edges of measurable image contrast (segment_contrast given and
+  // each of at least min_contrast); equal to `detectable` when no contrasts are given.
+  bool contrast_detectable = false;
   // Type of the junction the long edges form (detectable vertices), else of all visible edges.
   JunctionType type = JunctionType::kL;
   // The far ends of the long edges' visible parts (undistorted pixels).
@@ -56,6 +65,18 @@ struct FrameTrueJunctions {
 // The true junctions of one frame of a generated sequence.
 FrameTrueJunctions TrueJunctionsOfFrame(const Wireframe& wireframe, const FrameTruth& frame,
                                         const TrueJunctionOptions& options);
+
+// The image contrast of the visible segments of one frame: for each of FrameTruth::segments, the
+// mean absolute grey-level step I(p + offset n) - I(p - offset n) across the segment's line (n its
+// unit normal, bilinear interpolation), sampled every pixel along it, leaving out end_margin_px at
+// each end (other faces meet there). `image` is the undistorted 8-bit image, ideally rendered
+// without noise (the benchmark renders a noise-free twin of each sequence). -1 for a segment with
+// no sample (shorter than two end margins, or off the image), and for all when not CV_8UC1.
+struct EdgeContrastOptions {
+  double offset_px = 2.0;      // > blur (0.7 px) + anti-aliasing: the step is fully developed there
+  double end_margin_px = 3.0;  // px left out at each end
+};
+std::vector<double> EdgeContrasts(const cv::Mat& image, const FrameTruth& frame, const EdgeContrastOptions& options);
 
 // The visible part of a wireframe edge in one frame, as a segment of the undistorted image.
 struct TrueSegment {

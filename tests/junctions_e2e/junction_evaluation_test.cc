@@ -153,6 +153,46 @@ TEST(TrueJunctionsOfFrameTest, DetectableNeedsTwoLongNonCollinearEdges) {
   EXPECT_EQ(truth.occlusions[0], Eigen::Vector2d(400, 250));
 }
 
+TEST(EdgeContrastsTest, MeanStepAcrossEachEdgeAndTheContrastReading) {
+  const SmallFrame f = MakeSmallFrame();
+  // Above y = 100: 80; below it, 120 right of x = 100 and 117 left of it. So the edges along
+  // y = 100 step by 40 (and by 37 left of x = 100), the edge along x = 100 below y = 100 by 3.
+  cv::Mat image(400, 500, CV_8UC1);
+  for (int y = 0; y < image.rows; ++y) {
+    for (int x = 0; x < image.cols; ++x) image.at<uchar>(y, x) = y < 100 ? 80 : (x >= 100 ? 120 : 117);
+  }
+  // Pixel centres are at integers: the edges lie at 99.5; sampling 2 px off still reads the step.
+  EdgeContrastOptions options;
+  const std::vector<double> contrast = EdgeContrasts(image, f.frame, options);
+  ASSERT_EQ(contrast.size(), f.frame.segments.size());
+  EXPECT_NEAR(contrast[0], 40, 0.5);  // (100, 100)-(160, 100)
+  EXPECT_NEAR(contrast[1], 3, 0.5);   // (100, 100)-(100, 140)
+  EXPECT_NEAR(contrast[2], 40, 0.5);  // (160, 100)-(300, 100)
+  EXPECT_EQ(contrast[3], -1);          // (300, 100)-(300, 106): no longer than its two end margins
+  EXPECT_NEAR(contrast[4], 0, 0.5);   // (400, 200)-(400, 250): flat
+  // Vertex 0 is detectable (two long edges) but not contrast-detectable at 6 grey levels.
+  TrueJunctionOptions truth_options;
+  truth_options.segment_contrast = &contrast;
+  truth_options.min_contrast = 6;
+  FrameTrueJunctions truth = TrueJunctionsOfFrame(f.wireframe, f.frame, truth_options);
+  ASSERT_EQ(truth.vertices[0].vertex, 0);
+  EXPECT_TRUE(truth.vertices[0].detectable);
+  EXPECT_FALSE(truth.vertices[0].contrast_detectable);
+  truth_options.min_contrast = 2;
+  truth = TrueJunctionsOfFrame(f.wireframe, f.frame, truth_options);
+  EXPECT_TRUE(truth.vertices[0].contrast_detectable);
+  // Without contrasts the reading equals the main one.
+  truth = TrueJunctionsOfFrame(f.wireframe, f.frame, TrueJunctionOptions());
+  EXPECT_TRUE(truth.vertices[0].contrast_detectable);
+  // Too short for a sample: -1.
+  VisibleSegment tiny;
+  tiny.pixel[0] = Eigen::Vector2d(10, 10);
+  tiny.pixel[1] = Eigen::Vector2d(15, 10);
+  FrameTruth tiny_frame;
+  tiny_frame.segments.push_back(tiny);
+  EXPECT_EQ(EdgeContrasts(image, tiny_frame, options)[0], -1);
+}
+
 TEST(TrueSegmentsOfFrameTest, AnEdgeEndsWhereNoVisibleEdgeContinuesIt) {
   const SmallFrame f = MakeSmallFrame();
   const std::vector<TrueSegment> segments = TrueSegmentsOfFrame(f.wireframe, f.frame, TrueJunctionOptions());
