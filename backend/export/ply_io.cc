@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "frontend/util/number_text.h"
+#include "frontend/util/text_file.h"
 #include "frontend/util/atomic_file.h"
 
 namespace sfm {
@@ -23,18 +24,8 @@ struct ElementHeader {
   bool has_list_property = false;
 };
 
-std::vector<std::string> Words(const std::string& line) {
-  std::istringstream stream(line);
-  std::vector<std::string> words;
-  for (std::string word; stream >> word;) words.push_back(word);
-  return words;
-}
-
-bool ParseDouble(const std::string& token, double* value) {
-  errno = 0;
-  char* end = nullptr;
-  *value = std::strtod(token.c_str(), &end);
-  return end != token.c_str() && *end == '\0' && errno != ERANGE && std::isfinite(*value);
+bool ParseFiniteDouble(const std::string& token, double* value) {
+  return ParseDouble(token, value) && std::isfinite(*value);
 }
 
 bool ParseLong(const std::string& token, long* value) {
@@ -58,7 +49,7 @@ Status ReadHeader(std::istream& in, const std::string& path, int* line_number,
   while (std::getline(in, line)) {
     ++*line_number;
     const std::string where = path + ":" + std::to_string(*line_number) + ": ";
-    const std::vector<std::string> words = Words(line);
+    const std::vector<std::string> words = SplitWords(line);
     if (*line_number == 1) {
       if (words.size() != 1 || words[0] != "ply")
         return Status::Error(where + "not a PLY file (no 'ply' line)");
@@ -168,15 +159,15 @@ Status ReadPly(const std::string& path, ReconstructedWireframe* wireframe) {
       ++line_number;
       if (!is_vertex && !is_edge) continue;
       const std::string where = path + ":" + std::to_string(line_number) + ": ";
-      const std::vector<std::string> words = Words(line);
+      const std::vector<std::string> words = SplitWords(line);
       if (words.size() != element.properties.size()) {
         return Status::Error(where + "expected " + std::to_string(element.properties.size()) +
                              " numbers, found " + std::to_string(words.size()));
       }
       if (is_vertex) {
         Eigen::Vector3d v;
-        if (!ParseDouble(words[first], &v.x()) || !ParseDouble(words[second], &v.y()) ||
-            !ParseDouble(words[third], &v.z())) {
+        if (!ParseFiniteDouble(words[first], &v.x()) || !ParseFiniteDouble(words[second], &v.y()) ||
+            !ParseFiniteDouble(words[third], &v.z())) {
           return Status::Error(where + "vertex coordinates are not finite numbers");
         }
         wireframe->vertices.push_back(v);

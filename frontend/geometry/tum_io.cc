@@ -1,16 +1,11 @@
 #include "frontend/geometry/tum_io.h"
 
-#include <cerrno>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
-#include <cstring>
-#include <filesystem>
-#include <fstream>
-#include <sstream>
 
 #include "frontend/util/atomic_file.h"
 #include "frontend/util/number_text.h"
+#include "frontend/util/text_file.h"
 
 namespace sfm {
 namespace {
@@ -21,36 +16,15 @@ constexpr double kQuaternionNormTolerance = 1e-3;
 // change its last bits and break exact round trips, so only norms further off are corrected.
 constexpr double kRenormaliseAbove = 1e-14;
 
-// Parses a whole token as a double; false when it is not entirely a number.
-bool ParseDouble(const std::string& token, double* value) {
-  errno = 0;
-  char* end = nullptr;
-  *value = std::strtod(token.c_str(), &end);
-  return end != token.c_str() && *end == '\0' && errno != ERANGE;
-}
-
 }  // namespace
 
 Status ReadTumTrajectory(const std::string& path, std::vector<StampedPose>* poses) {
   poses->clear();
-  std::error_code error;
-  if (std::filesystem::is_directory(path, error)) {
-    return Status::Error(path + ": is a directory, expected a TUM trajectory file");
-  }
-  std::ifstream in(path);
-  if (!in) return Status::Error(path + ": cannot open (" + std::strerror(errno) + ")");
-
-  std::string line;
-  int line_number = 0;
-  while (std::getline(in, line)) {
-    ++line_number;
-    const std::string where = path + ":" + std::to_string(line_number) + ": ";
-    const size_t comment = line.find('#');
-    if (comment != std::string::npos) line.resize(comment);
-    std::istringstream tokens(line);
-    std::vector<std::string> words;
-    for (std::string word; tokens >> word;) words.push_back(word);
-    if (words.empty()) continue;
+  std::vector<DataLine> lines;
+  SFM_RETURN_IF_ERROR(ReadDataLines(path, &lines));
+  for (const DataLine& line : lines) {
+    const std::string& where = line.where;
+    const std::vector<std::string> words = SplitWords(line.text);
     if (static_cast<int>(words.size()) != kNumbersPerLine) {
       return Status::Error(where + "expected 8 numbers (timestamp tx ty tz qx qy qz qw), found " +
                            std::to_string(words.size()));
@@ -83,7 +57,6 @@ Status ReadTumTrajectory(const std::string& path, std::vector<StampedPose>* pose
     stamped.pose = Pose3(q, Eigen::Vector3d(v[1], v[2], v[3]));
     poses->push_back(stamped);
   }
-  if (in.bad()) return Status::Error(path + ": read error (" + std::strerror(errno) + ")");
   if (poses->empty()) return Status::Error(path + ": no pose (the file holds no data line)");
   return Status::Ok();
 }

@@ -19,6 +19,8 @@
 
 #include "frontend/geometry/tum_io.h"
 #include "frontend/util/atomic_file.h"
+#include "frontend/util/number_text.h"
+#include "frontend/util/text_file.h"
 
 namespace sfm {
 namespace {
@@ -32,16 +34,6 @@ double TimestampSlack(double timestamp) {
   return 1e-9 + 4 * std::numeric_limits<double>::epsilon() * std::abs(timestamp);
 }
 
-// The shortest of %.15g..%.17g that reads back to the same double ("10.1", not "10.099999999999999").
-std::string FormatNumber(double value) {
-  char buffer[32];
-  for (int precision = 15; precision <= 17; ++precision) {
-    std::snprintf(buffer, sizeof(buffer), "%.*g", precision, value);
-    if (std::strtod(buffer, nullptr) == value) break;
-  }
-  return buffer;
-}
-
 // OpenCV's messages can span lines; ours must not.
 std::string OneLine(std::string text) {
   std::replace(text.begin(), text.end(), '\n', ' ');
@@ -50,11 +42,8 @@ std::string OneLine(std::string text) {
   return text;
 }
 
-bool ParseDouble(const std::string& token, double* value) {
-  errno = 0;
-  char* end = nullptr;
-  *value = std::strtod(token.c_str(), &end);
-  return end != token.c_str() && *end == '\0' && errno != ERANGE && std::isfinite(*value);
+bool ParseFiniteDouble(const std::string& token, double* value) {
+  return ParseDouble(token, value) && std::isfinite(*value);
 }
 
 // Reads sequence.yaml's keys; cv::Exception from OpenCV propagates to ReadCalibration.
@@ -78,8 +67,8 @@ class CalibrationReader {
     if (!*present) return Status::Ok();
     if (!node.isReal() && !node.isInt()) return Error(key, "must be a number");
     const double read = static_cast<double>(node);
-    if (!std::isfinite(read)) return Error(key, "is not finite (" + FormatNumber(read) + ")");
-    if (read <= 0) return Error(key, "must be positive, found " + FormatNumber(read));
+    if (!std::isfinite(read)) return Error(key, "is not finite (" + ShortestNumberText(read) + ")");
+    if (read <= 0) return Error(key, "must be positive, found " + ShortestNumberText(read));
     *value = read;
     return Status::Ok();
   }
@@ -113,7 +102,7 @@ class CalibrationReader {
         const double value = matrix->at<double>(r, c);
         if (!std::isfinite(value)) {
           return Error(key, "entry (" + std::to_string(r) + "," + std::to_string(c) + ") is not finite (" +
-                                FormatNumber(value) + ")");
+                                ShortestNumberText(value) + ")");
         }
       }
     }
@@ -150,8 +139,8 @@ Status ReadCalibrationKeys(const std::string& path, const cv::FileStorage& stora
   camera.cx = K.at<double>(0, 2);
   camera.cy = K.at<double>(1, 2);
   if (camera.fx <= 0 || camera.fy <= 0) {
-    return reader.Error("camera_matrix", "must have positive focal lengths, found fx " + FormatNumber(camera.fx) +
-                                             ", fy " + FormatNumber(camera.fy));
+    return reader.Error("camera_matrix", "must have positive focal lengths, found fx " + ShortestNumberText(camera.fx) +
+                                             ", fy " + ShortestNumberText(camera.fy));
   }
 
   cv::Mat distortion;
@@ -171,8 +160,8 @@ Status ReadCalibrationKeys(const std::string& path, const cv::FileStorage& stora
   const double determinant = R.determinant();
   if (orthogonality_error > kRotationTolerance || determinant <= 0) {
     return reader.Error("T_base_camera", "rotation part is not a rotation (|R^T R - I| = " +
-                                             FormatNumber(orthogonality_error) + ", det R = " +
-                                             FormatNumber(determinant) + ")");
+                                             ShortestNumberText(orthogonality_error) + ", det R = " +
+                                             ShortestNumberText(determinant) + ")");
   }
   calibration->base_T_camera = Pose3::FromMatrix4(base_T_camera);
 
@@ -219,28 +208,23 @@ int NearestPose(const std::vector<StampedPose>& poses, double timestamp, double*
 
 Status ReadImageList(const std::string& directory, const std::string& path, std::vector<Frame>* frames,
                      std::vector<int>* line_numbers) {
-  std::ifstream in(path);
-  if (!in) return Status::Error(path + ": cannot open (" + std::strerror(errno) + ")");
-  std::string line;
-  int line_number = 0;
-  while (std::getline(in, line)) {
-    ++line_number;
-    const std::string where = path + ":" + std::to_string(line_number) + ": ";
-    const size_t comment = line.find('#');
-    if (comment != std::string::npos) line.resize(comment);
-    std::istringstream words(line);
+  std::vector<DataLine> lines;
+  SFM_RETURN_IF_ERROR(ReadDataLines(path, &lines));
+  for (const DataLine& line : lines) {
+    const std::string& where = line.where;
+    std::istringstream words(line.text);
     std::string timestamp_text;
-    if (!(words >> timestamp_text)) continue;
+    words >> timestamp_text;
     std::string image_path;
     std::getline(words >> std::ws, image_path);
     while (!image_path.empty() && std::isspace(static_cast<unsigned char>(image_path.back()))) image_path.pop_back();
     Frame frame;
-    if (!ParseDouble(timestamp_text, &frame.timestamp) || image_path.empty()) {
-      return Status::Error(where + "expected '<timestamp> <relative image path>', found '" + OneLine(line) + "'");
+    if (!ParseFiniteDouble(timestamp_text, &frame.timestamp) || image_path.empty()) {
+      return Status::Error(where + "expected '<timestamp> <relative image path>', found '" + OneLine(line.text) + "'");
     }
     if (!frames->empty() && !(frame.timestamp > frames->back().timestamp)) {
-      return Status::Error(where + "timestamp " + FormatNumber(frame.timestamp) +
-                           " is not after the previous frame's " + FormatNumber(frames->back().timestamp) +
+      return Status::Error(where + "timestamp " + ShortestNumberText(frame.timestamp) +
+                           " is not after the previous frame's " + ShortestNumberText(frames->back().timestamp) +
                            " (frames must be in increasing time order)");
     }
     const fs::path image_file = fs::path(directory) / image_path;
@@ -251,9 +235,8 @@ Status ReadImageList(const std::string& directory, const std::string& path, std:
     frame.index = static_cast<int>(frames->size());
     frame.image_path = image_path;
     frames->push_back(frame);
-    line_numbers->push_back(line_number);
+    line_numbers->push_back(line.number);
   }
-  if (in.bad()) return Status::Error(path + ": read error (" + std::strerror(errno) + ")");
   if (frames->empty()) return Status::Error(path + ": lists no image");
   if (frames->size() < 2) {
     return Status::Error(path + ": lists " + std::to_string(frames->size()) +
@@ -342,7 +325,7 @@ Status ReadSequence(const std::string& directory, Sequence* sequence) {
     const int odometry_index = NearestPose(odometry, frame.timestamp, &difference);
     if (odometry_index < 0) {
       return Status::Error(where + "no pose in " + odometry_path + " within 1 ms of timestamp " +
-                           FormatNumber(frame.timestamp) + " (nearest is " + FormatNumber(difference) +
+                           ShortestNumberText(frame.timestamp) + " (nearest is " + ShortestNumberText(difference) +
                            " s away)");
     }
     frame.world_T_base_odometry = odometry[odometry_index].pose;
@@ -350,7 +333,7 @@ Status ReadSequence(const std::string& directory, Sequence* sequence) {
       const int groundtruth_index = NearestPose(groundtruth, frame.timestamp, &difference);
       if (groundtruth_index < 0) {
         return Status::Error(where + "no pose in " + groundtruth_path + " within 1 ms of timestamp " +
-                             FormatNumber(frame.timestamp) + " (nearest is " + FormatNumber(difference) +
+                             ShortestNumberText(frame.timestamp) + " (nearest is " + ShortestNumberText(difference) +
                              " s away)");
       }
       frame.world_T_base_groundtruth = groundtruth[groundtruth_index].pose;

@@ -1,7 +1,5 @@
 #include "frontend/util/number_text.h"
 
-#include <glog/logging.h>
-
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -9,7 +7,7 @@
 namespace sfm {
 
 std::string ShortestNumberText(double value) {
-  CHECK(std::isfinite(value)) << "callers reject non-finite numbers before formatting";
+  if (!std::isfinite(value)) return std::isnan(value) ? "nan" : (value > 0 ? "inf" : "-inf");
   if (value == 0) value = 0;  // turns -0 into +0
   char buffer[32];
   for (int precision = 6; precision <= 17; ++precision) {

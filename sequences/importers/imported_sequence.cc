@@ -14,6 +14,7 @@
 #include "frontend/geometry/tum_io.h"
 #include "frontend/sequence/sequence.h"
 #include "frontend/util/atomic_file.h"
+#include "frontend/util/number_text.h"
 #include "sequences/importers/input_files.h"
 
 namespace sfm {
@@ -68,9 +69,9 @@ std::string NotesText(const ImportedSequence& sequence, const SequenceWriteOptio
               : "images: " + source_size + " scaled to " + SizeText(camera.width, camera.height) +
                     " (K scaled with the pixel-centre convention, cx' = s (cx + 0.5) - 0.5)\n";
   text += "odometry: simulated from groundtruth.txt, seed " + std::to_string(options.seed) + ", scale_error " +
-          FormatNumber(noise.scale_error) + ", distance_sigma " + FormatNumber(noise.distance_sigma) +
-          ", rotation_sigma " + FormatNumber(noise.rotation_sigma) + " rad, rotation_bias " +
-          FormatNumber(noise.rotation_bias) + " rad (camera y axis)\n";
+          ShortestNumberText(noise.scale_error) + ", distance_sigma " + ShortestNumberText(noise.distance_sigma) +
+          ", rotation_sigma " + ShortestNumberText(noise.rotation_sigma) + " rad, rotation_bias " +
+          ShortestNumberText(noise.rotation_bias) + " rad (camera y axis)\n";
   return text;
 }
 
@@ -148,7 +149,7 @@ Status WriteImportedSequence(const ImportedSequence& sequence, const SequenceWri
     char name[32];
     std::snprintf(name, sizeof(name), "images/%06zu.png", i);
     SFM_RETURN_IF_ERROR(WriteFrameImage(frame.source_image, sequence.camera, size, temporary.path() / name));
-    image_list += FormatNumber(frame.timestamp) + " " + name + "\n";
+    image_list += ShortestNumberText(frame.timestamp) + " " + name + "\n";
     groundtruth_poses.push_back({frame.timestamp, truth[i]});
     odometry_poses.push_back({frame.timestamp, odometry[i]});
   }

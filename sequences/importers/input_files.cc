@@ -15,6 +15,8 @@
 #include <glog/logging.h>
 #include <opencv2/imgcodecs.hpp>
 
+#include "frontend/util/text_file.h"
+
 namespace sfm {
 namespace {
 
@@ -72,27 +74,17 @@ std::string OneLine(std::string text) {
 
 Status ReadNumbers(const std::string& path, std::vector<double>* numbers) {
   numbers->clear();
-  std::error_code error;
-  if (!std::filesystem::is_regular_file(path, error)) return Status::Error(path + ": file does not exist");
-  std::ifstream in(path);
-  if (!in) return Status::Error(path + ": cannot open (" + std::strerror(errno) + ")");
-  std::string line;
-  int line_number = 0;
-  while (std::getline(in, line)) {
-    ++line_number;
-    std::istringstream tokens(line);
-    std::string token;
-    while (tokens >> token) {
-      errno = 0;
-      char* end = nullptr;
-      const double value = std::strtod(token.c_str(), &end);
-      if (end == token.c_str() || *end != '\0' || errno == ERANGE || !std::isfinite(value)) {
-        return Status::Error(path + ":" + std::to_string(line_number) + ": '" + token + "' is not a finite number");
+  std::vector<DataLine> lines;
+  SFM_RETURN_IF_ERROR(ReadDataLines(path, &lines));
+  for (const DataLine& line : lines) {
+    for (const std::string& token : SplitWords(line.text)) {
+      double value = 0;
+      if (!ParseDouble(token, &value) || !std::isfinite(value)) {
+        return Status::Error(line.where + "'" + token + "' is not a finite number");
       }
       numbers->push_back(value);
     }
   }
-  if (in.bad()) return Status::Error(path + ": read error (" + std::strerror(errno) + ")");
   return Status::Ok();
 }
 
@@ -119,13 +111,5 @@ Status DecodeImage(const std::string& path, int flags, cv::Mat* image) {
   return Status::Ok();
 }
 
-std::string FormatNumber(double value) {
-  char buffer[32];
-  for (int precision = 15; precision <= 17; ++precision) {
-    std::snprintf(buffer, sizeof(buffer), "%.*g", precision, value);
-    if (std::strtod(buffer, nullptr) == value) break;
-  }
-  return buffer;
-}
 
 }  // namespace sfm

@@ -21,7 +21,5 @@ Status ReadNumbers(const std::string& path, std::vector<double>* numbers);
 // file (it then still returns an image, grey below the cut); other codec warnings are logged.
 Status DecodeImage(const std::string& path, int flags, cv::Mat* image);
 
-// The shortest of %.15g..%.17g that reads back to the same double: exact round trips through text.
-std::string FormatNumber(double value);
 
 }  // namespace sfm

@@ -1,3 +1,4 @@
+#include "frontend/util/number_text.h"
 #include "sequences/importers/projection_decomposition.h"
 
 #include <cmath>
@@ -21,7 +22,7 @@ Status DecomposeProjection(const Eigen::Matrix<double, 3, 4>& P_in, ProjectionDe
   const double determinant = M.determinant();
   const double norm = M.norm();
   if (!(std::abs(determinant) > kRelativeDeterminantFloor * norm * norm * norm)) {
-    return Status::Error("projection matrix's left 3x3 block is singular (det " + FormatNumber(determinant) + ")");
+    return Status::Error("projection matrix's left 3x3 block is singular (det " + ShortestNumberText(determinant) + ")");
   }
   // P is defined up to scale; with det M > 0, M = K R has det R = +1 once K's diagonal is positive.
   const Eigen::Matrix<double, 3, 4> P = determinant < 0 ? Eigen::Matrix<double, 3, 4>(-P_in) : P_in;

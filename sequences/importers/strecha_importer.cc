@@ -7,6 +7,7 @@
 #include <Eigen/SVD>
 #include <glog/logging.h>
 
+#include "frontend/util/number_text.h"
 #include "sequences/importers/input_files.h"
 
 namespace sfm {
@@ -48,14 +49,14 @@ Status ReadStrechaCamera(const std::string& path, StrechaCamera* camera) {
   R << n[12], n[13], n[14], n[15], n[16], n[17], n[18], n[19], n[20];
   const double orthogonality_error = (R.transpose() * R - Eigen::Matrix3d::Identity()).norm();
   if (orthogonality_error > kRotationTolerance || R.determinant() <= 0) {
-    return Status::Error(path + ": R is not a rotation (|R^T R - I| = " + FormatNumber(orthogonality_error) +
-                         ", det R = " + FormatNumber(R.determinant()) + ")");
+    return Status::Error(path + ": R is not a rotation (|R^T R - I| = " + ShortestNumberText(orthogonality_error) +
+                         ", det R = " + ShortestNumberText(R.determinant()) + ")");
   }
   const double width = n[24], height = n[25];
   if (!(width >= 1 && height >= 1 && width == std::floor(width) && height == std::floor(height) && width < 1e6 &&
         height < 1e6)) {
-    return Status::Error(path + ": image size must be positive whole pixels, found " + FormatNumber(width) + " x " +
-                         FormatNumber(height));
+    return Status::Error(path + ": image size must be positive whole pixels, found " + ShortestNumberText(width) + " x " +
+                         ShortestNumberText(height));
   }
   camera->camera = Camera();
   camera->camera.width = static_cast<int>(width);

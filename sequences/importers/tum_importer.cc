@@ -12,6 +12,7 @@
 #include <glog/logging.h>
 
 #include "frontend/geometry/tum_io.h"
+#include "frontend/util/text_file.h"
 #include "sequences/importers/input_files.h"
 
 namespace sfm {
@@ -25,35 +26,22 @@ struct TumImage {
 };
 
 Status ReadImageList(const fs::path& dir, const std::string& path, std::vector<TumImage>* images) {
-  std::ifstream in(path);
-  if (!in) return Status::Error(path + ": cannot open (" + std::strerror(errno) + ")");
-  std::string line;
-  int line_number = 0;
-  while (std::getline(in, line)) {
-    ++line_number;
-    const std::string where = path + ":" + std::to_string(line_number) + ": ";
-    const size_t comment = line.find('#');
-    if (comment != std::string::npos) line.resize(comment);
-    std::istringstream words(line);
-    std::string timestamp_text, file, extra;
-    if (!(words >> timestamp_text)) continue;
+  std::vector<DataLine> lines;
+  SFM_RETURN_IF_ERROR(ReadDataLines(path, &lines));
+  for (const DataLine& line : lines) {
+    const std::string& where = line.where;
+    const std::vector<std::string> words = SplitWords(line.text);
     TumImage image;
-    char* end = nullptr;
-    errno = 0;
-    image.timestamp = std::strtod(timestamp_text.c_str(), &end);
-    const bool timestamp_ok = end != timestamp_text.c_str() && *end == '\0' && errno != ERANGE &&
-                              std::isfinite(image.timestamp);
-    if (!timestamp_ok || !(words >> file) || (words >> extra)) {
-      return Status::Error(where + "expected '<timestamp> <image file>', found '" + line + "'");
+    if (words.size() != 2 || !ParseDouble(words[0], &image.timestamp) || !std::isfinite(image.timestamp)) {
+      return Status::Error(where + "expected '<timestamp> <image file>', found '" + line.text + "'");
     }
     if (!images->empty() && !(image.timestamp > images->back().timestamp)) {
-      return Status::Error(where + "timestamp " + timestamp_text + " is not after the previous line's");
+      return Status::Error(where + "timestamp " + words[0] + " is not after the previous line's");
     }
-    image.path = (dir / file).string();
-    image.line = line_number;
+    image.path = (dir / words[1]).string();
+    image.line = line.number;
     images->push_back(image);
   }
-  if (in.bad()) return Status::Error(path + ": read error (" + std::strerror(errno) + ")");
   if (images->empty()) return Status::Error(path + ": lists no image");
   return Status::Ok();
 }

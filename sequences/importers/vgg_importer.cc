@@ -13,6 +13,7 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "sequences/importers/projection_decomposition.h"
+#include "frontend/util/number_text.h"
 #include "sequences/importers/input_files.h"
 
 namespace sfm {
@@ -208,8 +209,8 @@ Status ReadVggSequence(const std::string& input_dir, const VggImportOptions& opt
   const std::string k_note = "K: median of the " + std::to_string(views.size()) + " frames' decomposed K (fx " +
                              RangeText(fx) + ", fy " + RangeText(fy) + ", cx " + RangeText(cx) + ", cy " +
                              RangeText(cy) + ", |skew| " + RangeText(skew) + " set to 0): fx " +
-                             FormatNumber(result.K(0, 0)) + " fy " + FormatNumber(result.K(1, 1)) + " cx " +
-                             FormatNumber(result.K(0, 2)) + " cy " + FormatNumber(result.K(1, 2));
+                             ShortestNumberText(result.K(0, 0)) + " fy " + ShortestNumberText(result.K(1, 1)) + " cx " +
+                             ShortestNumberText(result.K(0, 2)) + " cy " + ShortestNumberText(result.K(1, 2));
   LOG(INFO) << "VGG: one " << k_note;
 
   ImportedSequence imported;

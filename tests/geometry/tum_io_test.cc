@@ -96,7 +96,7 @@ TEST(TumIoTest, MissingFileFailsNamingIt) {
   const std::string path = testing::MakeScratchDir("tum_missing") + "/absent.txt";
   const Status status = ReadTumTrajectory(path, &poses);
   ASSERT_FALSE(status.ok());
-  EXPECT_THAT(status.message(), HasSubstr(path + ": cannot open"));
+  EXPECT_THAT(status.message(), HasSubstr(path + ": file does not exist"));
 }
 
 }  // namespace

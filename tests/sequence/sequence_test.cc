@@ -325,7 +325,7 @@ TEST_F(SequenceTest, ImageDeletedAfterReadingFails) {
 
 TEST_F(SequenceTest, MissingOdometryFails) {
   std::filesystem::remove(Path("odometry.txt"));
-  ExpectError(Read(), {Path("odometry.txt") + ": cannot open"});
+  ExpectError(Read(), {Path("odometry.txt") + ": file does not exist"});
 }
 
 TEST_F(SequenceTest, OdometryLineWithTooFewNumbersFails) {
