@@ -1,0 +1,499 @@
+#include "sfm_app/report/report.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <numeric>
+
+#include <glog/logging.h>
+#include <opencv2/imgcodecs.hpp>
+
+#include "backend/metrics/alignment.h"
+#include "frontend/geometry/image_undistorter.h"
+#include "frontend/util/atomic_file.h"
+#include "sfm_app/evaluation/match_overlay.h"
+#include "sfm_app/report/base64.h"
+#include "sfm_app/report/plot.h"
+
+namespace sfm {
+namespace {
+
+namespace fs = std::filesystem;
+using plot::Plot;
+namespace colour = plot::colour;
+
+constexpr int kPlotWidth = 800, kPlotHeight = 400;
+constexpr int kMatchPictures = 3;
+constexpr double kPi = 3.14159265358979323846;
+const char* const kAxisName[] = {"x", "y", "z"};
+
+// ---- Text ------------------------------------------------------------------------------------
+
+std::string Html(const std::string& text) {
+  std::string escaped;
+  for (char c : text) {
+    switch (c) {
+      case '&': escaped += "&amp;"; break;
+      case '<': escaped += "&lt;"; break;
+      case '>': escaped += "&gt;"; break;
+      case '"': escaped += "&quot;"; break;
+      default: escaped += c;
+    }
+  }
+  return escaped;
+}
+
+// printf-style number; "n/a" when not finite (a figure that does not apply).
+std::string Num(double value, const char* format = "%.3g") {
+  if (!std::isfinite(value)) return "n/a";
+  char text[64];
+  std::snprintf(text, sizeof(text), format, value);
+  return text;
+}
+
+std::string Img(const cv::Mat& image, const std::string& alt) {
+  return "<img src=\"" + PngDataUri(image) + "\" width=\"" + std::to_string(image.cols) + "\" height=\"" +
+         std::to_string(image.rows) + "\" alt=\"" + Html(alt) + "\">\n";
+}
+
+std::string Figure(const cv::Mat& image, const std::string& alt, const std::string& caption) {
+  return "<figure>\n" + Img(image, alt) + "<figcaption>" + caption + "</figcaption>\n</figure>\n";
+}
+
+std::string Note(const std::string& text) { return "<p class=\"note\">" + text + "</p>\n"; }
+
+std::string Row(const std::vector<std::string>& cells, bool header = false) {
+  std::string row = "<tr>";
+  for (const std::string& cell : cells) row += (header ? "<th>" : "<td>") + cell + (header ? "</th>" : "</td>");
+  return row + "</tr>\n";
+}
+
+// ---- Geometry --------------------------------------------------------------------------------
+
+std::vector<Eigen::Vector3d> Positions(const std::vector<Pose3>& poses) {
+  std::vector<Eigen::Vector3d> positions;
+  positions.reserve(poses.size());
+  for (const Pose3& pose : poses) positions.push_back(pose.translation);
+  return positions;
+}
+
+// The two horizontal axes (a, b) with a x b = vertical, so that the view from above is not mirrored.
+std::pair<int, int> HorizontalAxes(int vertical) { return {(vertical + 1) % 3, (vertical + 2) % 3}; }
+
+std::vector<double> Coordinate(const std::vector<Pose3>& poses, int axis) {
+  std::vector<double> values;
+  for (const Pose3& pose : poses) values.push_back(pose.translation[axis]);
+  return values;
+}
+
+// The q-quantile (0..1) of values (copied), NaN when empty.
+double Quantile(std::vector<double> values, double q) {
+  if (values.empty()) return std::nan("");
+  const size_t k = std::min(values.size() - 1, static_cast<size_t>(std::lround(q * (values.size() - 1))));
+  std::nth_element(values.begin(), values.begin() + k, values.end());
+  return values[k];
+}
+
+double WrapAngle(double angle) {
+  angle = std::remainder(angle, 2 * kPi);
+  return angle <= -kPi ? angle + 2 * kPi : angle;
+}
+
+// ---- Sections --------------------------------------------------------------------------------
+
+struct Context {
+  const Sequence& sequence;
+  const PipelineResult& result;
+  int frames = 0;
+  int vertical = 2;
+  bool refined = false;  // bundle adjustment ran
+  bool truth = false;    // ground truth present
+};
+
+std::string SummarySection(const Context& c) {
+  const PipelineResult& r = c.result;
+  std::string html = "<h2 id=\"summary\">Summary</h2>\n<table>\n";
+  int junctions = 0, fewest = 0, most = 0;
+  for (size_t i = 0; i < r.junctions.size(); ++i) {
+    const int n = static_cast<int>(r.junctions[i].size());
+    junctions += n;
+    fewest = i == 0 ? n : std::min(fewest, n);
+    most = std::max(most, n);
+  }
+  int matches = 0, consecutive_pairs = 0, consecutive_matches = 0;
+  for (const FramePairMatches& pair : r.pairs) {
+    matches += static_cast<int>(pair.matches.size());
+    if (pair.frame_b == pair.frame_a + 1) ++consecutive_pairs, consecutive_matches += static_cast<int>(pair.matches.size());
+  }
+  const Camera& camera = c.sequence.calibration.camera;
+  html += Row({"frames", std::to_string(c.frames),
+               std::to_string(camera.width) + " &times; " + std::to_string(camera.height) + " px, " +
+                   (c.truth ? "with ground truth" : "no ground truth")});
+  html += Row({"junctions", std::to_string(junctions),
+               r.junctions.empty() ? "" :
+               Num(double(junctions) / r.junctions.size(), "%.1f") + " per frame (" + std::to_string(fewest) + " to " +
+                   std::to_string(most) + ")"});
+  html += Row({"matches", std::to_string(matches),
+               std::to_string(r.pairs.size()) + " frame pairs; " +
+                   (consecutive_pairs > 0 ? Num(double(consecutive_matches) / consecutive_pairs, "%.1f") : "n/a") +
+                   " per consecutive pair"});
+  html += Row({"tracks", std::to_string(r.tracks.size()), "junctions followed over two or more frames"});
+  html += Row({"3D points", std::to_string(r.landmarks.points.size()), "triangulated junctions"});
+  html += Row({"3D lines", std::to_string(r.landmarks.lines.size()),
+               std::to_string(r.unobservable_lines) + " more dropped as parallel to the motion"});
+  html += "</table>\n";
+
+  html += "<h3>Drift against ground truth</h3>\n";
+  if (!c.truth || !r.drift_odometry) {
+    html += Note("The sequence has no ground truth, so there is no drift to measure.");
+  } else {
+    const DriftMetrics none{std::nan(""), std::nan(""), std::nan("")};
+    const DriftMetrics& o = *r.drift_odometry;
+    const DriftMetrics& b = r.drift_refined ? *r.drift_refined : none;
+    auto rot = [](double rad) { return Num(rad, "%.4f") + " rad (" + Num(rad * 180 / kPi, "%.2f") + "&deg;)"; };
+    html += "<table>\n" + Row({"", "odometry", "refined"}, true);
+    html += Row({"ATE (position RMSE after SE(3) alignment)", Num(o.ate_m, "%.4f") + " m", Num(b.ate_m, "%.4f") + " m"});
+    html += Row({"RPE translation per frame (RMSE)", Num(o.rpe_trans_m, "%.4f") + " m", Num(b.rpe_trans_m, "%.4f") + " m"});
+    html += Row({"RPE rotation per frame (RMSE)", rot(o.rpe_rot_rad), rot(b.rpe_rot_rad)});
+    html += "</table>\n";
+    if (!r.drift_refined) html += Note("Bundle adjustment did not run: there is no refined trajectory.");
+  }
+
+  const StageTimes& t = r.times;
+  html += "<h3>Stage times</h3>\n<table>\n" + Row({"stage", "wall time"}, true);
+  html += Row({"front end (segments, junctions)", Num(t.frontend, "%.2f") + " s"});
+  html += Row({"matching", Num(t.matching, "%.2f") + " s"});
+  html += Row({"back end (tracks, triangulation, bundle adjustment)", Num(t.backend, "%.2f") + " s"});
+  html += Row({"<b>total</b>", "<b>" + Num(t.total, "%.2f") + " s</b>"});
+  return html + "</table>\n";
+}
+
+std::string TrajectorySection(const Context& c) {
+  const PipelineResult& r = c.result;
+  const auto [a, b] = HorizontalAxes(c.vertical);
+  Plot figure(kPlotWidth, kPlotHeight);
+  figure.SetTitle("camera trajectories seen from above");
+  figure.SetXLabel(std::string(kAxisName[a]) + " [m]");
+  figure.SetYLabel(std::string(kAxisName[b]) + " [m]");
+  figure.SetEqualAspect(true);
+  if (c.truth) figure.AddLine(Coordinate(*r.world_T_camera_truth, a), Coordinate(*r.world_T_camera_truth, b),
+                              colour::kBlack, "ground truth", 2);
+  figure.AddLine(Coordinate(r.world_T_camera_odometry, a), Coordinate(r.world_T_camera_odometry, b), colour::kOrange,
+                 "odometry", 2);
+  if (c.refined) figure.AddLine(Coordinate(r.world_T_camera_refined, a), Coordinate(r.world_T_camera_refined, b),
+                                colour::kBlue, "refined (bundle adjustment)", 2);
+  const std::vector<Pose3>& first = c.truth ? *r.world_T_camera_truth : r.world_T_camera_odometry;
+  if (!first.empty()) {
+    figure.AddMarkers({first.front().translation[a]}, {first.front().translation[b]}, colour::kGreen, "start", 5);
+  }
+  return "<h2 id=\"trajectories\">Trajectories</h2>\n" +
+         Figure(figure.Render(), "trajectories from above",
+                "Camera positions (trajectory_*.txt) in the output world frame, as written (not aligned), seen "
+                "from above: " + std::string(kAxisName[a]) + " to the right, " + kAxisName[b] + " up, " +
+                kAxisName[c.vertical] + " towards the viewer.");
+}
+
+std::string ErrorSection(const Context& c) {
+  const PipelineResult& r = c.result;
+  std::string html = "<h2 id=\"errors\">Position and heading error</h2>\n";
+  if (!c.truth) return html + Note("The sequence has no ground truth (no groundtruth.txt), so these errors are not known.");
+  std::vector<double> frames(c.frames);
+  std::iota(frames.begin(), frames.end(), 0.0);
+  const TrajectoryErrors odometry = ComputeTrajectoryErrors(r.world_T_camera_odometry, *r.world_T_camera_truth, c.vertical);
+  TrajectoryErrors refined;
+  if (c.refined) refined = ComputeTrajectoryErrors(r.world_T_camera_refined, *r.world_T_camera_truth, c.vertical);
+
+  Plot position(kPlotWidth, kPlotHeight);
+  position.SetTitle("position error against ground truth");
+  position.SetXLabel("frame");
+  position.SetYLabel("position error [m]");
+  position.SetYFromZero(true);
+  position.SetIntegerX(true);
+  position.AddLine(frames, odometry.position_m, colour::kOrange, "odometry", 2);
+  if (c.refined) position.AddLine(frames, refined.position_m, colour::kBlue, "refined", 2);
+
+  auto degrees = [](std::vector<double> radians) {
+    for (double& v : radians) v *= 180 / kPi;
+    return radians;
+  };
+  Plot heading(kPlotWidth, kPlotHeight);
+  heading.SetTitle("heading error against ground truth");
+  heading.SetXLabel("frame");
+  heading.SetYLabel("heading error [deg]");
+  heading.SetIntegerX(true);
+  heading.AddLine(frames, degrees(odometry.heading_rad), colour::kOrange, "odometry", 2);
+  if (c.refined) heading.AddLine(frames, degrees(refined.heading_rad), colour::kBlue, "refined", 2);
+
+  html += Note("Each estimated trajectory is first aligned to the ground truth by the rigid SE(3) transform "
+               "that the ATE uses (AlignSE3 of the camera positions, docs/metrics.md); the RMSE of the position "
+               "error is the ATE. Heading error: the angle about the vertical (" + std::string(kAxisName[c.vertical]) +
+               ") axis from the true to the estimated viewing direction, positive counter-clockwise seen from above.");
+  html += Figure(position.Render(), "position error per frame", "Position error per frame, metres.");
+  html += Figure(heading.Render(), "heading error per frame", "Heading error per frame, degrees.");
+  return html;
+}
+
+std::string JunctionSection(const Context& c) {
+  std::vector<double> counts;
+  for (const Junctions& junctions : c.result.junctions) counts.push_back(static_cast<double>(junctions.size()));
+  Plot figure(kPlotWidth, kPlotHeight);
+  figure.SetTitle("junctions detected per frame");
+  figure.SetXLabel("frame");
+  figure.SetYLabel("junctions");
+  figure.SetIntegerX(true);
+  figure.AddBars(counts, colour::kBlue, "");
+  return "<h2 id=\"junctions\">Junctions per frame</h2>\n" +
+         Figure(figure.Render(), "junctions per frame", "Junctions detected in each frame (junctions/NNNNNN.json).");
+}
+
+std::string MatchSection(const Context& c) {
+  // Pairs (a, a + 1) and (a, a + 2), each a bar series over a.
+  std::vector<double> gap1(std::max(c.frames - 1, 0), std::nan("")), gap2(std::max(c.frames - 2, 0), std::nan(""));
+  int other = 0;
+  for (const FramePairMatches& pair : c.result.pairs) {
+    const double n = static_cast<double>(pair.matches.size());
+    const int gap = pair.frame_b - pair.frame_a;
+    if (gap == 1 && pair.frame_a >= 0 && pair.frame_a < static_cast<int>(gap1.size())) gap1[pair.frame_a] = n;
+    else if (gap == 2 && pair.frame_a >= 0 && pair.frame_a < static_cast<int>(gap2.size())) gap2[pair.frame_a] = n;
+    else ++other;
+  }
+  Plot figure(kPlotWidth, kPlotHeight);
+  figure.SetTitle("junction matches per frame pair");
+  figure.SetXLabel("first frame i of the pair");
+  figure.SetYLabel("matches");
+  figure.SetIntegerX(true);
+  figure.AddBars(gap1, colour::kBlue, "frames i, i+1");
+  if (std::any_of(gap2.begin(), gap2.end(), [](double v) { return std::isfinite(v); })) {
+    figure.AddBars(gap2, colour::kSky, "frames i, i+2");
+  }
+  std::string html = "<h2 id=\"matches\">Matches per frame pair</h2>\n" +
+                     Figure(figure.Render(), "matches per frame pair",
+                            "Junction matches of each matched pair of frames (matches/NNNNNN_MMMMMM.csv).");
+  if (other > 0) html += Note(std::to_string(other) + " other pairs are not shown.");
+  return html;
+}
+
+std::string MatchPictureSection(const Context& c, const std::vector<cv::Mat>& images) {
+  std::string html = "<h2 id=\"match-images\">Match pictures</h2>\n";
+  std::vector<const FramePairMatches*> consecutive;
+  for (const FramePairMatches& pair : c.result.pairs) {
+    if (pair.frame_b == pair.frame_a + 1) consecutive.push_back(&pair);
+  }
+  if (consecutive.empty()) return html + Note("No consecutive pair of frames was matched.");
+  // A few pairs spread over the sequence: the first, the last and evenly between.
+  std::vector<const FramePairMatches*> shown;
+  const int n = static_cast<int>(consecutive.size());
+  for (int k = 0; k < std::min(kMatchPictures, n); ++k) {
+    const int index = kMatchPictures == 1 || n == 1 ? 0 : static_cast<int>(std::lround(double(k) * (n - 1) / (std::min(kMatchPictures, n) - 1)));
+    if (shown.empty() || shown.back() != consecutive[index]) shown.push_back(consecutive[index]);
+  }
+  html += Note("As in Fig. 6 of the paper: the earlier frame left, the later right. Matched junctions carry the "
+               "same number in both frames and corresponding junction segments the same colour; unmatched "
+               "junctions are thin and grey. Undistorted images, shown dimmed.");
+
+  std::unique_ptr<ImageUndistorter> undistorter;
+  auto image_of = [&](int frame, cv::Mat* image) -> Status {
+    if (!images.empty()) {
+      *image = images.at(frame);
+      return Status::Ok();
+    }
+    cv::Mat grey;
+    SFM_RETURN_IF_ERROR(LoadFrameImage(c.sequence, frame, &grey));
+    if (!undistorter) undistorter = std::make_unique<ImageUndistorter>(c.sequence.calibration.camera);
+    *image = undistorter->Apply(grey);
+    return Status::Ok();
+  };
+  for (const FramePairMatches* pair : shown) {
+    cv::Mat image_a, image_b;
+    Status status = image_of(pair->frame_a, &image_a);
+    if (status.ok()) status = image_of(pair->frame_b, &image_b);
+    if (!status.ok()) {
+      html += Note("Frames " + std::to_string(pair->frame_a) + " and " + std::to_string(pair->frame_b) +
+                   ": no picture, the image could not be read (" + Html(status.message()) + ").");
+      continue;
+    }
+    const Junctions& a = c.result.junctions.at(pair->frame_a);
+    const Junctions& b = c.result.junctions.at(pair->frame_b);
+    const int scale = image_a.cols < 400 ? 2 : 1;  // small images enlarged so that the numbers stay readable
+    const cv::Mat picture = DrawMatchOverlay(image_a, a, image_b, b, pair->matches, scale);
+    html += Figure(picture, "matches between frames " + std::to_string(pair->frame_a) + " and " + std::to_string(pair->frame_b),
+                   "Frames " + std::to_string(pair->frame_a) + " (left) and " + std::to_string(pair->frame_b) +
+                       " (right): " + std::to_string(pair->matches.size()) + " matches of " + std::to_string(a.size()) +
+                       " and " + std::to_string(b.size()) + " junctions.");
+  }
+  return html;
+}
+
+// A view of the wireframe along one world axis: 3D lines as segments, 3D points as dots, and the
+// camera path, projected orthographically onto the (h, v) plane.
+cv::Mat WireframeView(const Context& c, int h, int v, const std::string& title) {
+  const Landmarks& landmarks = c.result.landmarks;
+  const std::vector<Pose3>& cameras = c.refined ? c.result.world_T_camera_refined : c.result.world_T_camera_odometry;
+  std::vector<std::array<double, 4>> segments;
+  std::vector<double> hs, vs;  // every drawn coordinate, for the range
+  for (const LineLandmark& line : landmarks.lines) {
+    segments.push_back({line.end0[h], line.end0[v], line.end1[h], line.end1[v]});
+    hs.push_back(line.end0[h]), hs.push_back(line.end1[h]), vs.push_back(line.end0[v]), vs.push_back(line.end1[v]);
+  }
+  std::vector<double> px, py;
+  for (const PointLandmark& point : landmarks.points) {
+    px.push_back(point.position[h]), py.push_back(point.position[v]);
+    hs.push_back(point.position[h]), vs.push_back(point.position[v]);
+  }
+  Plot figure(kPlotWidth, kPlotHeight);
+  figure.SetTitle(title);
+  figure.SetXLabel(std::string(kAxisName[h]) + " [m]");
+  figure.SetYLabel(std::string(kAxisName[v]) + " [m]");
+  figure.SetEqualAspect(true);
+  figure.AddSegments(segments, colour::kBlue, "3D lines", 1);
+  figure.AddMarkers(px, py, colour::kVermillion, "3D points", 2);
+  figure.AddLine(Coordinate(cameras, h), Coordinate(cameras, v), colour::kOrange,
+                 c.refined ? "cameras (refined)" : "cameras (odometry)", 2);
+  // The range of the bulk of the map (2 % to 98 %, widened by a tenth) and the cameras, so that a
+  // few far-off end-points do not shrink everything else; what lies outside is clipped.
+  auto range = [&](const std::vector<double>& values, int axis, double* lo, double* hi) {
+    *lo = Quantile(values, 0.02), *hi = Quantile(values, 0.98);
+    const double pad = 0.1 * (*hi - *lo);
+    *lo -= pad, *hi += pad;
+    for (const Pose3& camera : cameras) *lo = std::min(*lo, camera.translation[axis]), *hi = std::max(*hi, camera.translation[axis]);
+    if (!(*hi - *lo > 1e-6)) *lo -= 0.5, *hi += 0.5;
+  };
+  double lo, hi;
+  if (!hs.empty()) {
+    range(hs, h, &lo, &hi);
+    figure.SetXRange(lo, hi);
+    range(vs, v, &lo, &hi);
+    figure.SetYRange(lo, hi);
+  }
+  return figure.Render();
+}
+
+std::string WireframeSection(const Context& c) {
+  const Landmarks& landmarks = c.result.landmarks;
+  std::string html = "<h2 id=\"wireframe\">Wireframe</h2>\n";
+  if (landmarks.lines.empty() && landmarks.points.empty()) {
+    return html + Note("No 3D point or line was reconstructed, so there is no wireframe to show.");
+  }
+  const auto [a, b] = HorizontalAxes(c.vertical);
+  // The side view looks across the horizontal axis along which the map is longer.
+  std::vector<double> along_a, along_b;
+  for (const PointLandmark& p : landmarks.points) along_a.push_back(p.position[a]), along_b.push_back(p.position[b]);
+  for (const LineLandmark& l : landmarks.lines) {
+    along_a.push_back(l.end0[a]), along_a.push_back(l.end1[a]), along_b.push_back(l.end0[b]), along_b.push_back(l.end1[b]);
+  }
+  const double spread_a = Quantile(along_a, 0.98) - Quantile(along_a, 0.02);
+  const double spread_b = Quantile(along_b, 0.98) - Quantile(along_b, 0.02);
+  const int side = spread_b > spread_a ? b : a;
+  html += Note("The 3D lines and points of wireframe.ply projected orthographically, with the camera path; " +
+               std::to_string(landmarks.lines.size()) + " lines, " + std::to_string(landmarks.points.size()) +
+               " points. The view is framed on the bulk of the map (2nd to 98th percentile of the coordinates); "
+               "what lies further out is cut off at the frame.");
+  html += Figure(WireframeView(c, a, b, "wireframe seen from above"), "wireframe from above",
+                 "From above: " + std::string(kAxisName[a]) + " to the right, " + kAxisName[b] + " up.");
+  html += Figure(WireframeView(c, side, c.vertical, "wireframe seen from the side"), "wireframe from the side",
+                 "From the side: " + std::string(kAxisName[side]) + " to the right, " + kAxisName[c.vertical] + " up.");
+  return html;
+}
+
+constexpr char kStyle[] =
+    "body{font-family:sans-serif;color:#222;max-width:1320px;margin:1.5em auto;padding:0 1em;line-height:1.4}\n"
+    "h1{font-size:1.5em;margin-bottom:.2em}\n"
+    "h2{font-size:1.2em;border-bottom:1px solid #ccc;padding-bottom:.2em;margin-top:1.8em}\n"
+    "h3{font-size:1em;margin-top:1.2em}\n"
+    "table{border-collapse:collapse;margin:.5em 0}\n"
+    "th,td{padding:.2em .9em;border-bottom:1px solid #e4e4e4;text-align:left}\n"
+    "th{background:#f4f4f4}\n"
+    "figure{margin:1em 0}\n"
+    "img{display:block;max-width:100%;height:auto;border:1px solid #ddd}\n"
+    "figcaption,.note{color:#555;font-size:.9em}\n"
+    "nav a{margin-right:1em}\n";
+
+}  // namespace
+
+std::string PngDataUri(const cv::Mat& image) {
+  std::vector<uchar> png;
+  CHECK(cv::imencode(".png", image, png)) << "PNG encoding failed";
+  return "data:image/png;base64," +
+         Base64Encode(std::string_view(reinterpret_cast<const char*>(png.data()), png.size()));
+}
+
+int VerticalAxis(const std::vector<Pose3>& world_T_camera) {
+  if (world_T_camera.empty()) return 2;
+  Eigen::Vector3d lo = world_T_camera.front().translation, hi = lo;
+  for (const Pose3& pose : world_T_camera) {
+    lo = lo.cwiseMin(pose.translation);
+    hi = hi.cwiseMax(pose.translation);
+  }
+  const Eigen::Vector3d spread = hi - lo;
+  Eigen::Index least = 0;
+  spread.minCoeff(&least);
+  if (spread.z() <= 0.05 || spread.z() <= spread[least]) return 2;
+  return static_cast<int>(least);
+}
+
+TrajectoryErrors ComputeTrajectoryErrors(const std::vector<Pose3>& world_T_camera_estimated,
+                                         const std::vector<Pose3>& world_T_camera_truth, int vertical_axis) {
+  CHECK_EQ(world_T_camera_estimated.size(), world_T_camera_truth.size());
+  CHECK(vertical_axis >= 0 && vertical_axis < 3);
+  TrajectoryErrors errors;
+  if (world_T_camera_truth.empty()) return errors;
+  const Pose3 truth_T_estimated = AlignSE3(Positions(world_T_camera_estimated), Positions(world_T_camera_truth));
+  const auto [a, b] = HorizontalAxes(vertical_axis);
+  // The camera axis whose heading is measured: the optical axis, unless it is nearly vertical.
+  const Eigen::Vector3d optical = world_T_camera_truth.front().RotationMatrix().col(2);
+  const int camera_axis = std::abs(optical[vertical_axis]) > std::cos(kPi / 6) ? 0 : 2;
+  auto heading = [&](const Eigen::Quaterniond& rotation) {
+    const Eigen::Vector3d d = rotation.toRotationMatrix().col(camera_axis);
+    return std::atan2(d[b], d[a]);
+  };
+  for (size_t i = 0; i < world_T_camera_truth.size(); ++i) {
+    const Pose3 aligned = truth_T_estimated * world_T_camera_estimated[i];
+    errors.position_m.push_back((aligned.translation - world_T_camera_truth[i].translation).norm());
+    errors.heading_rad.push_back(WrapAngle(heading(aligned.rotation) - heading(world_T_camera_truth[i].rotation)));
+  }
+  return errors;
+}
+
+std::string ReportHtml(const Sequence& sequence, const PipelineResult& result,
+                       const std::vector<cv::Mat>& undistorted_images_or_empty) {
+  const std::vector<cv::Mat>& images = undistorted_images_or_empty;
+  CHECK(images.empty() || images.size() == sequence.frames.size())
+      << "give one undistorted image per frame, or none";
+  Context c{sequence, result};
+  c.frames = static_cast<int>(sequence.frames.size());
+  c.truth = result.world_T_camera_truth.has_value() &&
+            result.world_T_camera_truth->size() == result.world_T_camera_odometry.size();
+  c.refined = result.world_T_camera_refined.size() == result.world_T_camera_odometry.size() &&
+              !result.world_T_camera_refined.empty();
+  c.vertical = VerticalAxis(c.truth ? *result.world_T_camera_truth : result.world_T_camera_odometry);
+
+  std::string name = fs::path(sequence.directory).filename().string();
+  if (name.empty()) name = fs::path(sequence.directory).parent_path().filename().string();
+  std::string html = "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<title>junction-sfm: " +
+                     Html(name) + "</title>\n<style>\n" + kStyle + "</style>\n</head>\n<body>\n";
+  html += "<h1>junction-sfm report: " + Html(name) + "</h1>\n";
+  html += "<p class=\"note\">Sequence <code>" + Html(sequence.directory) +
+          "</code>. The other outputs of the run are in the directory of this page (docs/formats.md).</p>\n";
+  html += "<nav><a href=\"#summary\">summary</a><a href=\"#trajectories\">trajectories</a><a href=\"#errors\">errors</a>"
+          "<a href=\"#junctions\">junctions</a><a href=\"#matches\">matches</a><a href=\"#match-images\">match "
+          "pictures</a><a href=\"#wireframe\">wireframe</a></nav>\n";
+  html += SummarySection(c);
+  html += TrajectorySection(c);
+  html += ErrorSection(c);
+  html += JunctionSection(c);
+  html += MatchSection(c);
+  html += MatchPictureSection(c, images);
+  html += WireframeSection(c);
+  return html + "</body>\n</html>\n";
+}
+
+Status WriteReport(const Sequence& sequence, const PipelineResult& result,
+                   const std::vector<cv::Mat>& undistorted_images_or_empty, const std::string& output_dir) {
+  SFM_RETURN_IF_ERROR(EnsureWritableDirectory(output_dir));
+  return WriteFileAtomically((fs::path(output_dir) / "report.html").string(),
+                             ReportHtml(sequence, result, undistorted_images_or_empty));
+}
+
+}  // namespace sfm

@@ -1,0 +1,245 @@
+#include "sfm_app/report/report.h"
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include <gtest/gtest.h>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "backend/metrics/drift.h"
+#include "sfm_app/report/base64.h"
+#include "tests/test_data.h"
+
+namespace sfm {
+namespace {
+
+namespace fs = std::filesystem;
+constexpr double kPi = 3.14159265358979323846;
+constexpr int kFrames = 6;
+
+// A camera looking along the base's x axis (camera z = base x, camera x = -base y, camera y = -base z).
+Pose3 BaseTCamera() {
+  Eigen::Matrix3d R;
+  R << 0, 0, 1, -1, 0, 0, 0, -1, 0;
+  return Pose3(R, Eigen::Vector3d(0.1, 0, 0.5));
+}
+
+Pose3 Planar(double x, double y, double yaw) {
+  return Pose3(Eigen::Quaterniond(Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ())), Eigen::Vector3d(x, y, 0));
+}
+
+Junction MakeJunction(int id, double x, double y, int segments) {
+  Junction j;
+  j.id = id;
+  j.location = Eigen::Vector2d(x, y);
+  j.type = segments == 2 ? JunctionType::kL : JunctionType::kY;
+  for (int s = 0; s < segments; ++s) {
+    const double angle = 2 * kPi * s / segments + 0.3;
+    j.segments.push_back({j.location + 25 * Eigen::Vector2d(std::cos(angle), std::sin(angle)), s});
+  }
+  return j;
+}
+
+// Five frames of a robot driving a gentle curve on the floor, with junctions, matches and a few
+// 3D points and lines: enough for every section of the report.
+struct HandBuiltRun {
+  Sequence sequence;
+  PipelineResult result;
+  std::vector<cv::Mat> images;
+
+  HandBuiltRun() {
+    sequence.directory = "/nonexistent/hand_built";
+    Camera& camera = sequence.calibration.camera;
+    camera.width = 160, camera.height = 120, camera.fx = camera.fy = 100, camera.cx = 79.5, camera.cy = 59.5;
+    sequence.calibration.base_T_camera = BaseTCamera();
+    sequence.has_groundtruth = true;
+    std::vector<Pose3> truth;
+    for (int i = 0; i < kFrames; ++i) {
+      Frame frame;
+      frame.index = i;
+      frame.timestamp = 0.1 * i;
+      char path[32];
+      std::snprintf(path, sizeof(path), "images/%06d.png", i);
+      frame.image_path = path;
+      frame.world_T_base_groundtruth = Planar(0.3 * i, 0.02 * i * i, 0.05 * i);
+      frame.world_T_base_odometry = Planar(0.31 * i, 0.03 * i * i, 0.06 * i);
+      sequence.frames.push_back(frame);
+      result.world_T_camera_odometry.push_back(frame.world_T_base_odometry * BaseTCamera());
+      result.world_T_camera_refined.push_back(Planar(0.301 * i, 0.021 * i * i, 0.051 * i) * BaseTCamera());
+      truth.push_back(*frame.world_T_base_groundtruth * BaseTCamera());
+
+      result.junctions.push_back({MakeJunction(0, 40 + 3 * i, 40, 2), MakeJunction(1, 100 + 2 * i, 70, 3),
+                                  MakeJunction(2, 60, 90 - i, 3)});
+      cv::Mat image(camera.height, camera.width, CV_8UC1, cv::Scalar(90));
+      cv::rectangle(image, cv::Rect(30 + 3 * i, 30, 70, 50), cv::Scalar(200), cv::FILLED);
+      images.push_back(image);
+    }
+    result.world_T_camera_truth = truth;
+    for (int a = 0; a + 1 < kFrames; ++a) {
+      for (int b = a + 1; b <= std::min(a + 2, kFrames - 1); ++b) {
+        FramePairMatches pair;
+        pair.frame_a = a, pair.frame_b = b;
+        pair.matches = {{0, 0, 0.9, 0}, {1, 1, 0.8, 0}};
+        if (b == a + 1) pair.matches.push_back({2, 2, 0.7, 1});
+        result.pairs.push_back(pair);
+      }
+    }
+    JunctionTrack track;
+    track.id = 0;
+    for (int i = 0; i < kFrames; ++i) track.views.push_back({i, 1, {0, 1, 2}});
+    result.tracks.push_back(track);
+    for (int k = 0; k < 4; ++k) {
+      PointLandmark point;
+      point.track_id = k;
+      point.position = Eigen::Vector3d(3 + 0.5 * k, -1 + 0.7 * k, 0.3 * k);
+      result.landmarks.points.push_back(point);
+      LineLandmark line;
+      line.end0 = point.position;
+      line.end1 = point.position + Eigen::Vector3d(0, 0, 1);
+      line.direction = Eigen::Vector3d::UnitZ();
+      line.point = line.end0;
+      line.point_landmark = k;
+      result.landmarks.lines.push_back(line);
+    }
+    result.drift_odometry = ComputeDrift(result.world_T_camera_odometry, truth);
+    result.drift_refined = ComputeDrift(result.world_T_camera_refined, truth);
+    result.times = {1.5, 0.25, 2.0, 3.9};
+  }
+};
+
+std::string ReadFile(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+// Decodes every data URI of the page; returns how many there were (test fails on a bad one).
+int CheckEmbeddedImages(const std::string& html) {
+  const std::string prefix = "data:image/png;base64,";
+  int count = 0;
+  for (size_t at = html.find(prefix); at != std::string::npos; at = html.find(prefix, at + 1)) {
+    const size_t begin = at + prefix.size(), end = html.find('"', begin);
+    EXPECT_NE(end, std::string::npos);
+    std::string png;
+    EXPECT_TRUE(Base64Decode(html.substr(begin, end - begin), &png)) << "image " << count;
+    const cv::Mat image = cv::imdecode(std::vector<uchar>(png.begin(), png.end()), cv::IMREAD_UNCHANGED);
+    EXPECT_FALSE(image.empty()) << "image " << count;
+    ++count;
+  }
+  return count;
+}
+
+TEST(ReportTest, WritesASelfContainedPageWithEverySection) {
+  const HandBuiltRun run;
+  const std::string dir = testing::MakeScratchDir("report_full");
+  ASSERT_TRUE(WriteReport(run.sequence, run.result, run.images, dir).ok());
+  // Only report.html: the temporary file was renamed into place.
+  std::vector<std::string> files;
+  for (const auto& entry : fs::directory_iterator(dir)) files.push_back(entry.path().filename().string());
+  ASSERT_EQ(files, std::vector<std::string>{"report.html"});
+  const std::string html = ReadFile(dir + "/report.html");
+
+  EXPECT_EQ(html.rfind("<!DOCTYPE html>", 0), 0u);
+  EXPECT_NE(html.find("</html>"), std::string::npos);
+  for (const char* section : {"id=\"summary\"", "id=\"trajectories\"", "id=\"errors\"", "id=\"junctions\"",
+                              "id=\"matches\"", "id=\"match-images\"", "id=\"wireframe\""}) {
+    EXPECT_NE(html.find(section), std::string::npos) << section;
+  }
+  for (const char* text : {"ATE", "RPE", "Stage times", "odometry", "refined", "3D lines", "3D points", "tracks",
+                           "Frames 0 (left) and 1 (right): 3 matches of 3 and 3 junctions"}) {
+    EXPECT_NE(html.find(text), std::string::npos) << text;
+  }
+  // Trajectories, 2 error plots, junctions, matches, 3 match pictures, 2 wireframe views.
+  EXPECT_EQ(CheckEmbeddedImages(html), 10);
+  EXPECT_EQ(html.find("http"), std::string::npos);
+  EXPECT_EQ(html.find("<script"), std::string::npos);
+  EXPECT_EQ(html.find("<link"), std::string::npos);
+  EXPECT_EQ(html.find("url("), std::string::npos);
+}
+
+TEST(ReportTest, SaysSoWhenThereIsNoGroundTruthAndNoImage) {
+  HandBuiltRun run;
+  run.sequence.has_groundtruth = false;
+  run.result.world_T_camera_truth.reset();
+  run.result.drift_odometry.reset();
+  run.result.drift_refined.reset();
+  // No images given, and the sequence directory does not exist: the pictures are replaced by a note.
+  const std::string html = ReportHtml(run.sequence, run.result, {});
+  EXPECT_NE(html.find("no ground truth"), std::string::npos);
+  EXPECT_EQ(html.find("position error per frame"), std::string::npos);
+  EXPECT_NE(html.find("the image could not be read"), std::string::npos);
+  // Trajectories, junctions, matches, 2 wireframe views.
+  EXPECT_EQ(CheckEmbeddedImages(html), 5);
+}
+
+TEST(ReportTest, EmptyResultStillGivesAPage) {
+  HandBuiltRun run;
+  PipelineResult empty;
+  empty.world_T_camera_odometry = run.result.world_T_camera_odometry;
+  const std::string html = ReportHtml(run.sequence, empty, {});
+  EXPECT_NE(html.find("No consecutive pair of frames was matched"), std::string::npos);
+  EXPECT_NE(html.find("no wireframe to show"), std::string::npos);
+  EXPECT_EQ(CheckEmbeddedImages(html), 3);  // trajectories, junctions, matches (empty bars)
+}
+
+TEST(ReportTest, FailsWhenTheDirectoryCannotBeWritten) {
+  const HandBuiltRun run;
+  const std::string dir = testing::MakeScratchDir("report_unwritable");
+  std::ofstream(dir + "/file") << "x";
+  const Status status = WriteReport(run.sequence, run.result, run.images, dir + "/file/sub");
+  EXPECT_FALSE(status.ok());
+  EXPECT_FALSE(status.message().empty());
+}
+
+TEST(TrajectoryErrorsTest, RigidlyMovedTruthHasNoError) {
+  const HandBuiltRun run;
+  const std::vector<Pose3>& truth = *run.result.world_T_camera_truth;
+  const Pose3 moved_T_world(Eigen::Quaterniond(Eigen::AngleAxisd(0.7, Eigen::Vector3d::UnitZ())),
+                            Eigen::Vector3d(1, -2, 0));
+  std::vector<Pose3> estimated;
+  for (const Pose3& pose : truth) estimated.push_back(moved_T_world * pose);
+  const TrajectoryErrors errors = ComputeTrajectoryErrors(estimated, truth, 2);
+  ASSERT_EQ(errors.position_m.size(), truth.size());
+  for (size_t i = 0; i < truth.size(); ++i) {
+    EXPECT_NEAR(errors.position_m[i], 0, 1e-9);
+    EXPECT_NEAR(errors.heading_rad[i], 0, 1e-9);
+  }
+}
+
+TEST(TrajectoryErrorsTest, HeadingErrorIsTheYawOffsetAndPositionRmseIsTheAte) {
+  const HandBuiltRun run;
+  const std::vector<Pose3>& truth = *run.result.world_T_camera_truth;
+  // Same positions, each camera turned 0.1 rad to the left about the vertical.
+  std::vector<Pose3> turned;
+  for (const Pose3& pose : truth) {
+    turned.push_back(Pose3(Eigen::Quaterniond(Eigen::AngleAxisd(0.1, Eigen::Vector3d::UnitZ())) * pose.rotation,
+                           pose.translation));
+  }
+  const TrajectoryErrors heading = ComputeTrajectoryErrors(turned, truth, 2);
+  for (double e : heading.heading_rad) EXPECT_NEAR(e, 0.1, 1e-9);
+  for (double e : heading.position_m) EXPECT_NEAR(e, 0, 1e-9);
+
+  const TrajectoryErrors odometry = ComputeTrajectoryErrors(run.result.world_T_camera_odometry, truth, 2);
+  double sum = 0;
+  for (double e : odometry.position_m) sum += e * e;
+  EXPECT_NEAR(std::sqrt(sum / odometry.position_m.size()), run.result.drift_odometry->ate_m, 1e-12);
+  EXPECT_GT(run.result.drift_odometry->ate_m, 0.001);
+}
+
+TEST(VerticalAxisTest, FloorPlaneAndOtherPlanes) {
+  std::vector<Pose3> floor, xz;
+  for (int i = 0; i < 10; ++i) {
+    floor.push_back(Pose3(Eigen::Quaterniond::Identity(), Eigen::Vector3d(0.3 * i, std::sin(i), 0.01 * (i % 2))));
+    xz.push_back(Pose3(Eigen::Quaterniond::Identity(), Eigen::Vector3d(0.3 * i, 1.5, std::sin(i))));
+  }
+  EXPECT_EQ(VerticalAxis(floor), 2);
+  EXPECT_EQ(VerticalAxis(xz), 1);
+  EXPECT_EQ(VerticalAxis({}), 2);
+}
+
+}  // namespace
+}  // namespace sfm
