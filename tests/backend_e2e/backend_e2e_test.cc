@@ -1,0 +1,317 @@
+// Degenerate input through the whole pipeline (RunPipeline, as junction_sfm runs it), issue 5:
+// no motion, pure rotation, too few tracks, lines parallel to the motion, and too few frames. Each
+// run must either succeed with sensible outputs (finite poses, one per frame, every SPEC section 3
+// file, metrics.json with its keys) or fail with a one-line message; a crash fails the test binary.
+//
+// The sequences are rendered here with the generator's scene, renderer and odometry model, on
+// poses the generator's trajectories do not make (standing still, turning in place). Small: 6-12
+// frames of 640x480, so the whole binary runs in a few seconds.
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <Eigen/Geometry>
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+#include <opencv2/core.hpp>
+#include <opencv2/imgcodecs.hpp>
+
+#include "frontend/geometry/tum_io.h"
+#include "frontend/sequence/sequence.h"
+#include "sequences/generator/camera_rig.h"
+#include "sequences/generator/odometry_noise.h"
+#include "sequences/generator/random.h"
+#include "sequences/generator/renderer.h"
+#include "sequences/generator/scene_builder.h"
+#include "sequences/generator/sequence_writer.h"
+#include "sfm_app/pipeline.h"
+#include "tests/test_data.h"
+
+namespace sfm {
+namespace {
+
+namespace fs = std::filesystem;
+using ::testing::HasSubstr;
+using ::testing::Not;
+
+std::string ReadText(const fs::path& path) {
+  std::ifstream in(path);
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  return buffer.str();
+}
+
+Pose3 BasePose(double x, double y, double yaw) {
+  return Pose3(Eigen::Matrix3d(Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ())), Eigen::Vector3d(x, y, 0));
+}
+
+struct SequenceSpec {
+  SceneType scene = SceneType::kRoom;
+  std::vector<Pose3> world_T_base;          // the true poses
+  CameraRigOptions rig;                     // the generator's rig unless changed
+  OdometryNoiseOptions odometry;            // the generator's default noise unless changed
+  bool blank_images = false;                // uniform grey (plus sensor noise) instead of the scene
+};
+
+// Renders `spec` into `directory` as a SPEC section 1 sequence (images, images.txt, odometry.txt,
+// groundtruth.txt, sequence.yaml), as GenerateSequence does for its own trajectories.
+void WriteSequence(const SequenceSpec& spec, const fs::path& directory) {
+  fs::remove_all(directory);
+  fs::create_directories(directory / "images");
+  SceneOptions scene_options;
+  scene_options.type = spec.scene;
+  Scene scene;
+  ASSERT_TRUE(BuildScene(scene_options, MixSeed(3, 1), &scene).ok());
+  Calibration calibration;
+  calibration.camera = spec.rig.MakeCamera();
+  calibration.base_T_camera = spec.rig.BaseTCamera();
+  calibration.odometry_noise = spec.odometry.ForCalibration();
+  calibration.odometry_noise_given = true;
+  const Renderer renderer(scene, calibration.camera, RenderOptions());
+  const std::vector<Pose3> odometry = SimulateOdometry(spec.world_T_base, spec.odometry, MixSeed(3, 2));
+  std::string image_list;
+  std::vector<StampedPose> groundtruth_poses, odometry_poses;
+  cv::RNG rng(5);
+  for (size_t i = 0; i < spec.world_T_base.size(); ++i) {
+    const double timestamp = 0.1 * i;
+    cv::Mat image;
+    if (spec.blank_images) {
+      image = cv::Mat(calibration.camera.height, calibration.camera.width, CV_8UC1);
+      rng.fill(image, cv::RNG::NORMAL, 128, 2);
+    } else {
+      image = renderer.Render(spec.world_T_base[i] * calibration.base_T_camera, MixSeed(3, 1000 + i));
+    }
+    char name[32];
+    std::snprintf(name, sizeof(name), "images/%06d.png", static_cast<int>(i));
+    ASSERT_TRUE(cv::imwrite((directory / name).string(), image));
+    char line[64];
+    std::snprintf(line, sizeof(line), "%.6f %s\n", timestamp, name);
+    image_list += line;
+    groundtruth_poses.push_back({timestamp, spec.world_T_base[i]});
+    odometry_poses.push_back({timestamp, odometry[i]});
+  }
+  std::ofstream(directory / "images.txt") << image_list;
+  ASSERT_TRUE(WriteTumTrajectory((directory / "odometry.txt").string(), odometry_poses).ok());
+  ASSERT_TRUE(WriteTumTrajectory((directory / "groundtruth.txt").string(), groundtruth_poses).ok());
+  ASSERT_TRUE(WriteCalibration((directory / "sequence.yaml").string(), calibration).ok());
+}
+
+bool Finite(const Pose3& pose) {
+  return pose.translation.allFinite() && pose.rotation.coeffs().allFinite() &&
+         std::abs(pose.rotation.norm() - 1) < 1e-6;
+}
+
+// Runs the pipeline on `sequence_dir`; on success checks what every run must give.
+Status RunOn(const fs::path& sequence_dir, const fs::path& output_dir, PipelineResult* result) {
+  PipelineOptions options;
+  options.sequence_dir = sequence_dir.string();
+  options.output_dir = output_dir.string();
+  options.show_progress = false;
+  const Status status = RunPipeline(options, result);
+  if (!status.ok()) {
+    EXPECT_THAT(status.message(), Not(HasSubstr("\n")));
+    EXPECT_FALSE(status.message().empty());
+    return status;
+  }
+  const size_t n = result->junctions.size();
+  EXPECT_EQ(result->world_T_camera_odometry.size(), n);
+  EXPECT_EQ(result->world_T_camera_refined.size(), n);
+  for (const Pose3& pose : result->world_T_camera_refined) EXPECT_TRUE(Finite(pose));
+  for (const PointLandmark& point : result->landmarks.points) EXPECT_TRUE(point.position.allFinite());
+  for (const LineLandmark& line : result->landmarks.lines) {
+    EXPECT_TRUE(line.point.allFinite() && line.direction.allFinite() && line.end0.allFinite() &&
+                line.end1.allFinite());
+  }
+  for (const char* name : {"trajectory_odometry.txt", "trajectory_refined.txt", "trajectory_groundtruth.txt",
+                           "tracks.csv", "wireframe.ply", "metrics.json", "colmap/cameras.txt",
+                           "colmap/images.txt", "colmap/points3D.txt"}) {
+    EXPECT_TRUE(fs::exists(output_dir / name)) << name;
+  }
+  std::vector<StampedPose> refined;
+  EXPECT_TRUE(ReadTumTrajectory((output_dir / "trajectory_refined.txt").string(), &refined).ok());
+  EXPECT_EQ(refined.size(), n);
+  const std::string metrics = ReadText(output_dir / "metrics.json");
+  for (const char* key : {"frames", "junctions_per_frame", "matches_per_pair", "tracks", "points3d", "lines3d",
+                          "unobservable_lines", "ate_odometry_m", "ate_refined_m", "rpe_odometry",
+                          "rpe_refined", "time_s"}) {
+    EXPECT_THAT(metrics, HasSubstr(std::string("\"") + key + "\": ")) << key;
+  }
+  EXPECT_THAT(metrics, Not(HasSubstr("nan")));
+  EXPECT_THAT(metrics, Not(HasSubstr("inf")));
+  return status;
+}
+
+class BackendEndToEnd : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    const std::string name = ::testing::UnitTest::GetInstance()->current_test_info()->name();
+    scratch_ = testing::MakeScratchDir("backend_e2e_" + name);
+  }
+  fs::path sequence_dir() const { return scratch_ / "sequence"; }
+  fs::path output_dir() const { return scratch_ / "output"; }
+  fs::path scratch_;
+};
+
+// The robot stands still; the odometry says so exactly (no noise), so every fundamental matrix
+// from the odometry is zero. Nothing can be triangulated.
+TEST_F(BackendEndToEnd, NoMotionWithExactOdometry) {
+  SequenceSpec spec;
+  spec.world_T_base.assign(6, BasePose(1.5, 1.2, 0.3));
+  spec.odometry = OdometryNoiseOptions{0, 0, 0, 0};
+  WriteSequence(spec, sequence_dir());
+  PipelineResult result;
+  const Status status = RunOn(sequence_dir(), output_dir(), &result);
+  ASSERT_TRUE(status.ok()) << status.message();
+  EXPECT_TRUE(result.landmarks.points.empty());
+  EXPECT_TRUE(result.landmarks.lines.empty());
+  ASSERT_TRUE(result.drift_refined.has_value());
+  EXPECT_LT(result.drift_refined->ate_m, 1e-6);
+}
+
+// Standing still with the generator's noisy odometry: the odometry invents small heading changes
+// (the camera, 0.2 m ahead of the base, then seems to move by a fraction of a millimetre). The
+// junctions are matched (F from the odometry is not zero) but have no depth.
+TEST_F(BackendEndToEnd, NoMotionWithNoisyOdometry) {
+  SequenceSpec spec;
+  spec.world_T_base.assign(6, BasePose(1.5, 1.2, 0.3));
+  WriteSequence(spec, sequence_dir());
+  PipelineResult result;
+  const Status status = RunOn(sequence_dir(), output_dir(), &result);
+  ASSERT_TRUE(status.ok()) << status.message();
+  EXPECT_GT(result.tracks.size(), 0u);
+  EXPECT_TRUE(result.landmarks.points.empty());
+  EXPECT_GT(result.unobservable_lines, 0);
+  RecordProperty("lines3d", static_cast<int>(result.landmarks.lines.size()));
+}
+
+// Disabled: fails on the pipeline as it is (docs/backend_results.md, "Degenerate input"). With no
+// motion and noisy odometry, 3 of 228 line tracks pass both the triangulation's back-projected
+// plane test (the planes of short segments differ by a few degrees from noise alone) and the
+// bundle adjustment's observability test (the line is intersected 5 mm - 4 cm from the camera
+// centres, where 1.6 mm of invented baseline makes the planes through the estimated line differ a
+// lot); they end in wireframe.ply. Enable with the fix.
+TEST_F(BackendEndToEnd, DISABLED_NoMotionWithNoisyOdometryGivesNoLine) {
+  SequenceSpec spec;
+  spec.world_T_base.assign(6, BasePose(1.5, 1.2, 0.3));
+  WriteSequence(spec, sequence_dir());
+  PipelineResult result;
+  const Status status = RunOn(sequence_dir(), output_dir(), &result);
+  ASSERT_TRUE(status.ok()) << status.message();
+  EXPECT_TRUE(result.landmarks.lines.empty());
+}
+
+// The camera turns about its own centre (mounted on the base's rotation axis): no baseline at all.
+TEST_F(BackendEndToEnd, PureRotationAboutTheCameraCentre) {
+  SequenceSpec spec;
+  spec.rig.mount_forward = 0;
+  for (int i = 0; i < 8; ++i) spec.world_T_base.push_back(BasePose(1.5, 1.2, 0.05 * i));
+  WriteSequence(spec, sequence_dir());
+  PipelineResult result;
+  const Status status = RunOn(sequence_dir(), output_dir(), &result);
+  ASSERT_TRUE(status.ok()) << status.message();
+  // The odometry's translation is exactly zero, so F from it is zero and nothing is matched
+  // (a homography would match them, but they would have no depth anyway).
+  EXPECT_TRUE(result.landmarks.points.empty());
+  EXPECT_TRUE(result.landmarks.lines.empty());
+}
+
+// The robot turns in place: the camera, 0.2 m ahead of the axis, moves on a small circle (1 cm
+// per frame), so the scene is seen with little parallax.
+TEST_F(BackendEndToEnd, TurnInPlace) {
+  SequenceSpec spec;
+  for (int i = 0; i < 8; ++i) spec.world_T_base.push_back(BasePose(1.5, 1.2, 0.05 * i));
+  WriteSequence(spec, sequence_dir());
+  PipelineResult result;
+  const Status status = RunOn(sequence_dir(), output_dir(), &result);
+  ASSERT_TRUE(status.ok()) << status.message();
+  EXPECT_GT(result.tracks.size(), 0u);
+  ASSERT_TRUE(result.drift_odometry && result.drift_refined);
+  EXPECT_LT(result.drift_refined->rpe_rot_rad, 0.01);
+  RecordProperty("points3d", static_cast<int>(result.landmarks.points.size()));
+}
+
+// Blank walls: nothing to detect, so no junction, no track, no landmark; the refined trajectory is
+// the odometry.
+TEST_F(BackendEndToEnd, BlankImagesGiveNoTracks) {
+  SequenceSpec spec;
+  spec.blank_images = true;
+  for (int i = 0; i < 6; ++i) spec.world_T_base.push_back(BasePose(1.5 + 0.2 * i, 1.2, 0));
+  WriteSequence(spec, sequence_dir());
+  PipelineResult result;
+  const Status status = RunOn(sequence_dir(), output_dir(), &result);
+  ASSERT_TRUE(status.ok()) << status.message();
+  EXPECT_TRUE(result.tracks.empty());
+  EXPECT_TRUE(result.landmarks.points.empty());
+  EXPECT_TRUE(result.landmarks.lines.empty());
+  for (size_t i = 0; i < result.world_T_camera_refined.size(); ++i) {
+    EXPECT_LT((result.world_T_camera_refined[i].translation - result.world_T_camera_odometry[i].translation).norm(),
+              1e-9);
+  }
+}
+
+// Two frames of a corridor: one pair, tracks of length two at most.
+TEST_F(BackendEndToEnd, TwoFrames) {
+  GeneratorOptions generator;
+  generator.trajectory.num_frames = 2;
+  generator.write_truth = false;
+  ASSERT_TRUE(GenerateSequence(generator, sequence_dir().string(), /*overwrite=*/true).ok());
+  PipelineResult result;
+  const Status status = RunOn(sequence_dir(), output_dir(), &result);
+  ASSERT_TRUE(status.ok()) << status.message();
+  EXPECT_EQ(result.pairs.size(), 1u);
+}
+
+// One frame: refused with a one-line message (the sequence reader needs two frames).
+TEST_F(BackendEndToEnd, OneFrameIsRefusedWithOneLine) {
+  GeneratorOptions generator;
+  generator.trajectory.num_frames = 1;
+  generator.write_truth = false;
+  ASSERT_TRUE(GenerateSequence(generator, sequence_dir().string(), /*overwrite=*/true).ok());
+  PipelineResult result;
+  const Status status = RunOn(sequence_dir(), output_dir(), &result);
+  ASSERT_FALSE(status.ok());
+  EXPECT_THAT(status.message(), HasSubstr("at least 2"));
+  EXPECT_FALSE(fs::exists(output_dir() / "metrics.json"));
+}
+
+// No frame at all (an images.txt without entries): refused with a one-line message.
+TEST_F(BackendEndToEnd, NoFrameIsRefusedWithOneLine) {
+  GeneratorOptions generator;
+  generator.trajectory.num_frames = 2;
+  generator.write_truth = false;
+  ASSERT_TRUE(GenerateSequence(generator, sequence_dir().string(), /*overwrite=*/true).ok());
+  std::ofstream(sequence_dir() / "images.txt") << "# no frame\n";
+  PipelineResult result;
+  const Status status = RunOn(sequence_dir(), output_dir(), &result);
+  ASSERT_FALSE(status.ok());
+  EXPECT_FALSE(fs::exists(output_dir() / "metrics.json"));
+}
+
+// Straight down a corridor: its long edges (wall-floor, wall-ceiling, skirting) are parallel to the
+// motion, so unobservable; they are dropped and counted in metrics.json.
+TEST_F(BackendEndToEnd, CorridorLinesParallelToTheMotionAreCounted) {
+  GeneratorOptions generator;
+  generator.trajectory.num_frames = 12;
+  generator.write_truth = false;
+  ASSERT_TRUE(GenerateSequence(generator, sequence_dir().string(), /*overwrite=*/true).ok());
+  PipelineResult result;
+  const Status status = RunOn(sequence_dir(), output_dir(), &result);
+  ASSERT_TRUE(status.ok()) << status.message();
+  EXPECT_GT(result.unobservable_lines, 0);
+  EXPECT_GT(result.landmarks.lines.size(), 0u);
+  EXPECT_THAT(ReadText(output_dir() / "metrics.json"),
+              HasSubstr("\"unobservable_lines\": " + std::to_string(result.unobservable_lines) + ","));
+  // What is kept is not along the path (x): such a line would have no depth.
+  int along_path = 0;
+  for (const LineLandmark& line : result.landmarks.lines) {
+    if (std::abs(line.direction.x()) > std::cos(2.0 * M_PI / 180)) ++along_path;
+  }
+  EXPECT_EQ(along_path, 0);
+}
+
+}  // namespace
+}  // namespace sfm
