@@ -23,6 +23,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <map>
+#include <optional>
 #include <set>
 #include <sstream>
 #include <string>
@@ -73,6 +74,13 @@ DEFINE_double(match_tau1, kMatchingDefaults.tau1, "tau1 of rule (38).");
 DEFINE_double(match_tau2, kMatchingDefaults.tau2, "tau2 of rule (38).");
 DEFINE_string(match_rho1, kMatchingDefaults.rho1_kind == sfm::Rho1Kind::kLinear ? "linear" : "exponential",
               "rho1 of eq. (31): 'exponential' or 'linear'.");
+DEFINE_bool(match_pose, true,
+            "Give the matcher the odometry pose and its uncertainty (sequence.yaml's noise model): per-pair band and "
+            "cheirality; false: F only, fixed R.");
+DEFINE_bool(match_pose_band, kMatchingDefaults.use_pose_band, "With --match_pose: per-pair band from the pose covariance (false: R).");
+DEFINE_bool(match_cheirality, kMatchingDefaults.use_cheirality, "With --match_pose: reject pairs behind a camera.");
+DEFINE_double(match_band_sigmas, kMatchingDefaults.band_sigmas, "With --match_pose: the band in sigmas.");
+DEFINE_double(match_location_sigma, kMatchingDefaults.location_sigma_px, "Junction location sigma, px (band, cheirality).");
 DEFINE_bool(match_topology, kMatchingDefaults.use_topology, "sigma (true) or rho (false) in rule (38).");
 
 namespace sfm {
@@ -156,11 +164,47 @@ Eigen::Matrix3d FundamentalOf(const Sequence& sequence, int i, int j, bool groun
                                  groundtruth ? *b.world_T_base_groundtruth : b.world_T_base_odometry);
 }
 
-std::vector<JunctionMatch> Match(const LoadedFrame& a, const LoadedFrame& b, const Eigen::Matrix3d& F,
+// What the matcher is given for a pair: F, and the relative pose with its uncertainty when it comes
+// from poses and --match_pose (then MatchJunctions' PairGeometry overload is used).
+struct PairInput {
+  Eigen::Matrix3d F = Eigen::Matrix3d::Zero();
+  std::optional<PairGeometry> geometry;
+  operator const Eigen::Matrix3d&() const { return F; }
+  const PairGeometry* Geometry() const { return geometry ? &*geometry : nullptr; }
+};
+
+PairInput PairInputOf(const Sequence& sequence, int i, int j, bool groundtruth) {
+  PairInput input;
+  input.F = FundamentalOf(sequence, i, j, groundtruth);
+  if (FLAGS_match_pose) {
+    const Frame& a = sequence.frames[i];
+    const Frame& b = sequence.frames[j];
+    const OdometryNoise& noise = sequence.calibration.odometry_noise;
+    // The sequence's noise model also with the true poses: the band is what the pipeline would use.
+    input.geometry = PairGeometryFromOdometry(
+        sequence.calibration.camera.K(), sequence.calibration.base_T_camera,
+        groundtruth ? *a.world_T_base_groundtruth : a.world_T_base_odometry,
+        groundtruth ? *b.world_T_base_groundtruth : b.world_T_base_odometry, noise.translation_sigma,
+        noise.rotation_sigma, std::abs(j - i));
+    input.F = input.geometry->Fundamental();
+  }
+  return input;
+}
+
+PairInput PairInputOf(const Eigen::Matrix3d& F) {
+  PairInput input;
+  input.F = F;
+  return input;
+}
+
+std::vector<JunctionMatch> Match(const LoadedFrame& a, const LoadedFrame& b, const PairInput& input,
                                  const MatchingOptions& options, double* ms = nullptr) {
   const double start = ThreadCpuMs();
   std::vector<JunctionMatch> matches =
-      MatchJunctions(a.features.junctions, a.features.graph, b.features.junctions, b.features.graph, F, options);
+      input.geometry ? MatchJunctions(a.features.junctions, a.features.graph, b.features.junctions, b.features.graph,
+                                      *input.geometry, options)
+                     : MatchJunctions(a.features.junctions, a.features.graph, b.features.junctions, b.features.graph,
+                                      input.F, options);
   if (ms) *ms = ThreadCpuMs() - start;
   return matches;
 }
@@ -384,7 +428,7 @@ struct Sweep {
   std::vector<std::vector<SweepCell>> cells;  // [R][tau2]
 };
 
-Sweep RunSweep(const LoadedFrame& a, const LoadedFrame& b, const Eigen::Matrix3d& F, const Eigen::Matrix3d& F_true,
+Sweep RunSweep(const LoadedFrame& a, const LoadedFrame& b, const PairInput& F, const Eigen::Matrix3d& F_true,
                const SameFeature& same, const MatchingOptions& base, const std::vector<double>& R_values,
                const std::vector<double>& tau2_values) {
   Sweep sweep{R_values, tau2_values, {}};
@@ -396,6 +440,7 @@ Sweep RunSweep(const LoadedFrame& a, const LoadedFrame& b, const Eigen::Matrix3d
       for (bool topology : {false, true}) {
         MatchingOptions options = base;
         options.max_epipolar_distance_px = R;
+        options.use_pose_band = false;  // the sweep is over R
         options.tau2 = tau2;
         options.use_topology = topology;
         const std::vector<JunctionMatch> matches = Match(a, b, F, options);
@@ -543,6 +588,10 @@ int main(int argc, char** argv) {
   matching.tau1 = FLAGS_match_tau1;
   matching.tau2 = FLAGS_match_tau2;
   matching.use_topology = FLAGS_match_topology;
+  matching.use_pose_band = FLAGS_match_pose_band;
+  matching.use_cheirality = FLAGS_match_cheirality;
+  matching.band_sigmas = FLAGS_match_band_sigmas;
+  matching.location_sigma_px = FLAGS_match_location_sigma;
   if (FLAGS_match_rho1 == "linear") {
     matching.rho1_kind = Rho1Kind::kLinear;
   } else if (FLAGS_match_rho1 == "exponential") {
@@ -619,7 +668,7 @@ int main(int argc, char** argv) {
     for (int k = 0; k < static_cast<int>(MissReason::kNumReasons); ++k) {
       misses << " " << MissReasonName(static_cast<MissReason>(k)) << " |";
     }
-    misses << "\n|---|---|---|---|---|---|\n";
+    misses << "\n|---|---|---|---|---|---|---|\n";
     VertexMatchCounts totals[2];
     WrongTally wrong_generated;
     for (const GeneratedData& d : generated) {
@@ -628,12 +677,13 @@ int main(int argc, char** argv) {
         std::vector<double> errors;
         for (size_t i = 0; i + 1 < d.frames.size(); ++i) {
           const int j = static_cast<int>(i) + 1;
-          const Eigen::Matrix3d F = FundamentalOf(d.sequence, i, j, use_truth);
+          const PairInput input = PairInputOf(d.sequence, i, j, use_truth);
+          const Eigen::Matrix3d& F = input.F;
           double match_ms = 0;
-          const std::vector<JunctionMatch> matches = Match(d.frames[i], d.frames[j], F, matching, &match_ms);
+          const std::vector<JunctionMatch> matches = Match(d.frames[i], d.frames[j], input, matching, &match_ms);
           const VertexMatchCounts pair_counts =
               ScoreVertexMatches(d.frames[i].features.junctions, d.frames[j].features.junctions, d.near_vertices[i],
-                                 d.near_vertices[j], matches, F, matching);
+                                 d.near_vertices[j], matches, F, matching, input.Geometry());
           counts.Add(pair_counts);
           TrueVertexEpipolarErrors(d.truth.frames[i], d.truth.frames[j], F, &errors);
           if (!use_truth) {
@@ -727,7 +777,8 @@ int main(int argc, char** argv) {
         for (int i = 0; i + gap < n; ++i) {
           const int j = i + gap;
           const Eigen::Matrix3d F_true = d.TrueF(i, j);
-          const Eigen::Matrix3d F = source == "bt.NNN.P" ? F_true : FundamentalOf(d.sequence, i, j, source == "true poses");
+          const PairInput F =
+              source == "bt.NNN.P" ? PairInputOf(F_true) : PairInputOf(d.sequence, i, j, source == "true poses");
           double match_ms = 0;
           const std::vector<JunctionMatch> matches = Match(d.frames[i], d.frames[j], F, matching, &match_ms);
           const MatchVerdicts v = JudgeMatches(MatchPairs(matches), JunctionLocations(d.frames[i].features.junctions),
@@ -774,7 +825,7 @@ int main(int argc, char** argv) {
         MatchVerdicts verdicts;
         for (int i = 0; i + 1 < n; ++i) {
           const std::vector<JunctionMatch> matches =
-              Match(d.frames[i], d.frames[i + 1], FundamentalOf(d.sequence, i, i + 1, false), matching);
+              Match(d.frames[i], d.frames[i + 1], PairInputOf(d.sequence, i, i + 1, false), matching);
           verdicts.Add(JudgeMatches(MatchPairs(matches), JunctionLocations(d.frames[i].features.junctions),
                                     JunctionLocations(d.frames[i + 1].features.junctions), d.TrueF(i, i + 1), tolerance,
                                     VggSame(d, i, i + 1)));
@@ -795,7 +846,7 @@ int main(int argc, char** argv) {
     if (vgg_a >= static_cast<int>(vgg.frames.size()) || vgg_b >= static_cast<int>(vgg.frames.size())) {
       return fail(2, "--table2_vgg_pair names a frame the VGG sequence does not have");
     }
-    const Eigen::Matrix3d F = FundamentalOf(vgg.sequence, vgg_a, vgg_b, false);
+    const PairInput F = PairInputOf(vgg.sequence, vgg_a, vgg_b, false);
     const Sweep sweep = RunSweep(vgg.frames[vgg_a], vgg.frames[vgg_b], F, vgg.TrueF(vgg_a, vgg_b), VggSame(vgg, vgg_a, vgg_b),
                                  matching, sweep_R, sweep_tau2);
     report << "\n### VGG Corridor, frames " << vgg_a << " and " << vgg_b << " ("
@@ -817,7 +868,7 @@ int main(int argc, char** argv) {
     if (gen_a >= static_cast<int>(d.frames.size()) || gen_b >= static_cast<int>(d.frames.size())) {
       return fail(2, "--table2_generated_pair names a frame " + d.name + " does not have");
     }
-    const Eigen::Matrix3d F = FundamentalOf(d.sequence, gen_a, gen_b, false);
+    const PairInput F = PairInputOf(d.sequence, gen_a, gen_b, false);
     const Eigen::Matrix3d F_true = FundamentalOf(d.sequence, gen_a, gen_b, true);
     const SameFeature same = GeneratedSame(d.near_vertices[gen_a], d.near_vertices[gen_b]);
     const Sweep sweep = RunSweep(d.frames[gen_a], d.frames[gen_b], F, F_true, same, matching, sweep_R, sweep_tau2);
@@ -876,7 +927,7 @@ int main(int argc, char** argv) {
     std::vector<double> sigma_ms, rho_ms;
     size_t fewest = SIZE_MAX, most = 0;
     for (size_t i = 0; i + 1 < frames.size(); ++i) {
-      const Eigen::Matrix3d F = FundamentalOf(sequence, i, i + 1, false);
+      const PairInput F = PairInputOf(sequence, i, i + 1, false);
       for (bool topology : {true, false}) {
         MatchingOptions options = matching;
         options.use_topology = topology;

@@ -7,12 +7,15 @@
 // Both images are undistorted (ImageUndistorter), segments, junctions and topology graphs are
 // detected, and the junctions matched (paper sections 3-4) under F from the calibration and the two
 // frames' odometry poses (FundamentalFromOdometry; --fundamental=groundtruth uses groundtruth.txt
-// instead). Writes the matches as SPEC section 3 CSV (header id_a,id_b,similarity; junction ids
-// of frame_a and frame_b) and a side-by-side PNG in the style of the paper's Fig. 6: each matched
+// instead), with the pose's uncertainty from sequence.yaml's odometry noise model
+// (PairGeometryFromOdometry: per-pair epipolar band and cheirality; --match_pose=false: F only).
+// Writes the matches as SPEC section 3 CSV (header id_a,id_b,similarity; junction ids of frame_a
+// and frame_b) and a side-by-side PNG in the style of the paper's Fig. 6: each matched
 // pair numbered, corresponding junction segments in the same colour, unmatched junctions in grey.
 // Errors are one line on stderr and a non-zero exit, with nothing written: 2 for bad flags, 1 for
 // bad input or an output that cannot be written.
 #include <chrono>
+#include <cstdlib>
 #include <cstdio>
 #include <filesystem>
 #include <string>
@@ -60,6 +63,16 @@ DEFINE_double(match_tau1, kMatchingDefaults.tau1, "tau1 of rule (38): least simi
 DEFINE_double(match_tau2, kMatchingDefaults.tau2, "tau2 of rule (38): how much the best candidate must beat the second, both ways.");
 DEFINE_string(match_rho1, kMatchingDefaults.rho1_kind == sfm::Rho1Kind::kLinear ? "linear" : "exponential",
               "rho1 of eq. (31): 'exponential' or 'linear' (footnote 10).");
+DEFINE_bool(match_pose, true,
+            "Match with the pair's pose and sequence.yaml's odometry noise (PairGeometryFromOdometry): per-pair "
+            "epipolar band and cheirality. false: F only, with the fixed R of --match_max_distance.");
+DEFINE_bool(match_pose_band, kMatchingDefaults.use_pose_band,
+            "With --match_pose: band_sigmas x the epipolar distance's spread under the pose noise, not R.");
+DEFINE_bool(match_cheirality, kMatchingDefaults.use_cheirality,
+            "With --match_pose: reject pairs that triangulate behind either camera.");
+DEFINE_double(match_band_sigmas, kMatchingDefaults.band_sigmas, "With --match_pose: width of the band in sigmas.");
+DEFINE_double(match_location_sigma, kMatchingDefaults.location_sigma_px,
+              "With --match_pose: standard deviation of a junction location, px.");
 DEFINE_bool(match_topology, kMatchingDefaults.use_topology,
             "Match on sigma (junction topology, section 4.2) rather than on plain rho (34).");
 
@@ -94,6 +107,10 @@ bool OptionsFromFlags(sfm::SegmentDetectorOptions* segments, sfm::JunctionDetect
   matching->tau1 = FLAGS_match_tau1;
   matching->tau2 = FLAGS_match_tau2;
   matching->use_topology = FLAGS_match_topology;
+  matching->use_pose_band = FLAGS_match_pose_band;
+  matching->use_cheirality = FLAGS_match_cheirality;
+  matching->band_sigmas = FLAGS_match_band_sigmas;
+  matching->location_sigma_px = FLAGS_match_location_sigma;
   if (FLAGS_match_rho1 == "exponential") {
     matching->rho1_kind = sfm::Rho1Kind::kExponential;
   } else if (FLAGS_match_rho1 == "linear") {
@@ -177,6 +194,12 @@ int main(int argc, char** argv) {
   }
   const Eigen::Matrix3d F =
       sfm::FundamentalFromOdometry(calibration.camera.K(), calibration.base_T_camera, base_a, base_b);
+  // The pose and its uncertainty from sequence.yaml's odometry noise model (also with
+  // --fundamental=groundtruth: the band is then the one the odometry would have had).
+  const sfm::PairGeometry geometry = sfm::PairGeometryFromOdometry(
+      calibration.camera.K(), calibration.base_T_camera, base_a, base_b,
+      calibration.odometry_noise.translation_sigma, calibration.odometry_noise.rotation_sigma,
+      std::abs(FLAGS_frame_b - FLAGS_frame_a));
   cv::Mat image_a, image_b;
   if (const sfm::Status s = sfm::LoadFrameImage(sequence, FLAGS_frame_a, &image_a); !s.ok()) return Fail(1, s.message());
   if (const sfm::Status s = sfm::LoadFrameImage(sequence, FLAGS_frame_b, &image_b); !s.ok()) return Fail(1, s.message());
@@ -199,7 +222,8 @@ int main(int argc, char** argv) {
   const sfm::TopologyGraph graph_b = sfm::BuildTopologyGraph(junctions_b);
   const auto matched = std::chrono::steady_clock::now();
   const std::vector<sfm::JunctionMatch> matches =
-      sfm::MatchJunctions(junctions_a, graph_a, junctions_b, graph_b, F, matching_options);
+      FLAGS_match_pose ? sfm::MatchJunctions(junctions_a, graph_a, junctions_b, graph_b, geometry, matching_options)
+                       : sfm::MatchJunctions(junctions_a, graph_a, junctions_b, graph_b, F, matching_options);
   const double detect_ms = std::chrono::duration<double, std::milli>(matched - start).count();
   const double match_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - matched).count();
 
@@ -219,8 +243,9 @@ int main(int argc, char** argv) {
     }
   }
   std::printf("match_junctions: frames %d and %d: %zu and %zu junctions, %zu matches (F from %s; %s; "
-              "detection %.1f ms, matching %.2f ms)\n",
+              "%s; detection %.1f ms, matching %.2f ms)\n",
               FLAGS_frame_a, FLAGS_frame_b, junctions_a.size(), junctions_b.size(), matches.size(),
-              FLAGS_fundamental.c_str(), matching_options.use_topology ? "sigma" : "rho", detect_ms, match_ms);
+              FLAGS_fundamental.c_str(), matching_options.use_topology ? "sigma" : "rho",
+              FLAGS_match_pose ? "pose band and cheirality" : "fixed R", detect_ms, match_ms);
   return 0;
 }

@@ -10,15 +10,13 @@
 
 namespace sfm {
 
-std::vector<JunctionMatch> MatchJunctions(const Junctions& a, const TopologyGraph& graph_a, const Junctions& b,
-                                         const TopologyGraph& graph_b, const Eigen::Matrix3d& F,
-                                         const MatchingOptions& options) {
-  const Status status = options.Check();
-  CHECK(status.ok()) << status.message();
-  CHECK(F.allFinite()) << "F:\n" << F;
+namespace {
+
+std::vector<JunctionMatch> Match(const Junctions& a, const TopologyGraph& graph_a, const Junctions& b,
+                                 const TopologyGraph& graph_b, const JunctionSimilarity& similarity,
+                                 const MatchingOptions& options) {
   const int num_a = static_cast<int>(a.size());
   const int num_b = static_cast<int>(b.size());
-  const JunctionSimilarity similarity(a, b, F, options);
   SimilarityTable table(num_a, num_b, [&similarity](int i, int j) { return similarity.Rho(i, j); });
   std::optional<TopologySimilarity> topology;
   if (options.use_topology) topology.emplace(a, graph_a, b, graph_b, &table);
@@ -35,6 +33,27 @@ std::vector<JunctionMatch> MatchJunctions(const Junctions& a, const TopologyGrap
   }
   // Step 2: the mutual test of (38).
   return SelectMatches(candidates, num_a, num_b, options.tau1, options.tau2);
+}
+
+}  // namespace
+
+std::vector<JunctionMatch> MatchJunctions(const Junctions& a, const TopologyGraph& graph_a, const Junctions& b,
+                                         const TopologyGraph& graph_b, const Eigen::Matrix3d& F,
+                                         const MatchingOptions& options) {
+  const Status status = options.Check();
+  CHECK(status.ok()) << status.message();
+  CHECK(F.allFinite()) << "F:\n" << F;
+  return Match(a, graph_a, b, graph_b, JunctionSimilarity(a, b, F, options), options);
+}
+
+std::vector<JunctionMatch> MatchJunctions(const Junctions& a, const TopologyGraph& graph_a, const Junctions& b,
+                                         const TopologyGraph& graph_b, const PairGeometry& geometry,
+                                         const MatchingOptions& options) {
+  const Status status = options.Check();
+  CHECK(status.ok()) << status.message();
+  CHECK(geometry.K.allFinite() && geometry.covariance.allFinite() && geometry.camera2_T_camera1.translation.allFinite())
+      << "PairGeometry not finite";
+  return Match(a, graph_a, b, graph_b, JunctionSimilarity(a, b, geometry, options), options);
 }
 
 }  // namespace sfm

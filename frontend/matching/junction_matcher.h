@@ -8,6 +8,7 @@
 #include "frontend/junctions/junction.h"
 #include "frontend/matching/matching_options.h"
 #include "frontend/matching/matching_rule.h"
+#include "frontend/matching/pair_geometry.h"
 
 namespace sfm {
 
@@ -18,6 +19,14 @@ namespace sfm {
 // index_a. options must pass Check() (CHECKed); the graphs must describe a and b.
 std::vector<JunctionMatch> MatchJunctions(const Junctions& a, const TopologyGraph& graph_a, const Junctions& b,
                                          const TopologyGraph& graph_b, const Eigen::Matrix3d& F,
+                                         const MatchingOptions& options);
+
+// The same with the pair's relative pose and its uncertainty (PairGeometryFromOdometry): F =
+// geometry.Fundamental(), and in place of the fixed R each pair's band is options.band_sigmas times
+// the spread of its epipolar distances under the pose covariance and the location noise; pairs
+// that triangulate behind either camera are rejected (options.use_cheirality). The pipeline's call.
+std::vector<JunctionMatch> MatchJunctions(const Junctions& a, const TopologyGraph& graph_a, const Junctions& b,
+                                         const TopologyGraph& graph_b, const PairGeometry& geometry,
                                          const MatchingOptions& options);
 
 }  // namespace sfm

@@ -39,6 +39,7 @@ JunctionSimilarity::Side JunctionSimilarity::MakeSide(const Junctions& junctions
     side.location.push_back(junction.location);
     const Eigen::Vector3d line = F * junction.location.homogeneous();
     const double norm = line.head<2>().norm();
+    side.location_line_norm.push_back(norm);
     // A location at the epipole has no epipolar line: no distance is within R of it.
     side.location_line.push_back(norm > 0 ? Eigen::Vector3d(line / norm)
                                           : Eigen::Vector3d(0, 0, std::numeric_limits<double>::infinity()));
@@ -58,7 +59,68 @@ JunctionSimilarity::JunctionSimilarity(const Junctions& a, const Junctions& b, c
       side_a_(MakeSide(a, F)),
       side_b_(MakeSide(b, F.transpose())) {}
 
+JunctionSimilarity::JunctionSimilarity(const Junctions& a, const Junctions& b, const PairGeometry& geometry,
+                                       const MatchingOptions& options)
+    : JunctionSimilarity(a, b, geometry.Fundamental(), options) {
+  has_geometry_ = true;
+  const PairGeometry inverse = InversePairGeometry(geometry);
+  for (auto [side, pose] : {std::make_pair(&side_a_, &geometry), std::make_pair(&side_b_, &inverse)}) {
+    for (const Eigen::Vector2d& location : side->location) {
+      side->parallax.push_back(ParallaxFrameOf(*pose, location));
+      side->parallax_tolerance.push_back(
+          EpipolarBand(side->parallax.back().sigma, options.location_sigma_px, options.band_sigmas));
+    }
+  }
+  Eigen::Matrix3d G[6];
+  geometry.FundamentalDeviations(G);
+  side_a_.deviation.reserve(a.size());
+  // sigma_e = |(G p0)^T p'0| is convex in p'0, so over the bounding box of b's locations it is
+  // largest at a corner: a bound for the cheap rejection in Rho.
+  Eigen::Vector2d low = Eigen::Vector2d::Constant(std::numeric_limits<double>::infinity());
+  Eigen::Vector2d high = -low;
+  for (const Eigen::Vector2d& location : side_b_.location) {
+    low = low.cwiseMin(location);
+    high = high.cwiseMax(location);
+  }
+  for (const Junction& junction : a) {
+    Eigen::Matrix<double, 3, 6> deviation;
+    for (int k = 0; k < 6; ++k) deviation.col(k) = G[k] * junction.location.homogeneous();
+    side_a_.deviation.push_back(deviation);
+    double sigma_e = 0;
+    if (!b.empty()) {
+      for (const Eigen::Vector2d corner : {low, high, Eigen::Vector2d(low.x(), high.y()), Eigen::Vector2d(high.x(), low.y())}) {
+        sigma_e = std::max(sigma_e, (deviation.transpose() * corner.homogeneous()).norm());
+      }
+    }
+    const double norm = side_a_.location_line_norm[side_a_.deviation.size() - 1];
+    side_a_.deviation_bound.push_back(norm > 0 ? sigma_e / norm : std::numeric_limits<double>::infinity());
+  }
+}
+
+JunctionSimilarity::Bands JunctionSimilarity::BandsOf(int index_a, int index_b) const {
+  Bands bands;
+  if (!has_geometry_ || !options_.use_pose_band) {
+    bands.in_image1 = bands.in_image2 = options_.max_epipolar_distance_px;
+    return bands;
+  }
+  // Residual e = x2^T F x1 and its pose sigma; d' = |e| / |F x1|_xy, d = |e| / |F^T x2|_xy.
+  const double sigma_e =
+      (side_a_.deviation[index_a].transpose() * side_b_.location[index_b].homogeneous()).norm();
+  const double norm_a = side_a_.location_line_norm[index_a];
+  const double norm_b = side_b_.location_line_norm[index_b];
+  const double infinity = std::numeric_limits<double>::infinity();
+  bands.in_image2 = EpipolarBand(norm_a > 0 ? sigma_e / norm_a : infinity, options_.location_sigma_px,
+                                 options_.band_sigmas);
+  bands.in_image1 = EpipolarBand(norm_b > 0 ? sigma_e / norm_b : infinity, options_.location_sigma_px,
+                                 options_.band_sigmas);
+  return bands;
+}
+
 std::optional<double> JunctionSimilarity::M(int index_a, int index_b, int shift) const {
+  return M(index_a, index_b, shift, BandsOf(index_a, index_b));
+}
+
+std::optional<double> JunctionSimilarity::M(int index_a, int index_b, int shift, const Bands& bands) const {
   const int n = side_a_.count[index_a];
   CHECK_EQ(n, side_b_.count[index_b]);
   const int first_a = side_a_.first[index_a];
@@ -70,7 +132,6 @@ std::optional<double> JunctionSimilarity::M(int index_a, int index_b, int shift)
       !KeepsCyclicOrder(directions_a, directions_b, n, shift, min_sin_)) {
     return std::nullopt;
   }
-  const double R = options_.max_epipolar_distance_px;
   double sum = 0;
   for (int i = 0; i < n; ++i) {
     const int ia = first_a + i;
@@ -78,17 +139,28 @@ std::optional<double> JunctionSimilarity::M(int index_a, int index_b, int shift)
     const OrientedSegment& segment = side_a_.segments[ia];
     const OrientedSegment& partner = side_b_.segments[ib];
     const std::optional<double> h = EndpointSupport(
-        TransferSegment(segment, side_a_.epipolar[ia], partner, options_.parallel_tolerance_px, R),
+        TransferSegment(segment, side_a_.epipolar[ia], partner, options_.parallel_tolerance_px, bands.in_image2),
         options_.endpoint_model);
     if (!h) return std::nullopt;
     // H': from image 2 to image 1, F^T, the roles swapped.
     const std::optional<double> h_prime = EndpointSupport(
-        TransferSegment(partner, side_b_.epipolar[ib], segment, options_.parallel_tolerance_px, R),
+        TransferSegment(partner, side_b_.epipolar[ib], segment, options_.parallel_tolerance_px, bands.in_image1),
         options_.endpoint_model);
     if (!h_prime) return std::nullopt;
     sum += *h * *h_prime;
   }
   return sum / n;
+}
+
+bool JunctionSimilarity::PassesCheirality(int index_a, int index_b) const {
+  if (!has_geometry_ || !options_.use_cheirality) return true;
+  // sfm::PassesCheirality with each location's part computed once.
+  const Eigen::Vector2d& x1 = side_a_.location[index_a];
+  const Eigen::Vector2d& x2 = side_b_.location[index_b];
+  const ParallaxFrame& forward = side_a_.parallax[index_a];
+  if (forward.tested && (x2 - forward.v).dot(forward.direction) < -side_a_.parallax_tolerance[index_a]) return false;
+  const ParallaxFrame& backward = side_b_.parallax[index_b];
+  return !(backward.tested && (x1 - backward.v).dot(backward.direction) < -side_b_.parallax_tolerance[index_b]);
 }
 
 PairSimilarity JunctionSimilarity::Rho(int index_a, int index_b) const {
@@ -97,21 +169,31 @@ PairSimilarity JunctionSimilarity::Rho(int index_a, int index_b) const {
   if (n != side_b_.count[index_b] || n == 0) return result;
   // d' of p'0 from the line of p0, d of p0 from the line of p'0 (lines normalised): the cheap test
   // that rejects nearly every pair.
-  const double R = options_.max_epipolar_distance_px;
   const double d_prime = std::abs(side_a_.location_line[index_a].dot(side_b_.location[index_b].homogeneous()));
-  if (!(d_prime <= R)) return result;
+  if (has_geometry_ && options_.use_pose_band) {
+    // Cheap rejection first, with the largest sigma_d' over b's locations.
+    const double bound =
+        EpipolarBand(side_a_.deviation_bound[index_a], options_.location_sigma_px, options_.band_sigmas);
+    if (!(d_prime <= bound)) return result;
+  }
+  const Bands bands = BandsOf(index_a, index_b);
+  if (!(d_prime <= bands.in_image2)) return result;
   const double d = std::abs(side_b_.location_line[index_b].dot(side_a_.location[index_a].homogeneous()));
-  if (!(d <= R)) return result;
+  if (!(d <= bands.in_image1)) return result;
+  if (!PassesCheirality(index_a, index_b)) return result;
   double rho2 = 0;
   for (int shift = 0; shift < n; ++shift) {
-    const std::optional<double> m = M(index_a, index_b, shift);
+    const std::optional<double> m = M(index_a, index_b, shift, bands);
     if (m && (result.shift < 0 || *m > rho2)) {
       rho2 = *m;
       result.shift = shift;
     }
   }
   if (result.shift < 0) return result;
-  result.rho = 0.5 * (Rho1(d, d_prime, R, options_.rho1_kind) + rho2);
+  // With a fixed R this is (31) as written; with per-pair bands the same in units of each band.
+  const double rho1 = has_geometry_ && options_.use_pose_band ? Rho1(d / bands.in_image1, d_prime / bands.in_image2, 1.0, options_.rho1_kind)
+                                : Rho1(d, d_prime, options_.max_epipolar_distance_px, options_.rho1_kind);
+  result.rho = 0.5 * (rho1 + rho2);
   return result;
 }
 

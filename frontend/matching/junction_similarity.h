@@ -10,6 +10,7 @@
 #include "frontend/junctions/junction.h"
 #include "frontend/matching/epipolar_transfer.h"
 #include "frontend/matching/matching_options.h"
+#include "frontend/matching/pair_geometry.h"
 
 namespace sfm {
 
@@ -34,6 +35,10 @@ class JunctionSimilarity {
   // x2^T F x1 = 0 for x1 in the image of `a`, x2 in that of `b`.
   JunctionSimilarity(const Junctions& a, const Junctions& b, const Eigen::Matrix3d& F,
                      const MatchingOptions& options);
+  // F = geometry.Fundamental(); each pair's band from the pose covariance instead of R, and the
+  // cheirality test where options.use_cheirality (docs/matching.md, "Pose uncertainty").
+  JunctionSimilarity(const Junctions& a, const Junctions& b, const PairGeometry& geometry,
+                     const MatchingOptions& options);
 
   // Eq. (34): rho = 0.5 (rho1 + rho2), rho2 = max_k M(k) (33) over the shifts allowed.
   PairSimilarity Rho(int index_a, int index_b) const;
@@ -42,13 +47,29 @@ class JunctionSimilarity {
   // shift violates (36) or (37) or a segment pairing fails (17); the segment counts must agree.
   std::optional<double> M(int index_a, int index_b, int shift) const;
 
+  // The largest d (image 1) and d' (image 2) the pair may have: R, or the pose band.
+  struct Bands {
+    double in_image1 = 0;
+    double in_image2 = 0;
+  };
+  Bands BandsOf(int index_a, int index_b) const;
+  // The cheirality test of the pair's locations (true without geometry or with use_cheirality off).
+  bool PassesCheirality(int index_a, int index_b) const;
+
  private:
+  std::optional<double> M(int index_a, int index_b, int shift, const Bands& bands) const;
+
   // One image's junctions: segments of junction j at [first[j], first[j] + count[j]).
   struct Side {
     std::vector<int> first;
     std::vector<int> count;
     std::vector<Eigen::Vector2d> location;       // p0
     std::vector<Eigen::Vector3d> location_line;  // epipolar line of p0 in the other image, |(a,b)| = 1
+    std::vector<double> location_line_norm;      // |(a,b)| of F p0 before normalising
+    std::vector<Eigen::Matrix<double, 3, 6>> deviation;  // image 1 only, with geometry: G_k p0
+    std::vector<ParallaxFrame> parallax;  // with geometry: the cheirality test of each location
+    std::vector<double> parallax_tolerance;  // band_sigmas sqrt(sigma_v^2 + 2 location_sigma^2)
+    std::vector<double> deviation_bound;  // image 1 only: the largest sigma_d' over image 2's locations
     std::vector<OrientedSegment> segments;
     std::vector<Eigen::Vector2d> directions;      // segments[k].direction, contiguous for (36)-(37)
     std::vector<EndpointEpipolar> epipolar;       // of each end-point, into the other image
@@ -56,6 +77,7 @@ class JunctionSimilarity {
   static Side MakeSide(const Junctions& junctions, const Eigen::Matrix3d& F);
 
   MatchingOptions options_;
+  bool has_geometry_ = false;
   double min_sin_;  // sin(options.cyclic_order_min_angle_deg)
   Side side_a_;     // lines through F
   Side side_b_;     // lines through F^T

@@ -39,6 +39,18 @@ struct MatchingOptions {
   // tested. Degrees, in [0, 45).
   double cyclic_order_min_angle_deg = 5.0;
 
+  // Used only when MatchJunctions is given the pair's pose and its uncertainty (PairGeometry).
+  // use_pose_band: the search band of each pair replaces R (false: R as without the pose): band_sigmas * sqrt(sigma_pose^2 + 2
+  // location_sigma_px^2) in each image, sigma_pose the spread of that epipolar distance under the
+  // pose covariance at the two locations (and rho1 uses d / band in place of d / R). Unitless, > 0.
+  bool use_pose_band = true;
+  double band_sigmas = 3.0;
+  // Standard deviation of a junction location, pixels, >= 0 (band and cheirality tolerance).
+  double location_sigma_px = 0.5;
+  // Reject pairs whose triangulation lies behind camera 1 or 2 by more than band_sigmas of the
+  // parallax's uncertainty (PassesCheirality).
+  bool use_cheirality = true;
+
   Status Check() const {
     auto bad = [](const std::string& what) { return Status::Error("MatchingOptions: " + what); };
     if (!(max_epipolar_distance_px > 0 && std::isfinite(max_epipolar_distance_px))) {
@@ -52,6 +64,10 @@ struct MatchingOptions {
     }
     if (!(cyclic_order_min_angle_deg >= 0 && cyclic_order_min_angle_deg < 45)) {
       return bad("cyclic_order_min_angle_deg must be in [0, 45)");
+    }
+    if (!(band_sigmas > 0 && std::isfinite(band_sigmas))) return bad("band_sigmas must be finite and > 0");
+    if (!(location_sigma_px >= 0 && std::isfinite(location_sigma_px))) {
+      return bad("location_sigma_px must be finite and >= 0");
     }
     return Status::Ok();
   }

@@ -201,7 +201,8 @@ int SameTrueVertex(const std::vector<int>& near_a, const std::vector<int>& near_
 const char* MissReasonName(MissReason reason) {
   switch (reason) {
     case MissReason::kSegmentCount: return "different segment counts";
-    case MissReason::kEpipolar: return "d or d' > R";
+    case MissReason::kEpipolar: return "d or d' > R (or the pose band)";
+    case MissReason::kCheirality: return "behind a camera (cheirality)";
     case MissReason::kNoShift: return "no shift passes (17), (36), (37)";
     case MissReason::kRule: return "rho > 0, lost in rule (38)";
     case MissReason::kNumReasons: break;
@@ -223,7 +224,8 @@ void VertexMatchCounts::Add(const VertexMatchCounts& o) {
 
 VertexMatchCounts ScoreVertexMatches(const Junctions& a, const Junctions& b, const std::vector<std::vector<int>>& near_a,
                                      const std::vector<std::vector<int>>& near_b, const std::vector<JunctionMatch>& matches,
-                                     const Eigen::Matrix3d& F, const MatchingOptions& options) {
+                                     const Eigen::Matrix3d& F, const MatchingOptions& options,
+                                     const PairGeometry* geometry) {
   CHECK_EQ(near_a.size(), a.size());
   CHECK_EQ(near_b.size(), b.size());
   VertexMatchCounts c;
@@ -250,8 +252,8 @@ VertexMatchCounts ScoreVertexMatches(const Junctions& a, const Junctions& b, con
   for (size_t i = 0; i < b.size(); ++i) {
     for (int v : near_b[i]) at_b[v].push_back(static_cast<int>(i));
   }
-  const JunctionSimilarity similarity(a, b, F, options);
-  const double R = options.max_epipolar_distance_px;
+  const JunctionSimilarity similarity =
+      geometry ? JunctionSimilarity(a, b, *geometry, options) : JunctionSimilarity(a, b, F, options);
   for (const auto& [vertex, list_a] : at_a) {
     const auto it = at_b.find(vertex);
     if (it == at_b.end()) continue;
@@ -273,9 +275,12 @@ VertexMatchCounts ScoreVertexMatches(const Junctions& a, const Junctions& b, con
         MissReason reason;
         if (a[ia].NumSegments() != b[ib].NumSegments()) {
           reason = MissReason::kSegmentCount;
-        } else if (PointLineDistance(EpipolarLineInImage2(F, a[ia].location), b[ib].location) > R ||
-                   PointLineDistance(EpipolarLineInImage1(F, b[ib].location), a[ia].location) > R) {
+        } else if (const JunctionSimilarity::Bands bands = similarity.BandsOf(ia, ib);
+                   PointLineDistance(EpipolarLineInImage2(F, a[ia].location), b[ib].location) > bands.in_image2 ||
+                   PointLineDistance(EpipolarLineInImage1(F, b[ib].location), a[ia].location) > bands.in_image1) {
           reason = MissReason::kEpipolar;
+        } else if (!similarity.PassesCheirality(ia, ib)) {
+          reason = MissReason::kCheirality;
         } else if (!similarity.Rho(ia, ib).Matched()) {
           reason = MissReason::kNoShift;
         } else {

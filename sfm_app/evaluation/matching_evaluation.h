@@ -108,7 +108,8 @@ int SameTrueVertex(const std::vector<int>& near_a, const std::vector<int>& near_
 // its two junctions nearest the vertex.
 enum class MissReason {
   kSegmentCount,   // the two junctions have different numbers of segments: never candidates
-  kEpipolar,       // d or d' > R
+  kEpipolar,       // d or d' > R (or the pair's pose band)
+  kCheirality,     // triangulates behind a camera (PairGeometry given, use_cheirality)
   kNoShift,        // no segment correspondence passes (17), (36) and (37): rho = 0
   kRule,           // rho > 0, lost in rule (38): another candidate better, or not by tau2
   kNumReasons
@@ -129,10 +130,12 @@ struct VertexMatchCounts {
 };
 
 // Scores the matches of one pair of generated frames; near_a, near_b from TrueVerticesNearJunctions.
-// F and options are those the matches were made with (for the reasons of misses).
+// F (or geometry, when not null: F = geometry->Fundamental()) and options are those the matches
+// were made with (for the reasons of misses).
 VertexMatchCounts ScoreVertexMatches(const Junctions& a, const Junctions& b, const std::vector<std::vector<int>>& near_a,
                                      const std::vector<std::vector<int>>& near_b, const std::vector<JunctionMatch>& matches,
-                                     const Eigen::Matrix3d& F, const MatchingOptions& options);
+                                     const Eigen::Matrix3d& F, const MatchingOptions& options,
+                                     const PairGeometry* geometry = nullptr);
 
 // ---- VGG Corridor ground truth -----------------------------------------------------------------
 
