@@ -315,7 +315,7 @@ cv::Mat Plot::Render() const {
       }
     }
   }
-  if (y_lo < 0 && y_hi > 0) {  // the zero line, when the range crosses it
+  if (!equal_aspect_ && y_lo < 0 && y_hi > 0) {  // the zero line of a graph (not of a map) that crosses it
     const int py = cvRound(to_px(0, 0).y);
     cv::line(canvas, cv::Point(area.x, py), cv::Point(area.br().x - 1, py), colour::kGrey, 1);
   }
@@ -349,7 +349,7 @@ cv::Mat Plot::Render() const {
   }
   if (!entries.empty()) {
     const int row = 18, sample = 26;
-    const cv::Size box(legend_text + sample + 22, static_cast<int>(entries.size()) * row + 8);
+    const cv::Size box(legend_text + sample + 24, static_cast<int>(entries.size()) * row + 8);
     const cv::Point corners[] = {
         {area.br().x - box.width - 8, area.y + 8}, {area.x + 8, area.y + 8},
         {area.br().x - box.width - 8, area.br().y - box.height - 8}, {area.x + 8, area.br().y - box.height - 8}};
@@ -379,7 +379,7 @@ cv::Mat Plot::Render() const {
           cv::rectangle(canvas, cv::Rect(a.x + 6, y - 6, sample - 12, 12), s.colour, cv::FILLED);
           break;
       }
-      PutText(&canvas, s.label, cv::Point(b.x + 8, y), Align::kLeft, kTickFont);
+      PutText(&canvas, s.label, cv::Point(b.x + 10, y), Align::kLeft, kTickFont);
     }
   }
   return canvas;

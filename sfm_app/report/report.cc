@@ -178,8 +178,9 @@ std::string TrajectorySection(const Context& c) {
   figure.SetXLabel(std::string(kAxisName[a]) + " [m]");
   figure.SetYLabel(std::string(kAxisName[b]) + " [m]");
   figure.SetEqualAspect(true);
+  // Ground truth as a wide grey band under the estimates, so that an estimate on top of it still shows both.
   if (c.truth) figure.AddLine(Coordinate(*r.world_T_camera_truth, a), Coordinate(*r.world_T_camera_truth, b),
-                              colour::kBlack, "ground truth", 2);
+                              colour::kGrey, "ground truth", 6);
   figure.AddLine(Coordinate(r.world_T_camera_odometry, a), Coordinate(r.world_T_camera_odometry, b), colour::kOrange,
                  "odometry", 2);
   if (c.refined) figure.AddLine(Coordinate(r.world_T_camera_refined, a), Coordinate(r.world_T_camera_refined, b),
@@ -347,10 +348,10 @@ cv::Mat WireframeView(const Context& c, int h, int v, const std::string& title) 
   figure.SetXLabel(std::string(kAxisName[h]) + " [m]");
   figure.SetYLabel(std::string(kAxisName[v]) + " [m]");
   figure.SetEqualAspect(true);
+  figure.AddLine(Coordinate(cameras, h), Coordinate(cameras, v), colour::kOrange,
+                 c.refined ? "cameras (refined)" : "cameras (odometry)", 2);  // first: the map is drawn over it
   figure.AddSegments(segments, colour::kBlue, "3D lines", 1);
   figure.AddMarkers(px, py, colour::kVermillion, "3D points", 2);
-  figure.AddLine(Coordinate(cameras, h), Coordinate(cameras, v), colour::kOrange,
-                 c.refined ? "cameras (refined)" : "cameras (odometry)", 2);
   // The range of the bulk of the map (2 % to 98 %, widened by a tenth) and the cameras, so that a
   // few far-off end-points do not shrink everything else; what lies outside is clipped.
   auto range = [&](const std::vector<double>& values, int axis, double* lo, double* hi) {
