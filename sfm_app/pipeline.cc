@@ -9,11 +9,11 @@
 #include "backend/bundle_adjustment/bundle_adjuster.h"
 #include "backend/metrics/drift.h"
 #include "backend/triangulation/triangulate_tracks.h"
-#include "frontend/geometry/epipolar.h"
 #include "frontend/geometry/image_undistorter.h"
 #include "frontend/junctions/junction_detector.h"
 #include "frontend/junctions/topology.h"
 #include "frontend/matching/junction_matcher.h"
+#include "frontend/matching/pair_geometry.h"
 #include "frontend/sequence/sequence.h"
 #include "frontend/tracks/tracks.h"
 #include "frontend/util/atomic_file.h"
@@ -57,7 +57,8 @@ void DetectJunctionsOfAllFrames(const Sequence& sequence, const std::vector<cv::
 }
 
 // Paper sections 3-4 on every consecutive pair and every pair two apart (so a junction missed in
-// one frame does not break its track), F from the calibration and the odometry.
+// one frame does not break its track), F from the calibration and the odometry, the search band
+// from the odometry noise model.
 void MatchFramePairs(const Sequence& sequence, const PipelineOptions& options, Progress* progress,
                      PipelineResult* result) {
   const Calibration& calibration = sequence.calibration;
@@ -65,14 +66,16 @@ void MatchFramePairs(const Sequence& sequence, const PipelineOptions& options, P
   for (size_t p = 0; p < pairs.size(); ++p) {
     progress->Update("matching", "pair", static_cast<int>(p) + 1, static_cast<int>(pairs.size()));
     const auto [a, b] = pairs[p];
-    const Eigen::Matrix3d F =
-        FundamentalFromOdometry(calibration.camera.K(), calibration.base_T_camera,
-                                sequence.frames[a].world_T_base_odometry, sequence.frames[b].world_T_base_odometry);
+    // F and its uncertainty from the two odometry poses and the noise model of sequence.yaml.
+    const PairGeometry geometry = PairGeometryFromOdometry(
+        calibration.camera.K(), calibration.base_T_camera, sequence.frames[a].world_T_base_odometry,
+        sequence.frames[b].world_T_base_odometry, calibration.odometry_noise.translation_sigma,
+        calibration.odometry_noise.rotation_sigma, b - a);
     FramePairMatches matches;
     matches.frame_a = a;
     matches.frame_b = b;
     matches.matches = MatchJunctions(result->junctions[a], result->graphs[a], result->junctions[b],
-                                     result->graphs[b], F, options.matching);
+                                     result->graphs[b], geometry, options.matching);
     result->pairs.push_back(std::move(matches));
   }
   progress->Finish();

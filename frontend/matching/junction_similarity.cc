@@ -88,7 +88,7 @@ JunctionSimilarity::JunctionSimilarity(const Junctions& a, const Junctions& b, c
     side_a_.deviation.push_back(deviation);
     double sigma_e = 0;
     if (!b.empty()) {
-      for (const Eigen::Vector2d corner : {low, high, Eigen::Vector2d(low.x(), high.y()), Eigen::Vector2d(high.x(), low.y())}) {
+      for (const Eigen::Vector2d& corner : {low, high, Eigen::Vector2d(low.x(), high.y()), Eigen::Vector2d(high.x(), low.y())}) {
         sigma_e = std::max(sigma_e, (deviation.transpose() * corner.homogeneous()).norm());
       }
     }
