@@ -19,6 +19,7 @@
 #include "frontend/util/atomic_file.h"
 #include "frontend/util/progress.h"
 #include "sfm_app/pipeline_outputs.h"
+#include "sfm_app/report/report.h"
 
 namespace sfm {
 namespace {
@@ -180,6 +181,7 @@ Status RunPipeline(const PipelineOptions& options, PipelineResult* result_out) {
   // 3. Outputs.
   result.times.total = SecondsSince(start);
   SFM_RETURN_IF_ERROR(WriteOutputs(sequence, result, options.output_dir));
+  SFM_RETURN_IF_ERROR(WriteReport(sequence, result, /*undistorted_images_or_empty=*/{}, options.output_dir));
   LOG(INFO) << "time: frontend " << result.times.frontend << " s, matching " << result.times.matching
             << " s, backend " << result.times.backend << " s, total " << result.times.total << " s";
   if (result_out) *result_out = std::move(result);
