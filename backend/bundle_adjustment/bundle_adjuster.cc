@@ -102,7 +102,7 @@ class BundleAdjuster {
     summary_->frames = static_cast<int>(poses_.size());
     DropUnusableObservations();
     RemoveLandmarksWithFewViews();
-    DropUnobservableLandmarks();
+    DropUnobservableLandmarks(/*refined=*/false);
     summary_->points = static_cast<int>(landmarks_->points.size());
     summary_->lines = static_cast<int>(landmarks_->lines.size());
     summary_->observations = CountObservations();
@@ -125,13 +125,13 @@ class BundleAdjuster {
     if (landmarks_->points.empty()) SFM_RETURN_IF_ERROR(Solve(coarse_scale_px, /*with_lines=*/true));
     RemoveOutliers(std::max(coarse_scale_px, options_.outlier_threshold_px));
     RemoveLandmarksWithFewViews();
-    DropUnobservableLandmarks();
+    DropUnobservableLandmarks(/*refined=*/true);
     if (CountObservations() == 0) return RevertToOdometry("no landmark left observable on the refined poses");
     SFM_RETURN_IF_ERROR(Solve(options_.robust_loss_scale_px, /*with_lines=*/true));
     for (int round = 0; round < options_.outlier_rounds; ++round) {
       const int outliers = RemoveOutliers(options_.outlier_threshold_px);
       RemoveLandmarksWithFewViews();
-      const int unobservable = DropUnobservableLandmarks();
+      const int unobservable = DropUnobservableLandmarks(/*refined=*/true);
       if (outliers + unobservable == 0) break;
       if (CountObservations() == 0) return RevertToOdometry("every landmark was removed after solving");
       SFM_RETURN_IF_ERROR(Solve(options_.robust_loss_scale_px, /*with_lines=*/true));
@@ -239,34 +239,51 @@ class BundleAdjuster {
   }
 
   template <typename Observations>
-  std::vector<Eigen::Vector3d> CameraCentres(const Observations& observations) const {
-    std::vector<Eigen::Vector3d> centres;
+  std::vector<Pose3> CameraPoses(const Observations& observations) const {
+    std::vector<Pose3> cameras;
     for (const auto& observation : observations) {
-      const Pose3 world_T_camera = poses_[observation.frame].ToPose() * base_T_camera_;
-      centres.push_back(world_T_camera.translation);
+      cameras.push_back(poses_[observation.frame].ToPose() * base_T_camera_);
     }
+    return cameras;
+  }
+  static std::vector<Eigen::Vector3d> Centres(const std::vector<Pose3>& cameras) {
+    std::vector<Eigen::Vector3d> centres;
+    for (const Pose3& camera : cameras) centres.push_back(camera.translation);
     return centres;
   }
 
-  // Returns the number of landmarks dropped.
-  int DropUnobservableLandmarks() {
+  // Returns the number of landmarks dropped. `refined`: the landmarks and poses have been solved
+  // for, so the depth floor applies too. Not before the first solve: landmarks triangulated on
+  // drifting odometry can start within min_depth_m of a camera (or behind it) and be fine after
+  // it (the triangulation already held them to the floor on the odometry's poses).
+  int DropUnobservableLandmarks(bool refined) {
     const auto [points, lines] = RemoveLandmarks(
         [&](const PointLandmark& point) {
-          return PointTriangulationAngleDeg(point.position, CameraCentres(point.observations)) >=
-                 options_.min_point_triangulation_angle_deg;
+          const std::vector<Pose3> cameras = CameraPoses(point.observations);
+          return (!refined || SmallestDepth({point.position}, cameras) >= options_.min_depth_m) &&
+                 PointTriangulationAngleDeg(point.position, Centres(cameras)) >=
+                     options_.min_point_triangulation_angle_deg;
         },
         [&](const LineLandmark& line) {
+          const std::vector<Pose3> cameras = CameraPoses(line.observations);
+          for (size_t i = 0; refined && i < cameras.size(); ++i) {
+            const LineObservation& observation = line.observations[i];
+            if (!(ObservedLineDepth(K_, cameras[i], observation.p0, observation.p1, line.point,
+                                    line.direction) >= options_.min_depth_m)) {
+              return false;
+            }
+          }
           // The estimate of a degenerate line can be anywhere (its triangulation has no unique
           // solution), so the planes of its image lines must also meet at a large enough angle.
           std::vector<Eigen::Vector3d> normals;
-          for (const LineObservation& observation : line.observations) {
-            const Eigen::Matrix3d world_R_camera =
-                (poses_[observation.frame].ToPose() * base_T_camera_).RotationMatrix();
-            normals.push_back(BackProjectedPlaneNormal(K_, world_R_camera, observation.p0, observation.p1));
+          for (size_t i = 0; i < line.observations.size(); ++i) {
+            const LineObservation& observation = line.observations[i];
+            normals.push_back(BackProjectedPlaneNormal(K_, cameras[i].RotationMatrix(), observation.p0,
+                                                       observation.p1));
           }
-          const double angle_deg = std::min(
-              LineTriangulationAngleDeg(line.point, line.direction, CameraCentres(line.observations)),
-              LargestPlaneAngleDeg(normals));
+          const double angle_deg =
+              std::min(LineTriangulationAngleDeg(line.point, line.direction, Centres(cameras)),
+                       LargestPlaneAngleDeg(normals));
           return angle_deg >= options_.min_line_triangulation_angle_deg;
         });
     summary_->points_unobservable += points;

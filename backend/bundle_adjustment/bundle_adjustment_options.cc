@@ -27,6 +27,7 @@ Status BundleAdjustmentOptions::Check() const {
   if (!(min_line_triangulation_angle_deg >= 0 && min_line_triangulation_angle_deg < 90)) {
     return error("min_line_triangulation_angle_deg must be in [0, 90) deg");
   }
+  if (!(min_depth_m >= 0 && std::isfinite(min_depth_m))) return error("min_depth_m must be >= 0 m");
   return Status::Ok();
 }
 

@@ -33,6 +33,13 @@ struct BundleAdjustmentOptions {
   double odometry_min_distance_m = 0.05;
   double min_point_triangulation_angle_deg = 1.0;  // deg, points with less are dropped before solving
   double min_line_triangulation_angle_deg = 2.0;   // deg, lines with less are dropped (unobservable)
+  // m, a point less deep than this in a camera that observes it, or a line whose points seen at
+  // an observation's p0 or p1 are (ObservedLineDepth), is dropped as unobservable, on the refined
+  // poses and landmarks (not before the first solve, see DropUnobservableLandmarks). As the triangulation's
+  // min_depth_m: twice the generator's 0.05 m near plane. A landmark of a view pair without
+  // baseline is intersected next to the camera centre, where the triangulation angles above see
+  // any baseline as large.
+  double min_depth_m = 0.1;
 
   // An error naming the first bad field, or OK.
   Status Check() const;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace sfm {
 namespace {
@@ -23,6 +24,35 @@ double LargestAngleDeg(const std::vector<Eigen::Vector3d>& vectors, bool as_line
 }
 
 }  // namespace
+
+double SmallestDepth(const std::vector<Eigen::Vector3d>& points, const std::vector<Pose3>& world_T_camera) {
+  double smallest = std::numeric_limits<double>::infinity();
+  for (const Pose3& pose : world_T_camera) {
+    const Pose3 camera_T_world = pose.Inverse();
+    for (const Eigen::Vector3d& point : points) smallest = std::min(smallest, (camera_T_world * point).z());
+  }
+  return smallest;
+}
+
+double ObservedLineDepth(const Eigen::Matrix3d& K, const Pose3& world_T_camera, const Eigen::Vector2d& p0,
+                         const Eigen::Vector2d& p1, const Eigen::Vector3d& point,
+                         const Eigen::Vector3d& direction) {
+  const Eigen::Vector3d d = direction.normalized();
+  const Eigen::Vector3d w = world_T_camera.translation - point;
+  const Pose3 camera_T_world = world_T_camera.Inverse();
+  const Eigen::Matrix3d K_inverse = K.inverse();
+  double smallest = std::numeric_limits<double>::infinity();
+  for (const Eigen::Vector2d* pixel : {&p0, &p1}) {
+    // Closest points of the ray and the line: s along the line from `point`.
+    const Eigen::Vector3d ray = (world_T_camera.rotation * (K_inverse * pixel->homogeneous())).normalized();
+    const double cos_angle = ray.dot(d);
+    const double sin_squared = 1 - cos_angle * cos_angle;
+    if (!(sin_squared > 1e-18)) continue;
+    const double s = (d.dot(w) - cos_angle * ray.dot(w)) / sin_squared;
+    smallest = std::min(smallest, (camera_T_world * (point + s * d)).z());
+  }
+  return smallest;
+}
 
 double PointTriangulationAngleDeg(const Eigen::Vector3d& point,
                                   const std::vector<Eigen::Vector3d>& camera_centres) {

@@ -10,7 +10,24 @@
 #include <Eigen/Geometry>
 #include <vector>
 
+#include "frontend/geometry/pose.h"
+
 namespace sfm {
+
+// The smallest depth (z in the camera frame, metres) of any of `points` in any of the cameras;
+// +infinity with no point or no camera. A landmark too close to a camera that sees it is as
+// undetermined as one without parallax: with (nearly) coincident centres, its triangulation lands
+// next to them, where the triangulation angles below are large.
+double SmallestDepth(const std::vector<Eigen::Vector3d>& points, const std::vector<Pose3>& world_T_camera);
+
+// The smaller depth (z in the camera frame, metres) of the points of the line (`point`,
+// `direction`) that the camera sees at the undistorted pixels p0 and p1: each the point of the
+// line nearest to the pixel's viewing ray (a ray within 1e-9 rad of parallel to the line is
+// skipped; +infinity when both are). The part of the line the view observes, not the stored
+// segment's ends, which other views may extend behind this camera.
+double ObservedLineDepth(const Eigen::Matrix3d& K, const Pose3& world_T_camera, const Eigen::Vector2d& p0,
+                         const Eigen::Vector2d& p1, const Eigen::Vector3d& point,
+                         const Eigen::Vector3d& direction);
 
 // The largest angle between the viewing rays of two camera centres onto `point` (degrees,
 // [0, 180]); 0 with fewer than two centres. A centre at the point contributes no ray.

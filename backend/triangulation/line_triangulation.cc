@@ -25,6 +25,11 @@ std::optional<double> BackProjectOntoLine(const Eigen::Matrix3d& K, const Pose3&
   return (line.direction.dot(w) - cos_angle * ray.dot(w)) / sin_squared;
 }
 
+double DistanceToLine(const Eigen::Vector3d& x, const Line3& line) {
+  const Eigen::Vector3d offset = x - line.point;
+  return (offset - line.direction.dot(offset) * line.direction).norm();
+}
+
 double Median(std::vector<double> values) {
   const size_t half = values.size() / 2;
   std::nth_element(values.begin(), values.begin() + half, values.end());
@@ -48,6 +53,8 @@ const char* LineStatusName(LineStatus status) {
       return "no_extent";
     case LineStatus::kBehindCamera:
       return "behind_camera";
+    case LineStatus::kTooClose:
+      return "too_close";
   }
   return "unknown";
 }
@@ -69,6 +76,21 @@ double MaxPlaneAngle(const std::vector<Eigen::Vector4d>& planes) {
       const Eigen::Vector3d a = planes[i].head<3>();
       const Eigen::Vector3d b = planes[j].head<3>();
       largest = std::max(largest, std::atan2(a.cross(b).norm(), std::abs(a.dot(b))));
+    }
+  }
+  return largest;
+}
+
+double MaxCentreSpreadAngle(const std::vector<Eigen::Vector4d>& planes,
+                            const std::vector<Eigen::Vector3d>& centres, const Line3& line) {
+  CHECK_EQ(planes.size(), centres.size());
+  double largest = 0;
+  for (const Eigen::Vector3d& centre : centres) {
+    const double distance = DistanceToLine(centre, line);
+    for (const Eigen::Vector4d& plane : planes) {
+      const double off_plane = std::abs(plane.head<3>().dot(centre) + plane.w());
+      if (!(distance > off_plane)) return kPi / 2;
+      largest = std::max(largest, std::asin(off_plane / distance));
     }
   }
   return largest;
@@ -121,6 +143,18 @@ LineStatus TriangulateLine(const Eigen::Matrix3d& K, const std::vector<LineView>
   }
   if (!(MaxPlaneAngle(planes) > options.min_plane_angle_deg * kPi / 180)) return LineStatus::kUnobservable;
   const Line3 intersection = IntersectPlanes(planes, centre / static_cast<double>(views.size()));
+  std::vector<Eigen::Vector3d> centres;
+  for (const LineView& view : views) {
+    centres.push_back(view.world_T_camera.translation);
+    if (!(DistanceToLine(view.world_T_camera.translation, intersection) >= options.min_depth_m)) {
+      return LineStatus::kTooClose;
+    }
+  }
+  // The planes may differ by noise alone (short segments, centres nearly coincident: no motion
+  // with noisy odometry); then the centres do not spread across them.
+  if (!(MaxCentreSpreadAngle(planes, centres, intersection) > options.min_centre_spread_deg * kPi / 180)) {
+    return LineStatus::kUnobservable;
+  }
   if (!(LineReprojectionError(K, views, intersection) < options.max_reprojection_error_px)) {
     return LineStatus::kLargeReprojectionError;
   }
@@ -129,7 +163,9 @@ LineStatus TriangulateLine(const Eigen::Matrix3d& K, const std::vector<LineView>
 }
 
 LineStatus BoundLine(const Eigen::Matrix3d& K, const std::vector<LineView>& views, const Line3& line,
-                     const Eigen::Vector3d* junction_point, Segment3* segment) {
+                     const Eigen::Vector3d* junction_point, const LineTriangulationOptions& options,
+                     Segment3* segment) {
+  CHECK(options.Check().ok()) << options.Check().message();
   std::vector<double> near, far;
   double far_minus_near = 0;  // sum over views: positive when the far ends lie along +direction
   for (const LineView& view : views) {
@@ -146,12 +182,15 @@ LineStatus BoundLine(const Eigen::Matrix3d& K, const std::vector<LineView>& view
   const double s1 = Median(far);
   if (!(sign * (s1 - s0) > 0)) return LineStatus::kNoExtent;
   const Segment3 bounded{line.point + s0 * line.direction, line.point + s1 * line.direction};
+  bool too_close = false;
   for (const LineView& view : views) {
     const Pose3 camera_T_world = view.world_T_camera.Inverse();
-    if (!((camera_T_world * bounded.end0).z() > 0 && (camera_T_world * bounded.end1).z() > 0)) {
-      return LineStatus::kBehindCamera;
-    }
+    const double z0 = (camera_T_world * bounded.end0).z();
+    const double z1 = (camera_T_world * bounded.end1).z();
+    if (!(z0 > 0 && z1 > 0)) return LineStatus::kBehindCamera;
+    if (!(z0 >= options.min_depth_m && z1 >= options.min_depth_m)) too_close = true;
   }
+  if (too_close) return LineStatus::kTooClose;
   *segment = bounded;
   return LineStatus::kOk;
 }

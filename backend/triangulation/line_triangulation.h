@@ -39,9 +39,11 @@ enum class LineStatus {
   kLargeReprojectionError,  // an observed end >= max_reprojection_error_px from the projected line
   kNoExtent,                // the back-projected end-points bound no segment of positive length
   kBehindCamera,            // an end of the bounded segment has depth <= 0 in some view
+  kTooClose,                // an end of the bounded segment has depth < min_depth_m in some view
 };
 
-// "ok", "too_few_views", "unobservable", "large_reprojection_error", "no_extent", "behind_camera".
+// "ok", "too_few_views", "unobservable", "large_reprojection_error", "no_extent", "behind_camera",
+// "too_close".
 const char* LineStatusName(LineStatus status);
 
 // The plane through the camera centre and the image line through p0 and p1 (H&Z section 8.1.2,
@@ -51,6 +53,16 @@ Eigen::Vector4d BackProjectedPlane(const Eigen::Matrix3d& K, const LineView& vie
 
 // Largest angle between two of the planes, radians in [0, pi/2] (normals' signs ignored).
 double MaxPlaneAngle(const std::vector<Eigen::Vector4d>& planes);
+
+// How far the camera centres spread across the measured planes, as seen from `line`: the largest,
+// over views i and j, of asin(|n_i . C_j + d_i| / distance(C_j, line)). For planes that hold the
+// line, the angle at the line between the planes through it and C_i and C_j: without noise, the
+// same as MaxPlaneAngle. Radians in [0, pi/2]. Noise in the image lines tilts each plane about
+// its own centre only, so this stays 0 for coincident centres, where MaxPlaneAngle measures the
+// noise, unless the line passes within a few baselines of a centre (which the depth floor
+// rejects). planes[i] must belong to centres[i]. A centre on the line counts as pi/2.
+double MaxCentreSpreadAngle(const std::vector<Eigen::Vector4d>& planes,
+                            const std::vector<Eigen::Vector3d>& centres, const Line3& line);
 
 // The line common to the planes, least squares: the two-dimensional null space of the stacked
 // plane equations (H&Z section 3.2.2: a line is the pencil of points annihilated by the planes
@@ -62,8 +74,11 @@ Line3 IntersectPlanes(const std::vector<Eigen::Vector4d>& planes, const Eigen::V
 // (l = K^-T (X_c x d_c) for a point X_c and direction d_c of the line in the camera frame). Pixels.
 double LineReprojectionError(const Eigen::Matrix3d& K, const std::vector<LineView>& views, const Line3& line);
 
-// The infinite line of a segment track: too few views, MaxPlaneAngle, IntersectPlanes (centred on
-// the mean camera centre), LineReprojectionError. `*line` is set when the status is kOk.
+// The infinite line of a segment track: too few views, MaxPlaneAngle (kUnobservable),
+// IntersectPlanes (centred on the mean camera centre), kTooClose when the line passes within
+// min_depth_m of a camera centre (its image there is nearly a point; and where the planes of
+// nearly coincident centres meet), MaxCentreSpreadAngle at most min_centre_spread_deg
+// (kUnobservable: the planes differ by noise, not by baseline), LineReprojectionError. `*line` is set when the status is kOk.
 // options must pass Check() (CHECKed).
 LineStatus TriangulateLine(const Eigen::Matrix3d& K, const std::vector<LineView>& views,
                            const LineTriangulationOptions& options, Line3* line);
@@ -75,8 +90,10 @@ LineStatus TriangulateLine(const Eigen::Matrix3d& K, const std::vector<LineView>
 // far end-points, the extent seen in a typical view (one view's overshoot, or a far end near the
 // line's vanishing point, does not move it). kNoExtent when end1 is not beyond end0 along the
 // direction in which the views see the far ends (or nothing could be back-projected);
-// kBehindCamera when an end has depth <= 0 in a view. `*segment` is set when kOk.
+// kBehindCamera when an end has depth <= 0 in a view; kTooClose when an end has depth below
+// options.min_depth_m in a view. `*segment` is set when kOk. options must pass Check() (CHECKed).
 LineStatus BoundLine(const Eigen::Matrix3d& K, const std::vector<LineView>& views, const Line3& line,
-                     const Eigen::Vector3d* junction_point, Segment3* segment);
+                     const Eigen::Vector3d* junction_point, const LineTriangulationOptions& options,
+                     Segment3* segment);
 
 }  // namespace sfm

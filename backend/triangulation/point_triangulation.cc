@@ -20,9 +20,10 @@ double SumOfSquaredErrors(const Eigen::Matrix3d& K, const std::vector<PointView>
   return sum;
 }
 
-bool InFrontOfAll(const std::vector<PointView>& views, const Eigen::Vector3d& point) {
+bool InFrontOfAll(const std::vector<PointView>& views, const Eigen::Vector3d& point, double min_depth = 0) {
   for (const PointView& view : views) {
-    if (!((view.world_T_camera.Inverse() * point).z() > 0)) return false;
+    const double z = (view.world_T_camera.Inverse() * point).z();
+    if (!(z > 0 && z >= min_depth)) return false;
   }
   return true;
 }
@@ -41,6 +42,8 @@ const char* PointStatusName(PointStatus status) {
       return "behind_camera";
     case PointStatus::kLargeReprojectionError:
       return "large_reprojection_error";
+    case PointStatus::kTooClose:
+      return "too_close";
   }
   return "unknown";
 }
@@ -141,6 +144,7 @@ PointStatus TriangulatePoint(const Eigen::Matrix3d& K, const std::vector<PointVi
   if (!(*std::max_element(errors.begin(), errors.end()) < options.max_reprojection_error_px)) {
     return PointStatus::kLargeReprojectionError;
   }
+  if (!InFrontOfAll(views, refined, options.min_depth_m)) return PointStatus::kTooClose;
   *point = refined;
   return PointStatus::kOk;
 }

@@ -25,9 +25,10 @@ enum class PointStatus {
   kLowParallax,   // largest angle between viewing rays <= min_parallax_deg (or rays meet at infinity)
   kBehindCamera,  // the point has depth <= 0 in some view
   kLargeReprojectionError,  // some view's reprojection error >= max_reprojection_error_px
+  kTooClose,                // the refined point has depth < min_depth_m in some view
 };
 
-// "ok", "too_few_views", "low_parallax", "behind_camera", "large_reprojection_error".
+// "ok", "too_few_views", "low_parallax", "behind_camera", "large_reprojection_error", "too_close".
 const char* PointStatusName(PointStatus status);
 
 // Largest angle between the viewing rays of two views (the rays from the camera centres through
@@ -53,7 +54,8 @@ std::vector<double> ReprojectionErrors(const Eigen::Matrix3d& K, const std::vect
 
 // The whole point triangulation: too few views, parallax (MaxRayAngle), TriangulateDlt, depth,
 // RefinePoint (its steps never cross a camera's z = 0 plane: there the cost is infinite), largest
-// reprojection error. `*point` is set when the status is kOk.
+// reprojection error, depth of the refined point against min_depth_m. `*point` is set when the
+// status is kOk.
 // options must pass Check() (CHECKed).
 PointStatus TriangulatePoint(const Eigen::Matrix3d& K, const std::vector<PointView>& views,
                              const PointTriangulationOptions& options, Eigen::Vector3d* point);

@@ -62,7 +62,8 @@ Landmarks TriangulateTracks(const Eigen::Matrix3d& K, const std::vector<Pose3>& 
       Segment3 segment;
       LineStatus line_status = TriangulateLine(K, line_views, options.line, &line);
       if (line_status == LineStatus::kOk) {
-        line_status = BoundLine(K, line_views, line, point_index >= 0 ? &position : nullptr, &segment);
+        line_status =
+            BoundLine(K, line_views, line, point_index >= 0 ? &position : nullptr, options.line, &segment);
       }
       statuses.line_status.back().push_back(line_status);
       if (line_status != LineStatus::kOk) continue;

@@ -17,6 +17,11 @@ struct PointTriangulationOptions {
   double max_reprojection_error_px = 4.0;
   // Gauss-Newton iterations after the linear solve; 0 keeps the linear solution. >= 0.
   int refinement_iterations = 10;
+  // The point must be at least this deep (z in the camera frame) in every view, else kTooClose.
+  // Metres, >= 0. 0.1 m: twice the generator's near clipping plane (0.05 m); nothing a robot's
+  // camera sees sharply is closer, and a track whose views share one centre (no motion, odometry
+  // noise of a millimetre) is intersected next to that centre.
+  double min_depth_m = 0.1;
 
   Status Check() const {
     auto bad = [](const std::string& what) { return Status::Error("PointTriangulationOptions: " + what); };
@@ -25,6 +30,7 @@ struct PointTriangulationOptions {
       return bad("max_reprojection_error_px must be finite and > 0");
     }
     if (refinement_iterations < 0) return bad("refinement_iterations must be >= 0");
+    if (!(min_depth_m >= 0 && std::isfinite(min_depth_m))) return bad("min_depth_m must be finite and >= 0");
     return Status::Ok();
   }
 };
@@ -35,17 +41,31 @@ struct LineTriangulationOptions {
   // to the motion) and their intersection is set by noise: the line is unobservable. Degrees, in
   // (0, 90).
   double min_plane_angle_deg = 3.0;
+  // The camera centres must spread across the measured planes by more than this, seen from the
+  // intersected line (MaxCentreSpreadAngle): noise tilts the planes but cannot move the centres off
+  // them, so with coincident centres the spread is 0 whatever the noise, while MaxPlaneAngle can
+  // pass on noise alone. Without noise both angles are equal; half of min_plane_angle_deg, so that
+  // it only removes lines whose plane angle is mostly noise. With the line at least min_depth_m
+  // from every centre (0.1 m), no baseline below 2.6 mm passes. Degrees, in (0, 90).
+  double min_centre_spread_deg = 1.5;
   // Largest distance, in any view, of an observed segment end (junction location or far end-point)
   // from the projected 3D line. Pixels, > 0.
   double max_reprojection_error_px = 4.0;
+  // The line must pass at least this far from every camera centre, and both ends of the bounded
+  // segment must be at least this deep in every view, else kTooClose. Metres, >= 0; as
+  // PointTriangulationOptions::min_depth_m.
+  double min_depth_m = 0.1;
 
   Status Check() const {
     auto bad = [](const std::string& what) { return Status::Error("LineTriangulationOptions: " + what); };
     if (!(min_plane_angle_deg > 0 && min_plane_angle_deg < 90))
       return bad("min_plane_angle_deg must be in (0, 90)");
+    if (!(min_centre_spread_deg > 0 && min_centre_spread_deg < 90))
+      return bad("min_centre_spread_deg must be in (0, 90)");
     if (!(max_reprojection_error_px > 0 && std::isfinite(max_reprojection_error_px))) {
       return bad("max_reprojection_error_px must be finite and > 0");
     }
+    if (!(min_depth_m >= 0 && std::isfinite(min_depth_m))) return bad("min_depth_m must be finite and >= 0");
     return Status::Ok();
   }
 };

@@ -188,13 +188,14 @@ TEST_F(BackendEndToEnd, NoMotionWithNoisyOdometry) {
   RecordProperty("lines3d", static_cast<int>(result.landmarks.lines.size()));
 }
 
-// Disabled: fails on the pipeline as it is (docs/backend_results.md, "Degenerate input"). With no
-// motion and noisy odometry, 3 of 228 line tracks pass both the triangulation's back-projected
-// plane test (the planes of short segments differ by a few degrees from noise alone) and the
-// bundle adjustment's observability test (the line is intersected 5 mm - 4 cm from the camera
-// centres, where 1.6 mm of invented baseline makes the planes through the estimated line differ a
-// lot); they end in wireframe.ply. Enable with the fix.
-TEST_F(BackendEndToEnd, DISABLED_NoMotionWithNoisyOdometryGivesNoLine) {
+// With no motion and noisy odometry, 3 of 228 line tracks used to pass both the triangulation's
+// back-projected plane test (the planes of short segments differ by a few degrees from noise
+// alone) and the bundle adjustment's observability test (the line was intersected 5 mm - 4 cm
+// from the camera centres, where 1.6 mm of invented baseline makes the planes through the
+// estimated line differ a lot), and ended in wireframe.ply. Now the triangulation also requires
+// the centres to spread across the planes and both ends min_depth_m deep, and the bundle
+// adjustment the same depth (docs/backend_results.md, "Degenerate input").
+TEST_F(BackendEndToEnd, NoMotionWithNoisyOdometryGivesNoLine) {
   SequenceSpec spec;
   spec.world_T_base.assign(6, BasePose(1.5, 1.2, 0.3));
   WriteSequence(spec, sequence_dir());

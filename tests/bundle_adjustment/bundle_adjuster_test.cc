@@ -196,6 +196,74 @@ TEST(BundleAdjusterTest, NoMotionDropsEveryLandmark) {
     EXPECT_NEAR((refined[f].translation - truth[f].translation).norm(), 0, 1e-12);
 }
 
+// The robot stands still but the odometry moves the camera by a millimetre or two (as the
+// generator's heading noise does through the 0.2 m lever arm), and the landmarks were intersected
+// 2-4 cm from the camera centres (where a degenerate triangulation puts them). From there the
+// millimetre baseline is seen at several degrees, so the angle checks alone keep them; the depth
+// floor on the refined landmarks drops every one, and the trajectory is the odometry's.
+TEST(BundleAdjusterTest, LandmarksNextToTheCamerasAreDropped) {
+  Calibration calibration = RoomCalibration(kSmallDriftRad);
+  const Pose3 still = testing::LoopTrajectory(1).front();
+  std::vector<Pose3> jittered;
+  for (int i = 0; i < 8; ++i) {
+    const double yaw = 0.006 * ((i * 5) % 7 - 3) / 3.0;  // up to 6 mrad: 1.2 mm at the camera
+    jittered.push_back(still * Pose3(Eigen::Quaterniond(Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ())),
+                                     Eigen::Vector3d::Zero()));
+  }
+  const std::vector<Pose3> truth(jittered.size(), still);
+  Observed observed = Observe(BoxRoom(), calibration, truth, truth, kPixelNoisePx, 3);
+  const Pose3 camera = still * calibration.base_T_camera;
+  auto near = [&](const Eigen::Vector3d& x, double depth) -> Eigen::Vector3d {
+    return camera.translation + depth * (x - camera.translation).normalized();
+  };
+  for (size_t i = 0; i < observed.landmarks.points.size(); ++i) {
+    observed.landmarks.points[i].position = near(observed.true_points[i], 0.02 + 0.002 * (i % 10));
+  }
+  for (size_t i = 0; i < observed.landmarks.lines.size(); ++i) {
+    LineLandmark& line = observed.landmarks.lines[i];
+    line.end0 = near(observed.true_segments[i].a, 0.03);
+    line.end1 = near(observed.true_segments[i].b, 0.03);
+    line.point = line.end0;
+    line.direction = (line.end1 - line.end0).normalized();
+  }
+  const int points = static_cast<int>(observed.landmarks.points.size());
+  const int lines = static_cast<int>(observed.landmarks.lines.size());
+  ASSERT_GT(points, 0);
+  ASSERT_GT(lines, 0);
+  // The angles alone: some points pass.
+  int points_with_angle = 0;
+  for (const PointLandmark& point : observed.landmarks.points) {
+    std::vector<Eigen::Vector3d> centres;
+    for (const PointObservation& observation : point.observations)
+      centres.push_back((jittered[observation.frame] * calibration.base_T_camera).translation);
+    if (PointTriangulationAngleDeg(point.position, centres) >= 1.0) ++points_with_angle;
+  }
+  EXPECT_GT(points_with_angle, 0);
+  std::vector<Pose3> refined;
+  BundleAdjustmentSummary summary;
+  const Status status =
+      BundleAdjust(calibration, jittered, BundleAdjustmentOptions(), &observed.landmarks, &refined, &summary);
+  ASSERT_TRUE(status.ok()) << status.message();
+  std::printf("[ figures  ] next to the cameras: %d points, %d lines; unobservable %d + %d, removed %d + %d\n",
+              points, lines, summary.points_unobservable, summary.lines_unobservable, summary.points_removed,
+              summary.lines_removed);
+  EXPECT_TRUE(observed.landmarks.points.empty());
+  EXPECT_TRUE(observed.landmarks.lines.empty());
+  EXPECT_GT(summary.points_unobservable, points / 2);
+  ASSERT_EQ(refined.size(), jittered.size());
+  for (size_t f = 0; f < jittered.size(); ++f)
+    EXPECT_NEAR((refined[f].translation - jittered[f].translation).norm(), 0, 1e-12);
+}
+
+TEST(ObservabilityTest, SmallestDepth) {
+  const Pose3 identity;
+  const Pose3 turned(Eigen::Quaterniond(Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitY())),
+                     Eigen::Vector3d(0, 0, 0));  // camera z along world x
+  EXPECT_DOUBLE_EQ(SmallestDepth({Eigen::Vector3d(0.5, 0, 2), Eigen::Vector3d(0, 0, 3)}, {identity}), 2);
+  EXPECT_DOUBLE_EQ(SmallestDepth({Eigen::Vector3d(0.5, 0, 2)}, {identity, turned}), 0.5);
+  EXPECT_TRUE(std::isinf(SmallestDepth({}, {identity})));
+}
+
 // The base turns in place: the camera, 0.2 m ahead of the turning axis, still sees some parallax.
 // With the camera on the axis (forward = 0) nothing is observable.
 TEST(BundleAdjusterTest, PureRotation) {
@@ -348,6 +416,8 @@ TEST(BundleAdjustmentOptionsTest, CheckNamesTheBadField) {
   EXPECT_NE(message([](BundleAdjustmentOptions* o) {
               o->odometry_min_distance_m = 0;
             }).find("odometry_min_distance_m"),
+            std::string::npos);
+  EXPECT_NE(message([](BundleAdjustmentOptions* o) { o->min_depth_m = -1; }).find("min_depth_m"),
             std::string::npos);
   EXPECT_NE(message([](BundleAdjustmentOptions* o) {
               o->min_line_triangulation_angle_deg = 90;

@@ -88,7 +88,7 @@ TEST(LineTriangulationTest, RecoversALineTo1e9WithoutNoise) {
     // Bounded by the junction point, or by the back-projected junction locations: the true ends.
     for (const Eigen::Vector3d* junction_point : {&junction, static_cast<const Eigen::Vector3d*>(nullptr)}) {
       Segment3 segment;
-      ASSERT_EQ(BoundLine(TestK(), views, line, junction_point, &segment), LineStatus::kOk);
+      ASSERT_EQ(BoundLine(TestK(), views, line, junction_point, LineTriangulationOptions(), &segment), LineStatus::kOk);
       EXPECT_LT((segment.end0 - junction).norm(), 1e-9);
       EXPECT_LT((segment.end1 - far_end).norm(), 1e-9);
     }
@@ -190,17 +190,102 @@ TEST(LineTriangulationTest, BoundingRejectsAnEmptyExtentAndEndsBehindACamera) {
   Segment3 segment;
   // A junction point beyond the far end: the views bound nothing between them.
   const Eigen::Vector3d beyond(5, 1.5, 2.5);
-  EXPECT_EQ(BoundLine(TestK(), views, line, &beyond, &segment), LineStatus::kNoExtent);
+  EXPECT_EQ(BoundLine(TestK(), views, line, &beyond, LineTriangulationOptions(), &segment), LineStatus::kNoExtent);
 
   // A camera past the segment looking the same way sees it from behind.
   std::vector<LineView> with_behind = views;
   const Pose3 past = LookAt(Eigen::Vector3d(7, 0, 1), Eigen::Vector3d(17, 0, 1));
   with_behind.push_back({past, Project(TestK(), past, junction), Project(TestK(), past, far_end)});
   ASSERT_EQ(TriangulateLine(TestK(), with_behind, LineTriangulationOptions(), &line), LineStatus::kOk);
-  EXPECT_EQ(BoundLine(TestK(), with_behind, line, &junction, &segment), LineStatus::kBehindCamera);
+  EXPECT_EQ(BoundLine(TestK(), with_behind, line, &junction, LineTriangulationOptions(), &segment), LineStatus::kBehindCamera);
+}
+
+// The robot stands still and the odometry invents up to 1.6 mm of camera motion (the e2e test
+// NoMotionWithNoisyOdometryGivesNoLine): six centres within 1.6 mm, the camera turned by up to
+// 0.3 degrees, short junction segments (12-20 px) with 0.3 px of noise on both ends. The measured
+// planes then differ by noise alone, often by more than 3 degrees; the centres do not spread across
+// them (or their intersection passes next to the centres), so no line may come out.
+TEST(LineTriangulationTest, NoiseWithoutBaselineGivesNoLine) {
+  std::mt19937 random(11);
+  std::uniform_real_distribution<double> uniform(-1, 1);
+  int planes_past_threshold = 0, kept = 0, too_close = 0, no_spread = 0;
+  const LineTriangulationOptions options;
+  for (int trial = 0; trial < 2000; ++trial) {
+    std::vector<Pose3> cameras;
+    for (int k = 0; k < 6; ++k) {
+      const Eigen::Vector3d centre = Eigen::Vector3d(1, 1, 1) + 0.0008 * Eigen::Vector3d(uniform(random), uniform(random), 0);
+      const double yaw = 0.005 * uniform(random);
+      cameras.push_back(LookAt(centre, centre + Eigen::Vector3d(std::cos(yaw), std::sin(yaw), 0)));
+    }
+    const Eigen::Vector3d junction =
+        Eigen::Vector3d(1, 1, 1) + Eigen::Vector3d(3 + 2 * uniform(random), 1.5 * uniform(random), uniform(random));
+    const Eigen::Vector3d direction = Eigen::Vector3d::Random().normalized();
+    const double length_px = 16 + 4 * uniform(random);
+    const Eigen::Vector3d far_end = junction + direction * (length_px / 450 * (junction.x() - 1));
+    const std::vector<LineView> views = Observe(cameras, junction, far_end, &random, 0.3);
+    if ((views[0].p1 - views[0].p0).norm() < 8) continue;
+    std::vector<Eigen::Vector4d> planes;
+    for (const LineView& view : views) planes.push_back(BackProjectedPlane(TestK(), view));
+    if (MaxPlaneAngle(planes) > options.min_plane_angle_deg * kRadiansPerDegree) ++planes_past_threshold;
+    Line3 line;
+    Segment3 segment;
+    LineStatus status = TriangulateLine(TestK(), views, options, &line);
+    if (status == LineStatus::kOk) status = BoundLine(TestK(), views, line, nullptr, options, &segment);
+    if (status == LineStatus::kOk) ++kept;
+    if (status == LineStatus::kTooClose) ++too_close;
+    if (status == LineStatus::kUnobservable && MaxPlaneAngle(planes) > options.min_plane_angle_deg * kRadiansPerDegree)
+      ++no_spread;
+  }
+  std::printf("no baseline: %d of 2000 tracks had planes more than 3 degrees apart: %d too close, %d without "
+              "centre spread, %d kept\n",
+              planes_past_threshold, too_close, no_spread, kept);
+  EXPECT_GT(planes_past_threshold, 20);  // the plane angle alone would let these through
+  EXPECT_EQ(kept, 0);
+}
+
+TEST(LineTriangulationTest, TheCentreSpreadIsThePlaneAngleWithoutNoise) {
+  const std::vector<Pose3> cameras = ForwardCameras();
+  const Eigen::Vector3d junction(5, 1.5, 0.5), far_end(5, 1.5, 2);  // a door post: planes 7 deg apart
+  const std::vector<LineView> views = Observe(cameras, junction, far_end);
+  std::vector<Eigen::Vector4d> planes;
+  std::vector<Eigen::Vector3d> centres;
+  for (const LineView& view : views) {
+    planes.push_back(BackProjectedPlane(TestK(), view));
+    centres.push_back(view.world_T_camera.translation);
+  }
+  const Line3 truth{junction, (far_end - junction).normalized()};
+  EXPECT_NEAR(MaxCentreSpreadAngle(planes, centres, truth), MaxPlaneAngle(planes), 1e-9);
+  // Coincident centres: 0, whatever the planes.
+  const std::vector<Eigen::Vector3d> one_centre(centres.size(), centres[0]);
+  std::vector<Eigen::Vector4d> through_it;
+  for (const Eigen::Vector4d& plane : planes) {
+    through_it.push_back(plane);
+    through_it.back().w() = -plane.head<3>().dot(centres[0]);
+  }
+  EXPECT_LT(MaxCentreSpreadAngle(through_it, one_centre, truth), 1e-12);
+}
+
+TEST(LineTriangulationTest, ALineNearerThanTheDepthFloorIsRejected) {
+  // A short edge 8 cm ahead of cameras 1 cm apart (its line 7.6 cm from the first centre): well
+  // determined, but nearer than min_depth_m = 0.1 m.
+  std::vector<Pose3> cameras;
+  for (int k = 0; k < 3; ++k)
+    cameras.push_back(LookAt(Eigen::Vector3d(0, 0.01 * k, 1), Eigen::Vector3d(10, 0.01 * k, 1)));
+  const Eigen::Vector3d junction(0.08, 0.005, 0.99), far_end(0.09, 0.005, 1.01);
+  const std::vector<LineView> views = Observe(cameras, junction, far_end);
+  const LineTriangulationOptions options;
+  LineTriangulationOptions nearer = options;
+  nearer.min_depth_m = 0.05;
+  Line3 line;
+  EXPECT_EQ(TriangulateLine(TestK(), views, options, &line), LineStatus::kTooClose);
+  ASSERT_EQ(TriangulateLine(TestK(), views, nearer, &line), LineStatus::kOk);
+  Segment3 segment;
+  EXPECT_EQ(BoundLine(TestK(), views, line, &junction, options, &segment), LineStatus::kTooClose);
+  EXPECT_EQ(BoundLine(TestK(), views, line, &junction, nearer, &segment), LineStatus::kOk);
 }
 
 TEST(LineTriangulationTest, StatusNames) {
+  EXPECT_STREQ(LineStatusName(LineStatus::kTooClose), "too_close");
   EXPECT_STREQ(LineStatusName(LineStatus::kOk), "ok");
   EXPECT_STREQ(LineStatusName(LineStatus::kUnobservable), "unobservable");
   EXPECT_STREQ(LineStatusName(LineStatus::kNoExtent), "no_extent");

@@ -111,6 +111,18 @@ TEST(PointTriangulationTest, APointBehindACameraIsRejected) {
             PointStatus::kBehindCamera);
 }
 
+TEST(PointTriangulationTest, APointNearerThanTheDepthFloorIsRejected) {
+  // 8 cm ahead of two cameras 1 cm apart: 7 degrees of parallax, but nearer than min_depth_m.
+  const std::vector<Pose3> cameras = {LookAt(Eigen::Vector3d(0, 0, 1), Eigen::Vector3d(10, 0, 1)),
+                                      LookAt(Eigen::Vector3d(0, 0.01, 1), Eigen::Vector3d(10, 0.01, 1))};
+  const std::vector<PointView> views = Observe(cameras, Eigen::Vector3d(0.08, 0.005, 1.01));
+  PointTriangulationOptions options;
+  Eigen::Vector3d point;
+  EXPECT_EQ(TriangulatePoint(TestK(), views, options, &point), PointStatus::kTooClose);
+  options.min_depth_m = 0.05;
+  EXPECT_EQ(TriangulatePoint(TestK(), views, options, &point), PointStatus::kOk);
+}
+
 TEST(PointTriangulationTest, AZeroBaselinePairIsRejectedForParallax) {
   // Two cameras at one centre, turned 20 degrees apart: the same ray, no depth.
   const Eigen::Vector3d centre(1, 2, 1);
@@ -150,6 +162,7 @@ TEST(PointTriangulationTest, StatusNames) {
   EXPECT_STREQ(PointStatusName(PointStatus::kOk), "ok");
   EXPECT_STREQ(PointStatusName(PointStatus::kBehindCamera), "behind_camera");
   EXPECT_STREQ(PointStatusName(PointStatus::kLowParallax), "low_parallax");
+  EXPECT_STREQ(PointStatusName(PointStatus::kTooClose), "too_close");
 }
 
 }  // namespace
