@@ -9,6 +9,7 @@
 #pragma once
 
 #include <ceres/cost_function.h>
+#include <ceres/sized_cost_function.h>
 
 #include <Eigen/Core>
 #include <cmath>
@@ -50,13 +51,36 @@ struct LineReprojectionCost {
     return true;
   }
 
-  // An automatic-derivative cost function (defined in cost_functions.cc).
+  // The cost function the solver uses: LineReprojectionCostFunction, analytic derivatives.
   static ceres::CostFunction* Create(const CameraModel& camera, const Eigen::Vector2d& p0_px,
                                      const Eigen::Vector2d& p1_px);
+  // The same residual with automatic derivatives (ceres::Jet), the reference the analytic
+  // Jacobians are tested against (defined in cost_functions.cc).
+  static ceres::CostFunction* CreateAutoDiff(const CameraModel& camera, const Eigen::Vector2d& p0_px,
+                                             const Eigen::Vector2d& p1_px);
 
   CameraModel camera;
   Eigen::Vector2d p0_px;
   Eigen::Vector2d p1_px;
+};
+
+// LineReprojectionCost with analytic Jacobians in the ambient coordinates of its blocks (the
+// derivatives of the very formulas the functor evaluates: Eigen's q * v = v + 2w (u x v) +
+// 2 u x (u x v) for the pose's conjugate quaternion, Eigen's toRotationMatrix for U), so that they
+// equal the automatic ones to rounding, in every direction, not only in the manifolds' tangents.
+// Same blocks, residuals and failure as the functor. The automatic derivatives through
+// ceres::Jet<double, 13> were about 45 % of the pipeline's time (docs/bundle_adjustment.md).
+class LineReprojectionCostFunction : public ceres::SizedCostFunction<2, 4, 3, 6> {
+ public:
+  LineReprojectionCostFunction(const CameraModel& camera, const Eigen::Vector2d& p0_px,
+                               const Eigen::Vector2d& p1_px);
+  bool Evaluate(double const* const* parameters, double* residuals, double** jacobians) const override;
+
+ private:
+  Eigen::Matrix3d A_;                // l = A m_c: det(K) K^-T
+  Eigen::Matrix3d camera_R_base_;    // m_c = Rc m_b + B d_b
+  Eigen::Matrix3d B_;                // [camera_t_base]x Rc
+  Eigen::Vector3d p0_, p1_;          // homogeneous pixels
 };
 
 }  // namespace sfm

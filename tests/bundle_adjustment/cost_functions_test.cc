@@ -4,6 +4,8 @@
 #include <ceres/manifold.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cstdio>
 #include <memory>
 #include <random>
 #include <vector>
@@ -176,6 +178,7 @@ TEST(LineReprojectionCostTest, LineThroughTheCameraCentreIsRejected) {
   EXPECT_FALSE(cost->Evaluate(parameters, r.data(), nullptr));
 }
 
+// Create's cost function: the analytic Jacobians (LineReprojectionCostFunction).
 TEST(LineReprojectionCostTest, GradientCheck) {
   Random random;
   const CameraModel camera = RigCamera();
@@ -193,6 +196,80 @@ TEST(LineReprojectionCostTest, GradientCheck) {
     const Eigen::Vector2d p0(random.Uniform(0, 640), random.Uniform(0, 480));
     const Eigen::Vector2d p1(random.Uniform(0, 640), random.Uniform(0, 480));
     std::unique_ptr<ceres::CostFunction> cost(LineReprojectionCost::Create(camera, p0, p1));
+    const PoseParameters pose = PoseParameters::FromPose(world_T_base);
+    const double* parameters[] = {pose.rotation.data(), pose.translation.data(), line.data()};
+    ceres::GradientChecker checker(cost.get(), &manifolds, RiddersOptions());
+    ceres::GradientChecker::ProbeResults results;
+    EXPECT_TRUE(checker.Probe(parameters, kGradientTolerance, &results))
+        << "trial " << trial << ": " << results.error_log;
+  }
+}
+
+// The analytic Jacobians (LineReprojectionCostFunction, what Create returns) against the automatic
+// ones of the functor, in the ambient coordinates of every block (so also in the directions off
+// the manifolds), on random configurations as above and on the rig with non-unit line scales.
+// Tolerance: 1e-9 of the Jacobian's largest entry; they are the same formulas, observed worst
+// about 1e-15.
+TEST(LineReprojectionCostTest, AnalyticJacobiansMatchTheAutomaticOnes) {
+  Random random;
+  const CameraModel camera = RigCamera();
+  const Pose3 base_T_camera = testing::RobotCalibration().base_T_camera;
+  double worst = 0;
+  for (int trial = 0; trial < 200; ++trial) {
+    const Pose3 world_T_base = random.Pose();
+    const Pose3 world_T_camera = world_T_base * base_T_camera;
+    const Eigen::Vector3d a(random.Uniform(-2, 2), random.Uniform(-1.5, 1.5), random.Uniform(1, 8));
+    const Eigen::Vector3d b(random.Uniform(-2, 2), random.Uniform(-1.5, 1.5), random.Uniform(1, 8));
+    OrthonormalLine line =
+        OrthonormalLineFromPointDirection(world_T_camera * a, world_T_camera * b - world_T_camera * a);
+    if (trial % 2 == 1) {  // off the manifold: any scale of (w1, w2), a quaternion of norm != 1
+      for (double& value : line) value *= random.Uniform(0.8, 1.2);
+    }
+    const Eigen::Vector2d p0(random.Uniform(0, 640), random.Uniform(0, 480));
+    const Eigen::Vector2d p1(random.Uniform(0, 640), random.Uniform(0, 480));
+    std::unique_ptr<ceres::CostFunction> analytic(LineReprojectionCost::Create(camera, p0, p1));
+    std::unique_ptr<ceres::CostFunction> automatic(LineReprojectionCost::CreateAutoDiff(camera, p0, p1));
+    const PoseParameters pose = PoseParameters::FromPose(world_T_base);
+    const double* parameters[] = {pose.rotation.data(), pose.translation.data(), line.data()};
+    Eigen::Vector2d r_analytic, r_automatic;
+    Eigen::Matrix<double, 2, 4, Eigen::RowMajor> Jq_analytic, Jq_automatic;
+    Eigen::Matrix<double, 2, 3, Eigen::RowMajor> Jt_analytic, Jt_automatic;
+    Eigen::Matrix<double, 2, 6, Eigen::RowMajor> Jl_analytic, Jl_automatic;
+    double* J_analytic[] = {Jq_analytic.data(), Jt_analytic.data(), Jl_analytic.data()};
+    double* J_automatic[] = {Jq_automatic.data(), Jt_automatic.data(), Jl_automatic.data()};
+    ASSERT_TRUE(analytic->Evaluate(parameters, r_analytic.data(), J_analytic));
+    ASSERT_TRUE(automatic->Evaluate(parameters, r_automatic.data(), J_automatic));
+    EXPECT_LT((r_analytic - r_automatic).norm(), 1e-12 * (1 + r_automatic.norm()));
+    const double scale = std::max({Jq_automatic.cwiseAbs().maxCoeff(), Jt_automatic.cwiseAbs().maxCoeff(),
+                                   Jl_automatic.cwiseAbs().maxCoeff()});
+    const double error = std::max({(Jq_analytic - Jq_automatic).cwiseAbs().maxCoeff(),
+                                   (Jt_analytic - Jt_automatic).cwiseAbs().maxCoeff(),
+                                   (Jl_analytic - Jl_automatic).cwiseAbs().maxCoeff()}) /
+                         scale;
+    worst = std::max(worst, error);
+    EXPECT_LT(error, 1e-9) << "trial " << trial;
+  }
+  std::printf("[ figures  ] analytic against automatic line Jacobians: worst relative difference %.2e\n", worst);
+}
+
+// The automatic reference itself through GradientChecker, as the analytic one above.
+TEST(LineReprojectionCostTest, GradientCheckOfTheAutomaticReference) {
+  Random random;
+  const CameraModel camera = RigCamera();
+  const Pose3 base_T_camera = testing::RobotCalibration().base_T_camera;
+  ceres::EigenQuaternionManifold quaternion;
+  OrthonormalLineManifold line_manifold;
+  const std::vector<const ceres::Manifold*> manifolds = {&quaternion, nullptr, &line_manifold};
+  for (int trial = 0; trial < kRandomTrials; ++trial) {
+    const Pose3 world_T_base = random.Pose();
+    const Pose3 world_T_camera = world_T_base * base_T_camera;
+    const Eigen::Vector3d a(random.Uniform(-2, 2), random.Uniform(-1.5, 1.5), random.Uniform(1, 8));
+    const Eigen::Vector3d b(random.Uniform(-2, 2), random.Uniform(-1.5, 1.5), random.Uniform(1, 8));
+    const OrthonormalLine line =
+        OrthonormalLineFromPointDirection(world_T_camera * a, world_T_camera * b - world_T_camera * a);
+    const Eigen::Vector2d p0(random.Uniform(0, 640), random.Uniform(0, 480));
+    const Eigen::Vector2d p1(random.Uniform(0, 640), random.Uniform(0, 480));
+    std::unique_ptr<ceres::CostFunction> cost(LineReprojectionCost::CreateAutoDiff(camera, p0, p1));
     const PoseParameters pose = PoseParameters::FromPose(world_T_base);
     const double* parameters[] = {pose.rotation.data(), pose.translation.data(), line.data()};
     ceres::GradientChecker checker(cost.get(), &manifolds, RiddersOptions());
