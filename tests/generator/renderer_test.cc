@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <ctime>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -147,30 +146,6 @@ TEST(RendererTest, DistortedImageIsFullyCovered) {
   const int x = static_cast<int>(std::lround(p.x())), y = static_cast<int>(std::lround(p.y()));
   const int inside = image.at<unsigned char>(y + 3, x + 3), outside = image.at<unsigned char>(y - 3, x - 3);
   EXPECT_GT(std::abs(inside - outside), 10) << "no edge at the distorted corner (" << x << ", " << y << ")";
-}
-
-TEST(RendererTest, RendersAVgaCorridorFrameQuickly) {
-#if defined(NDEBUG) && !defined(__SANITIZE_ADDRESS__)
-  SceneOptions scene_options;
-  scene_options.corridor_length = 12;
-  Scene scene;
-  ASSERT_TRUE(BuildScene(scene_options, 1, &scene).ok());
-  CameraRigOptions rig;
-  const Renderer renderer(scene, rig.MakeCamera(), RenderOptions());
-  const Pose3 world_T_camera = Pose3(Eigen::Matrix3d::Identity(), Eigen::Vector3d(1, 0, 0)) * rig.BaseTCamera();
-  // Processor time, best of 5: the figure of the code, not of how busy the machine is.
-  double best = 1e9;
-  Canvas canvas;
-  for (int i = 0; i < 5; ++i) {
-    const std::clock_t start = std::clock();
-    renderer.Render(world_T_camera, i, &canvas);
-    best = std::min(best, static_cast<double>(std::clock() - start) / CLOCKS_PER_SEC);
-  }
-  std::printf("render 640x480, %zu faces: %.1f ms of processor time (best of 5)\n", scene.faces.size(), 1e3 * best);
-  EXPECT_LT(best, /*max_seconds=*/0.05);
-#else
-  GTEST_SKIP() << "timing only in optimised builds without sanitizers";
-#endif
 }
 
 TEST(RenderOptionsTest, CheckRejectsBadValues) {

@@ -1,7 +1,6 @@
 #include "frontend/junctions/junction_detector.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <random>
 
@@ -239,7 +238,8 @@ CubeScene MakeCubes(int columns, int rows, double end_noise_px, std::mt19937* rn
   return scene;
 }
 
-TEST(JunctionDetectorTest, ThirtyCubesAllVerticesFast) {
+// Speed is measured by build/bin/benchmark_junctions, not here (timed unit tests flake on shared machines).
+TEST(JunctionDetectorTest, ThirtyCubesAllVertices) {
   std::mt19937 rng(7);
   const CubeScene scene = MakeCubes(6, 5, /*end_noise_px=*/0.1, &rng);
   ASSERT_EQ(scene.segments.size(), 270u);
@@ -256,17 +256,6 @@ TEST(JunctionDetectorTest, ThirtyCubesAllVerticesFast) {
   }
   for (size_t j = 0; j < junctions.size(); ++j) EXPECT_EQ(junctions[j].id, static_cast<int>(j));
 
-  constexpr int kRuns = 200;
-  const auto start = std::chrono::steady_clock::now();
-  size_t total = 0;
-  for (int run = 0; run < kRuns; ++run) total += DetectJunctions(scene.segments, Options()).size();
-  const double ms =
-      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count() / kRuns;
-  EXPECT_EQ(total, kRuns * junctions.size());
-  std::printf("DetectJunctions on 270 segments: %.3f ms\n", ms);
-#ifdef NDEBUG
-  EXPECT_LT(ms, /*max_ms=*/1.0);
-#endif
 }
 
 }  // namespace

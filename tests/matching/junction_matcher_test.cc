@@ -2,7 +2,6 @@
 #include "frontend/matching/junction_matcher.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cstdio>
 #include <numeric>
 #include <random>
@@ -181,7 +180,8 @@ TEST(JunctionMatcherTest, TwoNearIdenticalCandidatesGiveNoMatch) {
   EXPECT_TRUE(MatchJunctions(a, EmptyGraph(1), b, EmptyGraph(2), views.F(), options).empty());
 }
 
-TEST(JunctionMatcherTest, RectanglesWithTopologyAndSpeedOn150Junctions) {
+// Speed is measured by build/bin/benchmark_matching, not here (timed unit tests flake on shared machines).
+TEST(JunctionMatcherTest, RectanglesWithTopologyOn150Junctions) {
   std::mt19937 rng(13);
   const TwoViews views = testing::MakeTwoViews();
   // 25 rectangles (100 L junctions joined by their sides) and 50 free Y junctions.
@@ -197,27 +197,12 @@ TEST(JunctionMatcherTest, RectanglesWithTopologyAndSpeedOn150Junctions) {
   for (const bool use_topology : {true, false}) {
     MatchingOptions options;
     options.use_topology = use_topology;
-    std::vector<JunctionMatch> matches;
-    std::vector<double> milliseconds;
-    for (int run = 0; run < 21; ++run) {
-      const auto start = std::chrono::steady_clock::now();
-      matches = MatchJunctions(scene.a, scene.graph_a, scene.b, scene.graph_b, F, options);
-      milliseconds.push_back(
-          std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
-    }
-    std::sort(milliseconds.begin(), milliseconds.end());
-    const double median_ms = milliseconds[milliseconds.size() / 2];
+    const std::vector<JunctionMatch> matches =
+        MatchJunctions(scene.a, scene.graph_a, scene.b, scene.graph_b, F, options);
     const Score score = Evaluate(scene, matches);
     const std::string name = use_topology ? "sigma" : "rho";
-    std::printf("150 x 150 junctions, %s: median %.3f ms (min %.3f) per pair of frames; %d correct, %d wrong\n",
-                name.c_str(), median_ms, milliseconds.front(), score.correct, score.wrong);
-    RecordProperty(name + "_median_ms", std::to_string(median_ms));
     RecordProperty(name + "_correct", score.correct);
     RecordProperty(name + "_wrong", score.wrong);
-    // The design target is 1 ms on one core; the bound leaves room for a loaded test machine.
-#if defined(NDEBUG) && !defined(__SANITIZE_ADDRESS__)
-    EXPECT_LT(median_ms, /*max_ms=*/10.0) << name;
-#endif
     // Seeded figures (sigma 146 right, 0 wrong; rho 138 right, 0 wrong): with F 0.3 degrees off,
     // the true partner's rho2 now and then falls within tau2 of another junction's on its line.
     if (use_topology) {
