@@ -9,7 +9,7 @@ cmake_args=()
 if [ "${1:-}" = "--sanitize" ]; then
   build_dir=build-asan
   cmake_args=(-DSFM_SANITIZE=ON -DCMAKE_BUILD_TYPE=RelWithDebInfo)
-  export ASAN_OPTIONS=detect_leaks=0:abort_on_error=0
+  export ASAN_OPTIONS=detect_leaks=1
   export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
   shift
 fi
