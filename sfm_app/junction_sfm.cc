@@ -32,7 +32,14 @@ DEFINE_double(endpoint_mu, kDefaults.junctions.endpoint_model.mu,
 DEFINE_double(junction_min_probability, kDefaults.junctions.min_probability,
               "Junction threshold: least junction probability of a pair of segments (0, 1].");
 DEFINE_double(match_max_distance, kDefaults.matching.max_epipolar_distance_px,
-              "R: largest distance, px, of a junction from its partner's epipolar line.");
+              "R: largest distance, px, of a junction from its partner's epipolar line (used with "
+              "--match_pose_band=false).");
+DEFINE_bool(match_pose_band, kDefaults.matching.use_pose_band,
+            "Set each pair's search band from the odometry noise model of sequence.yaml instead of R.");
+DEFINE_double(match_band_sigmas, kDefaults.matching.band_sigmas,
+              "Width of the search band in standard deviations of the epipolar distance.");
+DEFINE_bool(match_cheirality, kDefaults.matching.use_cheirality,
+            "Reject pairs that would triangulate behind either camera.");
 DEFINE_double(match_tau1, kDefaults.matching.tau1, "tau1 of rule (38): least similarity of a match.");
 DEFINE_double(match_tau2, kDefaults.matching.tau2,
               "tau2 of rule (38): how much the best candidate must beat the second, both ways.");
@@ -72,6 +79,9 @@ bool OptionsFromFlags(sfm::PipelineOptions* options, std::string* error) {
   options->matching.tau1 = FLAGS_match_tau1;
   options->matching.tau2 = FLAGS_match_tau2;
   options->matching.use_topology = FLAGS_match_topology;
+  options->matching.use_pose_band = FLAGS_match_pose_band;
+  options->matching.band_sigmas = FLAGS_match_band_sigmas;
+  options->matching.use_cheirality = FLAGS_match_cheirality;
   options->bundle_adjustment = FLAGS_bundle_adjustment;
   options->bundle_adjustment_options.outlier_threshold_px = FLAGS_ba_outlier_threshold;
   options->bundle_adjustment_options.robust_loss_scale_px = FLAGS_ba_loss_scale;
