@@ -14,6 +14,10 @@ Status BundleAdjustmentOptions::Check() const {
     return error("coarse_loss_scale_px must be > 0 px");
   }
   if (max_iterations < 1) return error("max_iterations must be >= 1");
+  if (!(function_tolerance > 0 && function_tolerance < 1)) return error("function_tolerance must be in (0, 1)");
+  if (!(intermediate_function_tolerance > 0 && intermediate_function_tolerance < 1)) {
+    return error("intermediate_function_tolerance must be in (0, 1)");
+  }
   if (!(outlier_threshold_px > 0)) return error("outlier_threshold_px must be > 0 px");
   if (outlier_rounds < 0) return error("outlier_rounds must be >= 0");
   if (dense_schur_max_frames < 0) return error("dense_schur_max_frames must be >= 0");

@@ -419,6 +419,12 @@ TEST(BundleAdjustmentOptionsTest, CheckNamesTheBadField) {
             std::string::npos);
   EXPECT_NE(message([](BundleAdjustmentOptions* o) { o->min_depth_m = -1; }).find("min_depth_m"),
             std::string::npos);
+  EXPECT_NE(message([](BundleAdjustmentOptions* o) { o->function_tolerance = 0; }).find("function_tolerance"),
+            std::string::npos);
+  EXPECT_NE(message([](BundleAdjustmentOptions* o) {
+              o->intermediate_function_tolerance = 1;
+            }).find("intermediate_function_tolerance"),
+            std::string::npos);
   EXPECT_NE(message([](BundleAdjustmentOptions* o) {
               o->min_line_triangulation_angle_deg = 90;
             }).find("min_line_triangulation_angle_deg"),
