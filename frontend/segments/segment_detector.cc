@@ -1,5 +1,7 @@
 #include "frontend/segments/segment_detector.h"
 
+#include <algorithm>
+
 #include <cmath>
 #include <sstream>
 
@@ -32,6 +34,8 @@ Status SegmentDetectorOptions::Check() const {
   SFM_RETURN_IF_ERROR(Require(Finite(min_length) && min_length >= 2, "min_length", min_length, ">= 2 pixels"));
   // Edge points of a diagonal edge are sqrt(2) apart: a smaller gap would split every such line.
   SFM_RETURN_IF_ERROR(Require(Finite(max_gap) && max_gap >= 1.5, "max_gap", max_gap, ">= 1.5 pixels"));
+  SFM_RETURN_IF_ERROR(Require(Finite(border_margin) && border_margin >= 0, "border_margin", border_margin,
+                              ">= 0 pixels"));
   const ReferenceSegmentOptions& r = reference;
   SFM_RETURN_IF_ERROR(Require(Finite(r.edge_sigma) && r.edge_sigma >= 0.5 && r.edge_sigma <= 10,
                               "reference.edge_sigma", r.edge_sigma, "in [0.5, 10] pixels"));
@@ -63,12 +67,28 @@ LineSegments DetectLineSegments(const cv::Mat& grey, const SegmentDetectorOption
   CHECK_EQ(grey.type(), CV_8UC1) << "DetectLineSegments needs an 8-bit single-channel image";
   const Status status = options.Check();
   CHECK(status.ok()) << status.message();
-  if (options.method == SegmentMethod::kFast) return DetectFastSegments(grey, options);
-  const double sigma = options.reference.edge_sigma;
-  const std::vector<EdgePoint> edges =
-      DetectSubpixelEdges(grey, sigma, StepGradient(options.edge_contrast_low, sigma),
-                          StepGradient(options.edge_contrast_high, sigma));
-  return HoughSegments(edges, grey.size(), options);
+  LineSegments segments;
+  if (options.method == SegmentMethod::kFast) {
+    segments = DetectFastSegments(grey, options);
+  } else {
+    const double sigma = options.reference.edge_sigma;
+    const std::vector<EdgePoint> edges =
+        DetectSubpixelEdges(grey, sigma, StepGradient(options.edge_contrast_low, sigma),
+                            StepGradient(options.edge_contrast_high, sigma));
+    segments = HoughSegments(edges, grey.size(), options);
+  }
+  DropBorderSegments(grey.size(), options.border_margin, &segments);
+  return segments;
+}
+
+void DropBorderSegments(const cv::Size& size, double margin, LineSegments* segments) {
+  if (margin <= 0) return;
+  const double right = size.width - 1 - margin, bottom = size.height - 1 - margin;
+  const auto along_border = [&](const LineSegment& s) {
+    return (s.p0.x() <= margin && s.p1.x() <= margin) || (s.p0.x() >= right && s.p1.x() >= right) ||
+           (s.p0.y() <= margin && s.p1.y() <= margin) || (s.p0.y() >= bottom && s.p1.y() >= bottom);
+  };
+  segments->erase(std::remove_if(segments->begin(), segments->end(), along_border), segments->end());
 }
 
 }  // namespace sfm

@@ -50,6 +50,11 @@ struct SegmentDetectorOptions {
   double edge_contrast_high = 10.0;  // grey levels
   double min_length = 10.0;          // pixels: shorter segments are dropped
   double max_gap = 3.0;              // pixels: a longer run without edge points splits a line (>= 1.5)
+  // pixels: a segment whose two end-points both lie this close to the same image border is dropped.
+  // The border is not a scene edge, but the filters' padding and sensor artefacts (a dark first or
+  // last column) make one there; 2 px is the reach of the edge filter's support at sigma 1 (0:
+  // keep everything).
+  double border_margin = 2.0;
   ReferenceSegmentOptions reference;
   FastSegmentOptions fast;
 
@@ -59,5 +64,9 @@ struct SegmentDetectorOptions {
 
 // The line segments of an 8-bit single-channel image. `options` must pass Check().
 LineSegments DetectLineSegments(const cv::Mat& grey, const SegmentDetectorOptions& options);
+
+// Removes the segments whose two end-points both lie within `margin` pixels of the same border of
+// an image of `size` (pixel centres at integer coordinates, 0 .. width-1).
+void DropBorderSegments(const cv::Size& size, double margin, LineSegments* segments);
 
 }  // namespace sfm
