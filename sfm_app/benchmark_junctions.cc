@@ -41,6 +41,7 @@
 #include "frontend/util/atomic_file.h"
 #include "sequences/generator/ground_truth.h"
 #include "sequences/generator/sequence_writer.h"
+#include "sfm_app/evaluation/table_format.h"
 #include "sfm_app/evaluation/junction_evaluation.h"
 #include "sfm_app/evaluation/junction_overlay.h"
 
@@ -167,12 +168,6 @@ std::vector<std::string> Split(const std::string& text) {
   return parts;
 }
 
-std::string Fixed(double value, int digits) {
-  char buffer[64];
-  std::snprintf(buffer, sizeof buffer, "%.*f", digits, value);
-  return buffer;
-}
-std::string Percent(int part, int whole) { return whole > 0 ? Fixed(100.0 * part / whole, 1) + " %" : "-"; }
 
 struct Method {
   std::string name;

@@ -42,6 +42,7 @@
 #include "frontend/sequence/sequence.h"
 #include "frontend/util/atomic_file.h"
 #include "sequences/generator/ground_truth.h"
+#include "sfm_app/evaluation/table_format.h"
 #include "sfm_app/evaluation/match_overlay.h"
 #include "sfm_app/evaluation/matching_evaluation.h"
 
@@ -118,12 +119,6 @@ bool ParsePair(const std::string& text, int* a, int* b) {
   return true;
 }
 
-std::string Fixed(double value, int digits) {
-  char buffer[64];
-  std::snprintf(buffer, sizeof buffer, "%.*f", digits, value);
-  return buffer;
-}
-std::string Percent(int part, int whole) { return whole > 0 ? Fixed(100.0 * part / whole, 1) + " %" : "-"; }
 std::string Goal(int part, int whole, double goal) {
   if (whole <= 0) return "-";
   return 100.0 * part / whole >= goal ? "pass (>= " + Fixed(goal, 0) + " %)" : "**miss** (< " + Fixed(goal, 0) + " %)";

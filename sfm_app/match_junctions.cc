@@ -31,10 +31,10 @@
 #include "frontend/junctions/junction_detector.h"
 #include "frontend/junctions/topology.h"
 #include "frontend/matching/junction_matcher.h"
+#include "frontend/matching/matches_csv.h"
 #include "frontend/segments/segment_detector.h"
 #include "frontend/sequence/sequence.h"
 #include "frontend/util/atomic_file.h"
-#include "frontend/util/json_format.h"
 #include "sfm_app/evaluation/match_overlay.h"
 
 namespace {
@@ -126,15 +126,6 @@ bool OptionsFromFlags(sfm::SegmentDetectorOptions* segments, sfm::JunctionDetect
     }
   }
   return true;
-}
-
-std::string MatchesCsv(const sfm::Junctions& a, const sfm::Junctions& b, const std::vector<sfm::JunctionMatch>& matches) {
-  std::string csv = "id_a,id_b,similarity\n";
-  for (const sfm::JunctionMatch& m : matches) {
-    csv += std::to_string(a[m.index_a].id) + "," + std::to_string(b[m.index_b].id) + "," +
-           sfm::JsonNumber(m.similarity) + "\n";
-  }
-  return csv;
 }
 
 }  // namespace
@@ -229,7 +220,7 @@ int main(int argc, char** argv) {
 
   // Output.
   if (!FLAGS_csv.empty()) {
-    if (const sfm::Status s = sfm::WriteFileAtomically(FLAGS_csv, MatchesCsv(junctions_a, junctions_b, matches)); !s.ok()) {
+    if (const sfm::Status s = sfm::WriteFileAtomically(FLAGS_csv, sfm::MatchesCsv(junctions_a, junctions_b, matches)); !s.ok()) {
       return Fail(1, s.message());
     }
   }

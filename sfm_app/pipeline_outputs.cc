@@ -8,6 +8,7 @@
 #include "backend/export/ply_io.h"
 #include "frontend/geometry/tum_io.h"
 #include "frontend/junctions/junctions_json.h"
+#include "frontend/matching/matches_csv.h"
 #include "frontend/tracks/tracks_csv.h"
 #include "frontend/util/atomic_file.h"
 #include "frontend/util/json_format.h"
@@ -28,17 +29,6 @@ std::vector<StampedPose> Stamped(const Sequence& sequence, const std::vector<Pos
   stamped.reserve(poses.size());
   for (size_t i = 0; i < poses.size(); ++i) stamped.push_back({sequence.frames[i].timestamp, poses[i]});
   return stamped;
-}
-
-std::string MatchesCsv(const FramePairMatches& pair, const std::vector<Junctions>& junctions) {
-  const Junctions& a = junctions[pair.frame_a];
-  const Junctions& b = junctions[pair.frame_b];
-  std::string csv = "id_a,id_b,similarity\n";
-  for (const JunctionMatch& match : pair.matches) {
-    csv += std::to_string(a[match.index_a].id) + "," + std::to_string(b[match.index_b].id) + "," +
-           JsonNumber(match.similarity) + "\n";
-  }
-  return csv;
 }
 
 // Junction points are vertices; each 3D line segment is an edge from its junction point (where it
@@ -138,7 +128,7 @@ Status WriteOutputs(const Sequence& sequence, const PipelineResult& result, cons
   for (const FramePairMatches& pair : result.pairs) {
     const std::string name = FrameFileStem(pair.frame_a) + "_" + FrameFileStem(pair.frame_b) + ".csv";
     SFM_RETURN_IF_ERROR(
-        WriteFileAtomically((out / "matches" / name).string(), MatchesCsv(pair, result.junctions)));
+        WriteFileAtomically((out / "matches" / name).string(), MatchesCsv(result.junctions[pair.frame_a], result.junctions[pair.frame_b], pair.matches)));
   }
   SFM_RETURN_IF_ERROR(
       WriteFileAtomically((out / "tracks.csv").string(), TracksCsv(result.tracks, result.junctions)));
