@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <functional>
 #include <fstream>
 #include <limits>
 #include <map>
@@ -19,6 +20,7 @@
 #include "frontend/junctions/topology.h"
 #include "frontend/matching/junction_similarity.h"
 #include "frontend/segments/segment_evaluation.h"
+#include "frontend/util/text_file.h"
 
 namespace sfm {
 namespace {
@@ -53,15 +55,38 @@ bool BandMeetsSegment(const Eigen::Matrix3d& F, const LineSegment& a, const Line
 }
 
 // Reads whitespace-separated tokens of a file, one vector per non-empty line.
-Status ReadTokenLines(const std::string& path, std::vector<std::vector<std::string>>* lines) {
-  std::ifstream in(path);
-  if (!in) return Status::Error(path + ": cannot open");
-  lines->clear();
-  for (std::string line; std::getline(in, line);) {
-    std::istringstream tokens(line);
-    std::vector<std::string> row;
-    for (std::string token; tokens >> token;) row.push_back(token);
-    if (!row.empty()) lines->push_back(row);
+// The white-space separated words of each non-blank line (the VGG files have no comments).
+Status ReadTokenLines(const std::string& path, std::vector<std::vector<std::string>>* rows) {
+  std::vector<DataLine> lines;
+  SFM_RETURN_IF_ERROR(ReadDataLines(path, &lines));
+  rows->clear();
+  for (const DataLine& line : lines) rows->push_back(SplitWords(line.text));
+  return Status::Ok();
+}
+
+// A VGG n-view file: one row per 3D feature, one column per view holding an index into that view's
+// features (`features_per_view[v]` of them) or '*'. Calls assign(row, view, index) for each entry.
+Status ReadNviewIndices(const std::string& path, const std::vector<size_t>& features_per_view,
+                        const std::string& feature_name,
+                        const std::function<Status(size_t row, size_t view, long index)>& assign) {
+  std::vector<std::vector<std::string>> rows;
+  SFM_RETURN_IF_ERROR(ReadTokenLines(path, &rows));
+  for (size_t r = 0; r < rows.size(); ++r) {
+    const std::string where = path + ":" + std::to_string(r + 1);
+    if (rows[r].size() != features_per_view.size()) {
+      return Status::Error(where + ": " + std::to_string(rows[r].size()) + " columns for " +
+                           std::to_string(features_per_view.size()) + " views");
+    }
+    for (size_t v = 0; v < rows[r].size(); ++v) {
+      if (rows[r][v] == "*") continue;
+      char* end = nullptr;
+      const long index = std::strtol(rows[r][v].c_str(), &end, 10);
+      if (*end != '\0' || index < 0 || index >= static_cast<long>(features_per_view[v])) {
+        return Status::Error(where + ": '" + rows[r][v] + "' is not a " + feature_name + " of view " +
+                             std::to_string(v));
+      }
+      SFM_RETURN_IF_ERROR(assign(r, v, index));
+    }
   }
   return Status::Ok();
 }
@@ -356,52 +381,28 @@ Status ReadVggTruth(const std::string& directory, const SegmentJunctionOptions& 
       truth->lines3d.emplace_back(Eigen::Vector3d(v[0], v[1], v[2]), Eigen::Vector3d(v[3], v[4], v[5]));
     }
   }
+  std::vector<size_t> lines_per_view, corners_per_view;
+  for (const VggView& view : truth->views) {
+    lines_per_view.push_back(view.lines.size());
+    corners_per_view.push_back(view.corners.size());
+  }
   const std::string tracks_path = directory + "/bt_original.nview-lines";
   if (std::filesystem::exists(tracks_path)) {
-    std::vector<std::vector<std::string>> rows;
-    SFM_RETURN_IF_ERROR(ReadTokenLines(tracks_path, &rows));
-    for (size_t r = 0; r < rows.size(); ++r) {
-      const std::string where = tracks_path + ":" + std::to_string(r + 1);
-      if (rows[r].size() != truth->views.size()) {
-        return Status::Error(where + ": " + std::to_string(rows[r].size()) + " columns for " +
-                             std::to_string(truth->views.size()) + " views");
+    SFM_RETURN_IF_ERROR(ReadNviewIndices(tracks_path, lines_per_view, "line", [&](size_t r, size_t v, long index) {
+      if (r >= truth->lines3d.size()) {
+        return Status::Error(tracks_path + ":" + std::to_string(r + 1) + ": row has no 3D line in " + lines3d_path);
       }
-      for (size_t v = 0; v < rows[r].size(); ++v) {
-        if (rows[r][v] == "*") continue;
-        char* end = nullptr;
-        const long index = std::strtol(rows[r][v].c_str(), &end, 10);
-        VggView& view = truth->views[v];
-        if (*end != '\0' || index < 0 || index >= static_cast<long>(view.lines.size())) {
-          return Status::Error(where + ": '" + rows[r][v] + "' is not a line of view " + std::to_string(v));
-        }
-        if (r >= truth->lines3d.size()) {
-          return Status::Error(where + ": row has no 3D line in " + lines3d_path);
-        }
-        view.line3d[index] = static_cast<int>(r);
-      }
-    }
+      truth->views[v].line3d[index] = static_cast<int>(r);
+      return Status::Ok();
+    }));
   }
   const std::string corner_tracks_path = directory + "/bt.nview-corners";
   if (std::filesystem::exists(corner_tracks_path)) {
-    std::vector<std::vector<std::string>> rows;
-    SFM_RETURN_IF_ERROR(ReadTokenLines(corner_tracks_path, &rows));
-    for (size_t r = 0; r < rows.size(); ++r) {
-      const std::string where = corner_tracks_path + ":" + std::to_string(r + 1);
-      if (rows[r].size() != truth->views.size()) {
-        return Status::Error(where + ": " + std::to_string(rows[r].size()) + " columns for " +
-                             std::to_string(truth->views.size()) + " views");
-      }
-      for (size_t v = 0; v < rows[r].size(); ++v) {
-        if (rows[r][v] == "*") continue;
-        char* end = nullptr;
-        const long index = std::strtol(rows[r][v].c_str(), &end, 10);
-        VggView& view = truth->views[v];
-        if (*end != '\0' || index < 0 || index >= static_cast<long>(view.corners.size())) {
-          return Status::Error(where + ": '" + rows[r][v] + "' is not a corner of view " + std::to_string(v));
-        }
-        view.corner_point3d[index] = static_cast<int>(r);
-      }
-    }
+    SFM_RETURN_IF_ERROR(
+        ReadNviewIndices(corner_tracks_path, corners_per_view, "corner", [&](size_t r, size_t v, long index) {
+          truth->views[v].corner_point3d[index] = static_cast<int>(r);
+          return Status::Ok();
+        }));
   }
   for (VggView& view : truth->views) {
     view.junctions = JunctionsFromSegments(view.lines, junction_options);
