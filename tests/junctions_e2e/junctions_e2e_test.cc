@@ -14,6 +14,7 @@
 #include "sequences/generator/visibility.h"
 #include "sequences/generator/wireframe.h"
 #include "sfm_app/evaluation/junction_evaluation.h"
+#include "tests/test_scenes.h"
 
 namespace sfm {
 namespace {
@@ -21,18 +22,7 @@ namespace {
 // A 6 x 4 x 2.5 m room with three boxes on the floor and a poster, built by hand (not by the
 // random scene builder, so the frame stays the same while the builder changes).
 Scene SmallScene() {
-  Scene scene;
-  const double h = 2.5;
-  const Eigen::Vector3d b[4] = {{0, 0, 0}, {6, 0, 0}, {6, 4, 0}, {0, 4, 0}};
-  const Eigen::Vector3d t[4] = {{0, 0, h}, {6, 0, h}, {6, 4, h}, {0, 4, h}};
-  const Eigen::Vector3d centre(3, 2, 1.25);
-  scene.AddPolygon(scene.AddObject("floor"), {b[0], b[1], b[2], b[3]}, 0.35, Eigen::Vector3d::UnitZ());
-  scene.AddPolygon(scene.AddObject("ceiling"), {t[0], t[1], t[2], t[3]}, 0.9, -Eigen::Vector3d::UnitZ());
-  const double wall_albedo[4] = {0.7, 0.6, 0.75, 0.65};
-  for (int i = 0; i < 4; ++i) {
-    scene.AddPolygon(scene.AddObject("wall"), {b[i], b[(i + 1) % 4], t[(i + 1) % 4], t[i]}, wall_albedo[i],
-                     centre - 0.5 * (b[i] + t[(i + 1) % 4]));
-  }
+  Scene scene = testing::RoomShell(6, 4, /*height=*/2.5);
   scene.AddBox(scene.AddObject("box", true), {3.2, 1.3}, 0.35, 0, {0.7, 0.5, 0.6}, 0.25, false);
   scene.AddBox(scene.AddObject("box", true), {4.3, 2.7}, -0.6, 0, {0.6, 0.6, 1.1}, 0.5, false);
   scene.AddBox(scene.AddObject("box", true), {2.6, 2.9}, 0.1, 0, {0.5, 0.4, 0.4}, 0.15, false);
@@ -40,9 +30,6 @@ Scene SmallScene() {
   const double x = 5.999;
   scene.AddPolygon(scene.AddObject("poster"),
                    {{x, 1.2, 1.1}, {x, 2.2, 1.1}, {x, 2.2, 1.9}, {x, 1.2, 1.9}}, 0.2, -Eigen::Vector3d::UnitX());
-  scene.floor_min = {0, 0};
-  scene.floor_max = {6, 4};
-  scene.ceiling_height = h;
   return scene;
 }
 

@@ -18,6 +18,7 @@
 #include "sequences/generator/visibility.h"
 #include "sequences/generator/wireframe.h"
 #include "sfm_app/evaluation/matching_evaluation.h"
+#include "tests/test_scenes.h"
 
 namespace sfm {
 namespace {
@@ -25,18 +26,7 @@ namespace {
 // A 7 x 4 x 2.5 m room with boxes (two of them stacked), a cabinet and posters, built by hand (not
 // by the random scene builder, so the frames stay the same while the builder changes).
 Scene SmallRoom() {
-  Scene scene;
-  const double h = 2.5;
-  const Eigen::Vector3d b[4] = {{0, 0, 0}, {7, 0, 0}, {7, 4, 0}, {0, 4, 0}};
-  const Eigen::Vector3d t[4] = {{0, 0, h}, {7, 0, h}, {7, 4, h}, {0, 4, h}};
-  const Eigen::Vector3d centre(3.5, 2, 1.25);
-  scene.AddPolygon(scene.AddObject("floor"), {b[0], b[1], b[2], b[3]}, 0.35, Eigen::Vector3d::UnitZ());
-  scene.AddPolygon(scene.AddObject("ceiling"), {t[0], t[1], t[2], t[3]}, 0.9, -Eigen::Vector3d::UnitZ());
-  const double wall_albedo[4] = {0.7, 0.6, 0.75, 0.65};
-  for (int i = 0; i < 4; ++i) {
-    scene.AddPolygon(scene.AddObject("wall"), {b[i], b[(i + 1) % 4], t[(i + 1) % 4], t[i]}, wall_albedo[i],
-                     centre - 0.5 * (b[i] + t[(i + 1) % 4]));
-  }
+  Scene scene = testing::RoomShell(7, 4, /*height=*/2.5);
   scene.AddBox(scene.AddObject("box", true), {3.6, 1.2}, 0.35, 0, {0.7, 0.5, 0.6}, 0.25, false);
   scene.AddBox(scene.AddObject("box", true), {4.8, 2.8}, -0.6, 0, {0.6, 0.6, 1.1}, 0.5, false);
   scene.AddBox(scene.AddObject("box", true), {3.0, 3.0}, 0.1, 0, {0.5, 0.4, 0.4}, 0.15, false);
@@ -51,9 +41,6 @@ Scene SmallRoom() {
                    -Eigen::Vector3d::UnitX());
   scene.AddPolygon(scene.AddObject("poster"), {{2.0, y, 1.0}, {3.2, y, 1.0}, {3.2, y, 1.8}, {2.0, y, 1.8}}, 0.25,
                    -Eigen::Vector3d::UnitY());
-  scene.floor_min = {0, 0};
-  scene.floor_max = {7, 4};
-  scene.ceiling_height = h;
   return scene;
 }
 
