@@ -4,11 +4,14 @@
 #include <glog/logging.h>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <memory>
 #include <string>
 
+#include "backend/bundle_adjustment/floor_prior.h"
+#include "backend/bundle_adjustment/floor_prior_cost.h"
 #include "backend/bundle_adjustment/line_manifold.h"
 #include "backend/bundle_adjustment/line_reprojection_cost.h"
 #include "backend/bundle_adjustment/observability.h"
@@ -131,6 +134,8 @@ class BundleAdjuster {
     RemoveLandmarksWithFewViews();
     DropUnobservableLandmarks(/*refined=*/true);
     if (CountObservations() == 0) return RevertToOdometry("no landmark left observable on the refined poses");
+    // 5. The floor prior, decided on the coarse map (its floor is where the odometry's scale put it).
+    SelectFloor(/*first=*/true);
     // A solve that an outlier round follows stops at the looser intermediate tolerance; the
     // returned result always comes from a solve at function_tolerance.
     bool loose = options_.outlier_rounds > 0;
@@ -142,6 +147,7 @@ class BundleAdjuster {
       const int unobservable = DropUnobservableLandmarks(/*refined=*/true);
       if (outliers + unobservable == 0) break;
       if (CountObservations() == 0) return RevertToOdometry("every landmark was removed after solving");
+      SelectFloor(/*first=*/false);  // the removals renumbered the landmarks; the map was rescaled
       loose = round + 1 < options_.outlier_rounds;
       SFM_RETURN_IF_ERROR(Solve(options_.robust_loss_scale_px, /*with_lines=*/true,
                                 loose ? options_.intermediate_function_tolerance : options_.function_tolerance));
@@ -150,12 +156,17 @@ class BundleAdjuster {
       SFM_RETURN_IF_ERROR(Solve(options_.robust_loss_scale_px, /*with_lines=*/true, options_.function_tolerance));
     }
     ComputeRms();
+    FinishFloorSummary();
     return Status::Ok();
   }
 
   // With no landmark left, the poses they gave are no better than the odometry's.
   Status RevertToOdometry(const std::string& why) {
     for (size_t f = 0; f < poses_.size(); ++f) poses_[f] = PoseParameters::FromPose(odometry_[f]);
+    odometry_scale_ = 1;
+    floor_.points.clear();
+    floor_.lines.clear();
+    FinishFloorSummary();
     summary_->solver_report = why + "; the trajectory is the odometry's";
     return Status::Ok();
   }
@@ -167,6 +178,68 @@ class BundleAdjuster {
   }
 
  private:
+  // The floor prior's decision and selection (docs/bundle_adjustment.md, "Floor prior"). `first`:
+  // on the coarse map, where the rig and the odometry are checked and the plane's height must
+  // agree with the odometry's noise model (auto); later, on the map the prior has rescaled, the
+  // landmarks are selected again about the plane found there.
+  void SelectFloor(bool first) {
+    if (options_.floor_prior == FloorPriorMode::kOff) {
+      if (first) summary_->floor_prior_report = "floor prior off (--floor_prior=off)";
+      return;
+    }
+    if (!first && !scale_free_) return;  // not applied in the first place
+    const bool automatic = options_.floor_prior == FloorPriorMode::kAuto;
+    const double sigma_m = options_.floor_sigma_m;
+    const double camera_height_m = base_T_camera_.translation.z();
+    auto skip = [&](const std::string& why) {
+      summary_->floor_prior_report = first ? "floor prior not applied: " + why
+                                           : "floor prior dropped after the outlier round, the odometry scale " +
+                                                 std::to_string(odometry_scale_) + " it gave kept: " + why;
+      floor_.points.clear();
+      floor_.lines.clear();
+    };
+    if (first) {
+      const std::string rig_problem = FloorPriorRigProblem(base_T_camera_, odometry_, sigma_m);
+      // Even when forced on, a floor must be below the camera.
+      if (!rig_problem.empty() && (automatic || !(camera_height_m > 0))) return skip(rig_problem);
+    }
+    double camera_z_m = 0;
+    for (const PoseParameters& pose : poses_) camera_z_m += (pose.ToPose() * base_T_camera_).translation.z();
+    camera_z_m /= poses_.size();
+    const double half_width_m = 3 * sigma_m;
+    const FloorPlane plane =
+        FindFloorPlane(*landmarks_, camera_z_m, half_width_m, options_.floor_min_landmarks);
+    if (!plane.found) return skip(plane.why);
+    if (first) summary_->floor_plane_z_m = plane.z_m;
+    // The floor of a map whose trajectory is s times too long is at (1 - s) * camera height
+    // (the map scaled about the cameras, which the rig holds at their height); the noise model
+    // allows |s - 1| up to 3 translation sigmas, and the slab's half width is the plane's own
+    // resolution.
+    const double allowed_m = 3 * noise_.translation_sigma * camera_height_m + half_width_m;
+    if (automatic && !(std::abs(plane.z_m) <= allowed_m)) {
+      return skip("the lowest horizontal plane (" + std::to_string(plane.support) + " landmarks) is at z = " +
+                  std::to_string(plane.z_m) + " m, beyond the " + std::to_string(allowed_m) +
+                  " m the odometry's scale sigma allows: the base origin is not on the floor");
+    }
+    floor_ = SelectFloorLandmarks(*landmarks_, plane.z_m, half_width_m);
+    floor_anchors_.clear();
+    for (int line : floor_.lines) {
+      floor_anchors_.push_back({landmarks_->lines[line].end0, landmarks_->lines[line].end1});
+    }
+    scale_free_ = true;
+    summary_->floor_prior_report = "floor prior: plane at z = " + std::to_string(plane.z_m) + " m (" +
+                                   std::to_string(plane.support) + " of " + std::to_string(plane.below_camera) +
+                                   " landmarks below the cameras), " + std::to_string(floor_.points.size()) +
+                                   " points and " + std::to_string(floor_.lines.size()) + " lines held";
+  }
+
+  void FinishFloorSummary() {
+    summary_->floor_prior_used = scale_free_ && !(floor_.points.empty() && floor_.lines.empty());
+    summary_->floor_points = static_cast<int>(floor_.points.size());
+    summary_->floor_lines = static_cast<int>(floor_.lines.size());
+    summary_->odometry_scale = odometry_scale_;
+  }
+
   // The residuals of one observation at the current parameters; false when it cannot be evaluated.
   bool PointResiduals(const PointLandmark& point, const PointObservation& observation,
                       Eigen::Vector2d* r) const {
@@ -375,8 +448,19 @@ class BundleAdjuster {
     problem.SetParameterBlockConstant(poses_[0].rotation.data());
     problem.SetParameterBlockConstant(poses_[0].translation.data());
 
-    for (PointLandmark& point : landmarks_->points) {
-      double* position = point.position.data();
+    // Every landmark's parameters in one buffer, points then lines, in their order: Ceres orders
+    // the blocks of an ordering group by address (a std::set<double*>), and that order is the
+    // Schur eliminator's summation order. In a buffer it is the landmarks' order, not the heap's,
+    // so that a run gives the same numbers every time.
+    const size_t point_count = landmarks_->points.size();
+    const size_t line_count = with_lines ? landmarks_->lines.size() : 0;
+    std::vector<double> landmark_values(3 * point_count + 6 * line_count);
+    auto point_block = [&](size_t i) { return landmark_values.data() + 3 * i; };
+    auto line_block = [&](size_t i) { return landmark_values.data() + 3 * point_count + 6 * i; };
+    for (size_t i = 0; i < point_count; ++i) {
+      const PointLandmark& point = landmarks_->points[i];
+      double* position = point_block(i);
+      std::copy(point.position.data(), point.position.data() + 3, position);
       for (const PointObservation& observation : point.observations) {
         PoseParameters& pose = poses_[observation.frame];
         problem.AddResidualBlock(PointReprojectionCost::Create(camera_, observation.pixel), loss.get(),
@@ -385,12 +469,11 @@ class BundleAdjuster {
       ordering->AddElementToGroup(position, 0);
     }
 
-    std::vector<OrthonormalLine> lines;
-    lines.reserve(landmarks_->lines.size());
-    for (const LineLandmark& line : landmarks_->lines) {
-      if (!with_lines) break;
-      lines.push_back(OrthonormalLineFromPointDirection(line.point, line.direction));
-      double* parameters = lines.back().data();
+    for (size_t i = 0; i < line_count; ++i) {
+      const LineLandmark& line = landmarks_->lines[i];
+      double* parameters = line_block(i);
+      const OrthonormalLine initial = OrthonormalLineFromPointDirection(line.point, line.direction);
+      std::copy(initial.begin(), initial.end(), parameters);
       problem.AddParameterBlock(parameters, 6, &line_manifold_);
       for (const LineObservation& observation : line.observations) {
         PoseParameters& pose = poses_[observation.frame];
@@ -400,13 +483,41 @@ class BundleAdjuster {
       ordering->AddElementToGroup(parameters, 0);
     }
 
+    // The floor prior (whitened by floor_sigma_m; Huber at one sigma, so that a landmark selected
+    // off the floor pulls with a bounded force) and the odometry's scale factor it observes.
+    ceres::HuberLoss floor_loss(1.0);
+    if (scale_free_) {
+      for (int point : floor_.points) {
+        problem.AddResidualBlock(FloorPointCost::Create(options_.floor_sigma_m), &floor_loss, point_block(point));
+      }
+      for (size_t k = 0; with_lines && k < floor_.lines.size(); ++k) {
+        problem.AddResidualBlock(
+            FloorLineCost::Create(floor_anchors_[k][0], floor_anchors_[k][1], options_.floor_sigma_m), &floor_loss,
+            line_block(floor_.lines[k]));
+      }
+      problem.AddParameterBlock(&odometry_scale_, 1);
+      ordering->AddElementToGroup(&odometry_scale_, 1);
+      problem.AddResidualBlock(OdometryScalePriorCost::Create(noise_.translation_sigma), nullptr, &odometry_scale_);
+      // With nothing on the floor left, the scale it gave is kept.
+      if (floor_.points.empty() && (!with_lines || floor_.lines.empty())) {
+        problem.SetParameterBlockConstant(&odometry_scale_);
+      }
+    }
+
     for (size_t f = 0; f + 1 < poses_.size(); ++f) {
       const Pose3 motion = odometry_[f].Inverse() * odometry_[f + 1];
       const double translation_sigma_m =
           noise_.translation_sigma * std::max(motion.translation.norm(), options_.odometry_min_distance_m);
-      problem.AddResidualBlock(OdometryPriorCost::Create(motion, noise_.rotation_sigma, translation_sigma_m),
-                               nullptr, poses_[f].rotation.data(), poses_[f].translation.data(),
-                               poses_[f + 1].rotation.data(), poses_[f + 1].translation.data());
+      double* const pose_blocks[4] = {poses_[f].rotation.data(), poses_[f].translation.data(),
+                                      poses_[f + 1].rotation.data(), poses_[f + 1].translation.data()};
+      if (scale_free_) {
+        problem.AddResidualBlock(
+            OdometryPriorWithScaleCost::Create(motion, noise_.rotation_sigma, translation_sigma_m), nullptr,
+            pose_blocks[0], pose_blocks[1], pose_blocks[2], pose_blocks[3], &odometry_scale_);
+      } else {
+        problem.AddResidualBlock(OdometryPriorCost::Create(motion, noise_.rotation_sigma, translation_sigma_m),
+                                 nullptr, pose_blocks[0], pose_blocks[1], pose_blocks[2], pose_blocks[3]);
+      }
     }
 
     ceres::Solver::Options solver_options = SolverOptions(LinearSolverType());
@@ -416,6 +527,7 @@ class BundleAdjuster {
     // by about 2e-6 relative, 0.4 of the predicted decrease: the landmarks' nonlinearity); Ceres's
     // inner iterations re-solve each landmark on the step's poses and end the solve in a few.
     solver_options.use_inner_iterations = with_lines && options_.inner_iterations;
+    if (solver_options.use_inner_iterations) solver_options.inner_iteration_ordering = InnerIterationOrdering(landmark_values);
     ceres::Solver::Summary ceres_summary;
     ceres::Solve(solver_options, &problem, &ceres_summary);
     if (!ceres_summary.IsSolutionUsable()) {
@@ -432,8 +544,36 @@ class BundleAdjuster {
     summary_->converged = summary_->converged && ceres_summary.termination_type == ceres::CONVERGENCE;
     summary_->solver_report = ceres_summary.BriefReport();
 
-    for (size_t i = 0; i < lines.size(); ++i) WriteBackLine(lines[i], &landmarks_->lines[i]);
+    for (size_t i = 0; i < point_count; ++i) landmarks_->points[i].position = Eigen::Map<Eigen::Vector3d>(point_block(i));
+    for (size_t i = 0; i < line_count; ++i) {
+      OrthonormalLine parameters;
+      std::copy(line_block(i), line_block(i) + 6, parameters.begin());
+      WriteBackLine(parameters, &landmarks_->lines[i]);
+    }
     return Status::Ok();
+  }
+
+  // The groups of Ceres's inner iterations, each an independent set (no two of its blocks in one
+  // residual), solved in turn: the rotations of the even frames but the first (which is held), of
+  // the odd ones, the same for the translations, the odometry's scale factor, then every landmark
+  // (`landmark_values`: the points and lines of the problem). The shape of the ordering Ceres
+  // computes when given none (poses in independent sets, the landmarks last), which it builds
+  // from hash sets keyed by address: its groups varied from run to run and so did the results
+  // (docs/bundle_adjustment.md, "Determinism").
+  std::shared_ptr<ceres::ParameterBlockOrdering> InnerIterationOrdering(std::vector<double>& landmark_values) {
+    auto ordering = std::make_shared<ceres::ParameterBlockOrdering>();
+    for (size_t f = 1; f < poses_.size(); ++f) {
+      ordering->AddElementToGroup(poses_[f].rotation.data(), static_cast<int>(f % 2));
+      ordering->AddElementToGroup(poses_[f].translation.data(), 2 + static_cast<int>(f % 2));
+    }
+    if (scale_free_) ordering->AddElementToGroup(&odometry_scale_, 4);
+    // The landmark blocks start at their sizes' offsets; walk them as Solve laid them out.
+    const size_t point_count = landmarks_->points.size();
+    for (size_t i = 0; i < point_count; ++i) ordering->AddElementToGroup(landmark_values.data() + 3 * i, 5);
+    for (size_t j = 3 * point_count; j < landmark_values.size(); j += 6) {
+      ordering->AddElementToGroup(landmark_values.data() + j, 5);
+    }
+    return ordering;
   }
 
   void WriteBackLine(const OrthonormalLine& parameters, LineLandmark* line) const {
@@ -498,6 +638,12 @@ class BundleAdjuster {
   Landmarks* landmarks_;
   BundleAdjustmentSummary* summary_;
   std::vector<PoseParameters> poses_;
+  // The floor prior: applied (the odometry's scale factor is a parameter) or not, the landmarks
+  // it holds now, the anchors of those lines (their end-points when selected), the factor.
+  bool scale_free_ = false;
+  FloorLandmarks floor_;
+  std::vector<std::array<Eigen::Vector3d, 2>> floor_anchors_;
+  double odometry_scale_ = 1;
   ceres::EigenQuaternionManifold quaternion_manifold_;
   OrthonormalLineManifold line_manifold_;
 };

@@ -32,6 +32,8 @@ Status BundleAdjustmentOptions::Check() const {
     return error("min_line_triangulation_angle_deg must be in [0, 90) deg");
   }
   if (!(min_depth_m >= 0 && std::isfinite(min_depth_m))) return error("min_depth_m must be >= 0 m");
+  if (!(floor_sigma_m > 0 && std::isfinite(floor_sigma_m))) return error("floor_sigma_m must be > 0 m");
+  if (floor_min_landmarks < 1) return error("floor_min_landmarks must be >= 1");
   return Status::Ok();
 }
 

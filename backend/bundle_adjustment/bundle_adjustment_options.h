@@ -2,6 +2,7 @@
 // chosen: docs/bundle_adjustment.md.
 #pragma once
 
+#include <optional>
 #include <string>
 
 #include "frontend/util/status.h"
@@ -9,6 +10,12 @@
 namespace sfm {
 
 enum class RobustLoss { kHuber, kCauchy };
+
+// The ground-plane (floor) prior (docs/bundle_adjustment.md, "Floor prior"): off; auto (when the
+// rig, the odometry and the first solve's map show a ground robot whose base origin is on the
+// floor); on (whenever a floor plane is found, without the checks of the rig, the odometry and
+// the plane's height).
+enum class FloorPriorMode { kOff, kAuto, kOn };
 
 enum class BundleAdjustmentLinearSolver {
   kAuto,         // DENSE_SCHUR up to dense_schur_max_frames frames, SPARSE_SCHUR above
@@ -52,6 +59,13 @@ struct BundleAdjustmentOptions {
   // baseline is intersected next to the camera centre, where the triangulation angles above see
   // any baseline as large.
   double min_depth_m = 0.1;
+  FloorPriorMode floor_prior = FloorPriorMode::kAuto;
+  // m, sigma of a floor landmark's world z about 0: how far a junction the floor prior selects
+  // may be from the plane of the base origin (floor flatness, wheels sinking in), also the unit
+  // of every floor threshold (docs/bundle_adjustment.md, "Floor prior").
+  double floor_sigma_m = 0.01;
+  // Landmarks a floor plane needs at least (besides being a peak of the height distribution).
+  int floor_min_landmarks = 10;
 
   // An error naming the first bad field, or OK.
   Status Check() const;
@@ -81,6 +95,15 @@ struct BundleAdjustmentSummary {
   int lines_unobservable = 0;
   double point_rms_px = 0;    // RMS reprojection error of the point observations kept, at the end
   double line_rms_px = 0;     // RMS end-point-to-line distance of the line observations kept
+  // Floor prior: used in the last solve or not, the landmarks it held there, the floor's height
+  // when it was first found (before the prior moved it), the odometry's scale factor (1 without
+  // the prior), and what was decided and why (logged by the pipeline).
+  bool floor_prior_used = false;
+  int floor_points = 0;
+  int floor_lines = 0;
+  std::optional<double> floor_plane_z_m;  // m; none when no floor plane was found
+  double odometry_scale = 1;
+  std::string floor_prior_report;
   double time_s = 0;          // wall-clock seconds, the whole call
   std::string solver_report;  // Ceres's BriefReport of the last solve, or why nothing was solved
 };

@@ -3,6 +3,7 @@
 #include <ceres/autodiff_cost_function.h>
 #include <glog/logging.h>
 
+#include "backend/bundle_adjustment/floor_prior_cost.h"
 #include "backend/bundle_adjustment/line_reprojection_cost.h"
 #include "backend/bundle_adjustment/odometry_prior_cost.h"
 #include "backend/bundle_adjustment/point_reprojection_cost.h"
@@ -145,6 +146,30 @@ ceres::CostFunction* OdometryPriorCost::Create(const Pose3& base_i_T_base_j_odom
   CHECK_GT(translation_sigma_m, 0);
   return new ceres::AutoDiffCostFunction<OdometryPriorCost, 6, 4, 3, 4, 3>(
       new OdometryPriorCost(base_i_T_base_j_odometry, rotation_sigma_rad, translation_sigma_m));
+}
+
+ceres::CostFunction* OdometryPriorWithScaleCost::Create(const Pose3& base_i_T_base_j_odometry,
+                                                       double rotation_sigma_rad, double translation_sigma_m) {
+  CHECK_GT(rotation_sigma_rad, 0);
+  CHECK_GT(translation_sigma_m, 0);
+  return new ceres::AutoDiffCostFunction<OdometryPriorWithScaleCost, 6, 4, 3, 4, 3, 1>(new OdometryPriorWithScaleCost(
+      OdometryPriorCost(base_i_T_base_j_odometry, rotation_sigma_rad, translation_sigma_m)));
+}
+
+ceres::CostFunction* FloorPointCost::Create(double sigma_m) {
+  CHECK_GT(sigma_m, 0);
+  return new ceres::AutoDiffCostFunction<FloorPointCost, 1, 3>(new FloorPointCost(sigma_m));
+}
+
+ceres::CostFunction* FloorLineCost::Create(const Eigen::Vector3d& anchor0, const Eigen::Vector3d& anchor1,
+                                           double sigma_m) {
+  CHECK_GT(sigma_m, 0);
+  return new ceres::AutoDiffCostFunction<FloorLineCost, 2, 6>(new FloorLineCost(anchor0, anchor1, sigma_m));
+}
+
+ceres::CostFunction* OdometryScalePriorCost::Create(double sigma) {
+  CHECK_GT(sigma, 0);
+  return new ceres::AutoDiffCostFunction<OdometryScalePriorCost, 1, 1>(new OdometryScalePriorCost(sigma));
 }
 
 }  // namespace sfm

@@ -10,6 +10,7 @@
 #include <random>
 #include <vector>
 
+#include "backend/bundle_adjustment/floor_prior_cost.h"
 #include "backend/bundle_adjustment/line_manifold.h"
 #include "backend/bundle_adjustment/line_reprojection_cost.h"
 #include "backend/bundle_adjustment/odometry_prior_cost.h"
@@ -351,6 +352,125 @@ TEST(OdometryPriorCostTest, GradientCheckAtZeroError) {
   ceres::GradientChecker checker(cost.get(), &manifolds, RiddersOptions());
   ceres::GradientChecker::ProbeResults results;
   EXPECT_TRUE(checker.Probe(parameters, kGradientTolerance, &results)) << results.error_log;
+}
+
+// The odometry prior with the scale factor: at scale 1 the plain prior's numbers; at scale s the
+// prior of the odometry motion with its translation times s.
+TEST(OdometryPriorWithScaleCostTest, HandBuiltValues) {
+  Random random;
+  for (int trial = 0; trial < 5; ++trial) {
+    const Pose3 est_i = random.Pose(), est_j = random.Pose();
+    const Pose3 motion(Eigen::Quaterniond(Eigen::AngleAxisd(0.2, Eigen::Vector3d::UnitZ())),
+                       Eigen::Vector3d(0.3, 0.05, 0));
+    std::unique_ptr<ceres::CostFunction> plain(OdometryPriorCost::Create(motion, 0.01, 0.02));
+    std::unique_ptr<ceres::CostFunction> scaled(OdometryPriorWithScaleCost::Create(motion, 0.01, 0.02));
+    Pose3 stretched = motion;
+    stretched.translation *= 0.97;
+    std::unique_ptr<ceres::CostFunction> plain_stretched(OdometryPriorCost::Create(stretched, 0.01, 0.02));
+    const PoseParameters i = PoseParameters::FromPose(est_i), j = PoseParameters::FromPose(est_j);
+    Eigen::Matrix<double, 6, 1> r_plain, r_scaled, r_stretched;
+    const double one = 1, factor = 0.97;
+    const double* p4[] = {i.rotation.data(), i.translation.data(), j.rotation.data(), j.translation.data()};
+    const double* p5[] = {i.rotation.data(), i.translation.data(), j.rotation.data(), j.translation.data(), &one};
+    ASSERT_TRUE(plain->Evaluate(p4, r_plain.data(), nullptr));
+    ASSERT_TRUE(scaled->Evaluate(p5, r_scaled.data(), nullptr));
+    EXPECT_EQ(r_plain, r_scaled);  // bit for bit: 1 * t is t
+    p5[4] = &factor;
+    ASSERT_TRUE(scaled->Evaluate(p5, r_scaled.data(), nullptr));
+    ASSERT_TRUE(plain_stretched->Evaluate(p4, r_stretched.data(), nullptr));
+    EXPECT_LT((r_scaled - r_stretched).norm(), 1e-12 * (1 + r_stretched.norm()));
+  }
+}
+
+TEST(OdometryPriorWithScaleCostTest, GradientCheck) {
+  Random random;
+  ceres::EigenQuaternionManifold quaternion;
+  const std::vector<const ceres::Manifold*> manifolds = {&quaternion, nullptr, &quaternion, nullptr, nullptr};
+  for (int trial = 0; trial < kRandomTrials; ++trial) {
+    const Pose3 est_i = random.Pose(), est_j = random.Pose();
+    const Pose3 perturbation(
+        Eigen::Quaterniond(Eigen::AngleAxisd(random.Uniform(0, 0.5), random.Vector(-1, 1).normalized())),
+        random.Vector(-0.3, 0.3));
+    const Pose3 measured = est_i.Inverse() * est_j * perturbation;
+    std::unique_ptr<ceres::CostFunction> cost(OdometryPriorWithScaleCost::Create(
+        measured, random.Uniform(0.001, 0.1), random.Uniform(0.001, 0.1)));
+    const PoseParameters i = PoseParameters::FromPose(est_i), j = PoseParameters::FromPose(est_j);
+    const double scale = random.Uniform(0.9, 1.1);
+    const double* parameters[] = {i.rotation.data(), i.translation.data(), j.rotation.data(), j.translation.data(),
+                                  &scale};
+    ceres::GradientChecker checker(cost.get(), &manifolds, RiddersOptions());
+    ceres::GradientChecker::ProbeResults results;
+    EXPECT_TRUE(checker.Probe(parameters, kGradientTolerance, &results))
+        << "trial " << trial << ": " << results.error_log;
+  }
+}
+
+TEST(FloorPointCostTest, ValuesAndGradientCheck) {
+  std::unique_ptr<ceres::CostFunction> cost(FloorPointCost::Create(0.01));
+  const std::vector<const ceres::Manifold*> manifolds = {nullptr};
+  Random random;
+  for (int trial = 0; trial < kRandomTrials; ++trial) {
+    const Eigen::Vector3d point = random.Vector(-5, 5);
+    const double* parameters[] = {point.data()};
+    double r = 0;
+    ASSERT_TRUE(cost->Evaluate(parameters, &r, nullptr));
+    EXPECT_NEAR(r, point.z() / 0.01, 1e-12);  // metres over sigma
+    ceres::GradientChecker checker(cost.get(), &manifolds, RiddersOptions());
+    ceres::GradientChecker::ProbeResults results;
+    EXPECT_TRUE(checker.Probe(parameters, kGradientTolerance, &results)) << results.error_log;
+  }
+}
+
+TEST(FloorLineCostTest, HandBuiltValues) {
+  const double sigma = 0.01;
+  auto residuals = [&](const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& anchor0,
+                       const Eigen::Vector3d& anchor1) {
+    std::unique_ptr<ceres::CostFunction> cost(FloorLineCost::Create(anchor0, anchor1, sigma));
+    const OrthonormalLine line = OrthonormalLineFromPointDirection(a, b - a);
+    return Residuals(*cost, {line.data()});
+  };
+  // A floor line: zero, wherever the anchors are along or beside it.
+  EXPECT_NEAR(residuals({1, 2, 0}, {4, 3, 0}, {0, 0, 0.3}, {9, 1, -2}).norm(), 0, 1e-12);
+  // 5 cm above the floor, horizontal: 5 sigma at both anchors.
+  Eigen::Vector2d r = residuals({1, 2, 0.05}, {4, 2, 0.05}, {1, 2, 0}, {4, 2, 0});
+  EXPECT_NEAR(r(0), 5, 1e-9);
+  EXPECT_NEAR(r(1), 5, 1e-9);
+  // Rising 10 cm from anchor 0 to anchor 1 (3 m apart): 0 and 10 sigma; the anchors' offsets
+  // across the line do not matter.
+  r = residuals({1, 2, 0}, {4, 2, 0.1}, {1, 2.5, 0}, {4, 1.0, 0.1});
+  EXPECT_NEAR(r(0), 0, 1e-9);
+  EXPECT_NEAR(r(1), 10, 1e-9);
+}
+
+TEST(FloorLineCostTest, GradientCheck) {
+  Random random;
+  OrthonormalLineManifold line_manifold;
+  const std::vector<const ceres::Manifold*> manifolds = {&line_manifold};
+  for (int trial = 0; trial < kRandomTrials; ++trial) {
+    const Eigen::Vector3d a = random.Vector(-5, 5), b = random.Vector(-5, 5);
+    const OrthonormalLine line = OrthonormalLineFromPointDirection(a, b - a);
+    std::unique_ptr<ceres::CostFunction> cost(
+        FloorLineCost::Create(a + random.Vector(-0.5, 0.5), b + random.Vector(-0.5, 0.5), random.Uniform(0.005, 0.05)));
+    const double* parameters[] = {line.data()};
+    ceres::GradientChecker checker(cost.get(), &manifolds, RiddersOptions());
+    ceres::GradientChecker::ProbeResults results;
+    EXPECT_TRUE(checker.Probe(parameters, kGradientTolerance, &results))
+        << "trial " << trial << ": " << results.error_log;
+  }
+}
+
+TEST(OdometryScalePriorCostTest, ValuesAndGradientCheck) {
+  std::unique_ptr<ceres::CostFunction> cost(OdometryScalePriorCost::Create(0.02));
+  const std::vector<const ceres::Manifold*> manifolds = {nullptr};
+  for (const double scale : {1.0, 0.97, 1.05}) {
+    const double* parameters[] = {&scale};
+    double r = 0;
+    ASSERT_TRUE(cost->Evaluate(parameters, &r, nullptr));
+    EXPECT_NEAR(r, (scale - 1) / 0.02, 1e-12);
+    ceres::GradientChecker checker(cost.get(), &manifolds, RiddersOptions());
+    ceres::GradientChecker::ProbeResults results;
+    EXPECT_TRUE(checker.Probe(parameters, kGradientTolerance, &results)) << results.error_log;
+  }
 }
 
 }  // namespace

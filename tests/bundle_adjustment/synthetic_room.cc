@@ -89,6 +89,24 @@ Scene BoxRoom() {
   return scene;
 }
 
+Scene BoxRoomWithRugs(double floor_z) {
+  Scene scene = BoxRoom();
+  auto rug = [](double x0, double x1, double y0, double y1) {
+    return std::vector<Eigen::Vector3d>{{x0, y0, 0}, {x1, y0, 0}, {x1, y1, 0}, {x0, y1, 0}};
+  };
+  AddRectangle(rug(3.0, 4.5, 0.4, 1.0), &scene);  // between the loop and the south wall
+  AddRectangle(rug(3.5, 5.0, 5.0, 5.6), &scene);  // north
+  AddRectangle(rug(0.4, 1.0, 2.0, 3.5), &scene);  // west
+  AddRectangle(rug(7.0, 7.6, 2.5, 4.0), &scene);  // east
+  const Eigen::Vector3d shift(0, 0, floor_z);
+  for (Eigen::Vector3d& point : scene.points) point += shift;
+  for (Scene::Segment& segment : scene.segments) {
+    segment.a += shift;
+    segment.b += shift;
+  }
+  return scene;
+}
+
 Calibration RobotCalibration(double forward, double height) {
   Calibration calibration;
   Camera& camera = calibration.camera;

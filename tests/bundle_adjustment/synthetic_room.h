@@ -27,6 +27,11 @@ struct Scene {
 // framed rectangles on each wall (4 corners and 4 edges each): 40 points, 44 segments.
 Scene BoxRoom();
 
+// BoxRoom with four rugs on its floor (rectangles of 0.6 x 1.5 m between the loop of
+// LoopTrajectory and each wall: 16 more points and segments at z = 0), for the floor prior; then
+// everything moved up by floor_z (m): a floor away from the base origin's z = 0.
+Scene BoxRoomWithRugs(double floor_z = 0);
+
 // The generator's rig: 640 x 480, fx = fy = 450 px, principal point at the image centre; camera
 // z = base x, camera x = -base y, camera y = -base z, 0.2 m ahead of the base origin and
 // `height` m above the floor (0 for a camera on the base's vertical axis at the floor).

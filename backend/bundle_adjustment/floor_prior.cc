@@ -1,0 +1,101 @@
+#include "backend/bundle_adjustment/floor_prior.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+namespace sfm {
+namespace {
+
+std::string Format(double value) {
+  std::ostringstream out;
+  out.precision(3);
+  out << value;
+  return out.str();
+}
+
+// A line's height when it is horizontal within half_width_m (its two ends' z differ by at most
+// that), otherwise NaN.
+double LineHeight(const LineLandmark& line, double half_width_m) {
+  if (std::abs(line.end0.z() - line.end1.z()) > half_width_m) return std::nan("");
+  return 0.5 * (line.end0.z() + line.end1.z());
+}
+
+bool InSlab(double z, double plane_z_m, double half_width_m) { return std::abs(z - plane_z_m) <= half_width_m; }
+
+}  // namespace
+
+std::string FloorPriorRigProblem(const Pose3& base_T_camera, const std::vector<Pose3>& world_T_base_odometry,
+                                 double sigma_m) {
+  const double camera_height_m = base_T_camera.translation.z();
+  if (!(camera_height_m >= 10 * sigma_m)) {
+    return "the camera is " + Format(camera_height_m) + " m above the base origin (T_base_camera), less than " +
+           Format(10 * sigma_m) + " m";
+  }
+  const double max_tilt_rad = sigma_m / camera_height_m;
+  for (size_t f = 0; f < world_T_base_odometry.size(); ++f) {
+    const Pose3& pose = world_T_base_odometry[f];
+    if (!(std::abs(pose.translation.z()) <= sigma_m)) {
+      return "the odometry is not planar: frame " + std::to_string(f) + " has z = " +
+             Format(pose.translation.z()) + " m (more than " + Format(sigma_m) + " m)";
+    }
+    const Eigen::Vector3d up = pose.rotation.normalized() * Eigen::Vector3d::UnitZ();
+    const double tilt_rad = std::atan2(up.head<2>().norm(), up.z());
+    if (!(tilt_rad <= max_tilt_rad)) {
+      return "the odometry is not planar: frame " + std::to_string(f) + " has roll/pitch " + Format(tilt_rad) +
+             " rad (more than " + Format(max_tilt_rad) + ")";
+    }
+  }
+  return "";
+}
+
+FloorPlane FindFloorPlane(const Landmarks& landmarks, double camera_z_m, double half_width_m, int min_support) {
+  std::vector<double> heights;
+  for (const PointLandmark& point : landmarks.points) {
+    if (point.position.z() < camera_z_m) heights.push_back(point.position.z());
+  }
+  for (const LineLandmark& line : landmarks.lines) {
+    const double z = LineHeight(line, half_width_m);
+    if (z < camera_z_m) heights.push_back(z);  // false for NaN
+  }
+  std::sort(heights.begin(), heights.end());
+  FloorPlane plane;
+  plane.below_camera = static_cast<int>(heights.size());
+  const double width_m = 2 * half_width_m;
+  const int needed = min_support;
+  // The lowest window [heights[i], heights[i] + width] holding enough, then centred on its median
+  // and counted again (the slab the selection will use).
+  size_t end = 0;
+  for (size_t i = 0; i < heights.size(); ++i) {
+    end = std::max(end, i);
+    while (end < heights.size() && heights[end] <= heights[i] + width_m) ++end;
+    if (static_cast<int>(end - i) < needed) continue;
+    const double centre = heights[i + (end - i) / 2];
+    plane.z_m = centre;
+    plane.support = static_cast<int>(std::count_if(heights.begin(), heights.end(),
+                                                   [&](double z) { return InSlab(z, centre, half_width_m); }));
+    plane.found = true;
+    return plane;
+  }
+  plane.why = "no horizontal plane below the cameras: no " + Format(width_m) + " m slab holds " +
+              std::to_string(needed) + " of the " + std::to_string(heights.size()) + " landmarks below them";
+  return plane;
+}
+
+FloorLandmarks SelectFloorLandmarks(const Landmarks& landmarks, double plane_z_m, double half_width_m) {
+  FloorLandmarks selected;
+  for (size_t i = 0; i < landmarks.points.size(); ++i) {
+    if (InSlab(landmarks.points[i].position.z(), plane_z_m, half_width_m)) {
+      selected.points.push_back(static_cast<int>(i));
+    }
+  }
+  for (size_t i = 0; i < landmarks.lines.size(); ++i) {
+    const LineLandmark& line = landmarks.lines[i];
+    if (InSlab(line.end0.z(), plane_z_m, half_width_m) && InSlab(line.end1.z(), plane_z_m, half_width_m)) {
+      selected.lines.push_back(static_cast<int>(i));
+    }
+  }
+  return selected;
+}
+
+}  // namespace sfm

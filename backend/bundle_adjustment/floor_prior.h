@@ -1,0 +1,46 @@
+// When the ground-plane (floor) prior applies, and which landmarks it holds: the rules of
+// docs/bundle_adjustment.md, "Floor prior". The residuals are in floor_prior_cost.h; the bundle
+// adjuster calls these checks and selections between its stages.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "backend/triangulation/landmarks.h"
+#include "frontend/geometry/pose.h"
+
+namespace sfm {
+
+// The rig and the odometry: why the floor prior cannot apply, or "" when it can. The camera must
+// be at least 10 sigma_m above the base origin (base_T_camera's z); every odometry pose's z within
+// sigma_m of 0 and its base tilted (roll/pitch: the angle of its z axis from the world's) by at
+// most sigma_m / camera height, the tilt that moves the floor under the camera by sigma_m.
+std::string FloorPriorRigProblem(const Pose3& base_T_camera, const std::vector<Pose3>& world_T_base_odometry,
+                                 double sigma_m);
+
+struct FloorPlane {
+  bool found = false;
+  double z_m = 0;     // world height of the slab's centre
+  int support = 0;    // landmarks in the slab
+  int below_camera = 0;  // landmarks considered (heights below the cameras)
+  std::string why;    // when not found: why not
+};
+
+// The floor: the lowest horizontal slab [z - half_width_m, z + half_width_m] below camera_z_m
+// that holds at least `min_support` landmarks (nothing is seen below a floor, except a few
+// mis-triangulated landmarks, which do not gather in one slab). A landmark's height: a point's z;
+// a line's mean end z when its two ends differ by at most half_width_m in z (a horizontal line),
+// otherwise it is not considered.
+FloorPlane FindFloorPlane(const Landmarks& landmarks, double camera_z_m, double half_width_m, int min_support);
+
+struct FloorLandmarks {
+  std::vector<int> points;  // indices into Landmarks::points
+  std::vector<int> lines;   // indices into Landmarks::lines (both ends in the slab)
+};
+
+// The landmarks within half_width_m of height plane_z_m (lines: both ends).
+FloorLandmarks SelectFloorLandmarks(const Landmarks& landmarks, double plane_z_m, double half_width_m);
+
+}  // namespace sfm
