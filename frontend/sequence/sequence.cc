@@ -189,21 +189,93 @@ std::string DescribeYamlError(const cv::Exception& e, int lines_added) {
   return ": malformed YAML (" + OneLine(e.err) + ")";
 }
 
-// Index of the pose nearest in time to `timestamp` within kTimestampTolerance, or -1.
-int NearestPose(const std::vector<StampedPose>& poses, double timestamp, double* nearest_difference) {
+// A difference of two decimal timestamps for a message: "%.6g" gives "0.05" where the exact double
+// would read "0.04999999999999893".
+std::string DurationText(double seconds) {
+  char text[32];
+  std::snprintf(text, sizeof(text), "%.6g", seconds);
+  return text;
+}
+
+// How an image's pose was taken from a trajectory file.
+enum class Association { kNearest, kInterpolated, kOutsideSpan };
+
+// The trajectory's pose at `timestamp` (poses in strictly increasing time, as ReadTumTrajectory
+// guarantees). A line within kTimestampTolerance is used as is (the nearest, when two are), so
+// trajectories stamped like the images give their own poses bit for bit. Otherwise, when the time
+// lies between two lines, the pose is interpolated between them: linear in translation, slerp
+// (shortest arc) in rotation, i.e. constant velocity between the two lines. *gap is then their time
+// difference. Beyond the first or last line by more than the tolerance there is nothing to
+// interpolate from and nothing is extrapolated: kOutsideSpan.
+Association PoseAtTime(const std::vector<StampedPose>& poses, double timestamp, Pose3* pose, double* gap) {
   const auto after = std::lower_bound(poses.begin(), poses.end(), timestamp,
                                       [](const StampedPose& p, double t) { return p.timestamp < t; });
-  int best = -1;
-  *nearest_difference = std::numeric_limits<double>::infinity();
+  auto nearest = poses.end();
+  double nearest_difference = std::numeric_limits<double>::infinity();
   for (auto it : {after - (after == poses.begin() ? 0 : 1), after}) {
     if (it == poses.end()) continue;
     const double difference = std::abs(it->timestamp - timestamp);
-    if (difference < *nearest_difference) {
-      *nearest_difference = difference;
-      best = static_cast<int>(it - poses.begin());
+    if (difference < nearest_difference) {
+      nearest_difference = difference;
+      nearest = it;
     }
   }
-  return *nearest_difference <= kTimestampTolerance + TimestampSlack(timestamp) ? best : -1;
+  *gap = 0;
+  if (nearest_difference <= kTimestampTolerance + TimestampSlack(timestamp)) {
+    *pose = nearest->pose;
+    return Association::kNearest;
+  }
+  // No line within the tolerance, so none equals `timestamp`: `after` is the first line later than
+  // it, and an image inside the span has one line on either side.
+  if (after == poses.begin() || after == poses.end()) return Association::kOutsideSpan;
+  const StampedPose& a = *(after - 1);
+  const StampedPose& b = *after;
+  *gap = b.timestamp - a.timestamp;
+  const double s = (timestamp - a.timestamp) / *gap;  // in (0, 1)
+  pose->translation = a.pose.translation + s * (b.pose.translation - a.pose.translation);
+  // Eigen's slerp takes the shorter arc (it flips the sign of a quaternion on the far hemisphere);
+  // it blends linearly when the two are nearly equal, hence the normalisation.
+  pose->rotation = a.pose.rotation.slerp(s, b.pose.rotation).normalized();
+  return Association::kInterpolated;
+}
+
+// Associates each frame with a pose of one trajectory file (odometry.txt or groundtruth.txt) and
+// stores it through `store`. Interpolation is said once per file in the log, not once per frame.
+template <typename Store>
+Status AssociatePoses(const std::string& images_path, const std::vector<int>& line_numbers,
+                      const std::string& trajectory_path, const std::vector<StampedPose>& poses,
+                      std::vector<Frame>* frames, Store store) {
+  int interpolated = 0;
+  double widest_gap = 0;
+  for (size_t i = 0; i < frames->size(); ++i) {
+    Frame& frame = (*frames)[i];
+    Pose3 pose;
+    double gap = 0;
+    const Association association = PoseAtTime(poses, frame.timestamp, &pose, &gap);
+    if (association == Association::kOutsideSpan) {
+      const bool before = frame.timestamp < poses.front().timestamp;
+      const double end = before ? poses.front().timestamp : poses.back().timestamp;
+      return Status::Error(images_path + ":" + std::to_string(line_numbers[i]) + ": timestamp " +
+                           ShortestNumberText(frame.timestamp) + " is outside the time span of " + trajectory_path +
+                           " (" + ShortestNumberText(poses.front().timestamp) + " to " +
+                           ShortestNumberText(poses.back().timestamp) + " s): " +
+                           DurationText(std::abs(frame.timestamp - end)) + " s " +
+                           (before ? "before its first" : "after its last") +
+                           " pose, more than the 1 ms tolerance");
+    }
+    if (association == Association::kInterpolated) {
+      ++interpolated;
+      widest_gap = std::max(widest_gap, gap);
+    }
+    store(&frame, pose);
+  }
+  if (interpolated > 0) {
+    LOG(INFO) << trajectory_path << ": " << interpolated << " of " << frames->size()
+              << " images have no pose within 1 ms; their poses are interpolated between the two lines "
+                 "around them (translation linear, rotation slerp; widest gap "
+              << DurationText(widest_gap) << " s)";
+  }
+  return Status::Ok();
 }
 
 Status ReadImageList(const std::string& directory, const std::string& path, std::vector<Frame>* frames,
@@ -318,26 +390,12 @@ Status ReadSequence(const std::string& directory, Sequence* sequence) {
   read.has_groundtruth = fs::exists(groundtruth_path, error);
   if (read.has_groundtruth) SFM_RETURN_IF_ERROR(ReadTumTrajectory(groundtruth_path, &groundtruth));
 
-  for (size_t i = 0; i < read.frames.size(); ++i) {
-    Frame& frame = read.frames[i];
-    const std::string where = images_path + ":" + std::to_string(line_numbers[i]) + ": ";
-    double difference = 0;
-    const int odometry_index = NearestPose(odometry, frame.timestamp, &difference);
-    if (odometry_index < 0) {
-      return Status::Error(where + "no pose in " + odometry_path + " within 1 ms of timestamp " +
-                           ShortestNumberText(frame.timestamp) + " (nearest is " + ShortestNumberText(difference) +
-                           " s away)");
-    }
-    frame.world_T_base_odometry = odometry[odometry_index].pose;
-    if (read.has_groundtruth) {
-      const int groundtruth_index = NearestPose(groundtruth, frame.timestamp, &difference);
-      if (groundtruth_index < 0) {
-        return Status::Error(where + "no pose in " + groundtruth_path + " within 1 ms of timestamp " +
-                             ShortestNumberText(frame.timestamp) + " (nearest is " + ShortestNumberText(difference) +
-                             " s away)");
-      }
-      frame.world_T_base_groundtruth = groundtruth[groundtruth_index].pose;
-    }
+  SFM_RETURN_IF_ERROR(AssociatePoses(images_path, line_numbers, odometry_path, odometry, &read.frames,
+                                     [](Frame* frame, const Pose3& pose) { frame->world_T_base_odometry = pose; }));
+  if (read.has_groundtruth) {
+    SFM_RETURN_IF_ERROR(AssociatePoses(
+        images_path, line_numbers, groundtruth_path, groundtruth, &read.frames,
+        [](Frame* frame, const Pose3& pose) { frame->world_T_base_groundtruth = pose; }));
   }
   *sequence = std::move(read);
   return Status::Ok();

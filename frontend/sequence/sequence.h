@@ -44,7 +44,8 @@ struct Sequence {
   bool has_groundtruth = false;  // every frame then has world_T_base_groundtruth
 };
 
-// Poses are associated with an image when their timestamps differ by at most this (SPEC: 1 ms).
+// A trajectory line is an image's pose when their timestamps differ by at most this (SPEC: 1 ms);
+// it is also how far an image may lie outside a trajectory's time span.
 constexpr double kTimestampTolerance = 1e-3;
 
 // Reads sequence.yaml. Fails, naming the file and the key, on a missing file, a missing key, a
@@ -58,8 +59,11 @@ Status ReadCalibration(const std::string& yaml_path, Calibration* calibration);
 Status WriteCalibration(const std::string& yaml_path, const Calibration& calibration);
 
 // Reads and validates a whole sequence directory: sequence.yaml, images.txt, odometry.txt and
-// groundtruth.txt when present. Each image's pose is the one whose timestamp is nearest, within
-// kTimestampTolerance; an image with none is an error naming the image's line. Image files are
+// groundtruth.txt when present. Each image's pose (from each trajectory file) is the line whose
+// timestamp is nearest, when within kTimestampTolerance, used as is; otherwise, for an image between
+// two lines, the pose interpolated between them (translation linear, rotation slerp), said once per
+// file in the log. An image further than kTimestampTolerance outside a file's time span is an error
+// naming the image's line, its timestamp and the file (nothing is extrapolated). Image files are
 // checked to exist but not decoded (LoadFrameImage does that).
 Status ReadSequence(const std::string& directory, Sequence* sequence);
 

@@ -1,16 +1,21 @@
 #include "frontend/sequence/sequence.h"
 
+#include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <map>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <gmock/gmock.h>
+#include <glog/logging.h>
 #include <gtest/gtest.h>
 #include <opencv2/imgcodecs.hpp>
 
 #include "frontend/geometry/tum_io.h"
+#include "frontend/util/number_text.h"
 #include "tests/test_data.h"
 
 namespace sfm {
@@ -343,16 +348,141 @@ TEST_F(SequenceTest, OdometryNonUnitQuaternionFails) {
   ExpectError(Read(), {Path("odometry.txt") + ":2: quaternion qx qy qz qw has norm"});
 }
 
-TEST_F(SequenceTest, ImageTimestampWithNoPoseFails) {
-  // 10.1 is 2 ms from its nearest odometry line: beyond the 1 ms association tolerance.
-  WriteText(Path("odometry.txt"), "10.0 0 0 0 0 0 0 1\n10.098 0 0 0 0 0 0 1\n10.2 0 0 0 0 0 0 1\n");
-  ExpectError(Read(), {Path("images.txt") + ":4: no pose in " + Path("odometry.txt"),
-                       "within 1 ms of timestamp 10.1"});
+TEST_F(SequenceTest, ImageAfterTheOdometrySpanFails) {
+  // 10.2 is 50 ms after the last odometry line: nothing to interpolate from, nothing extrapolated.
+  WriteText(Path("odometry.txt"), "9.95 0 0 0 0 0 0 1\n10.0 0 0 0 0 0 0 1\n10.15 0 0 0 0 0 0 1\n");
+  ExpectError(Read(), {Path("images.txt") + ":5: timestamp 10.2 is outside the time span of " +
+                           Path("odometry.txt") + " (9.95 to 10.15 s): 0.05 s after its last pose, more than the "
+                           "1 ms tolerance"});
 }
 
-TEST_F(SequenceTest, ImageTimestampWithNoGroundtruthPoseFails) {
+TEST_F(SequenceTest, ImageBeforeTheOdometrySpanBeyond1msFails) {
+  // 1.5 ms early: just past the tolerance at the start of the span.
+  WriteText(Path("odometry.txt"), "10.0015 0 0 0 0 0 0 1\n10.2 0 0 0 0 0 0 1\n");
+  ExpectError(Read(), {Path("images.txt") + ":2: timestamp 10 is outside the time span of " + Path("odometry.txt") +
+                       " (10.0015 to 10.2 s): 0.0015 s before its first pose"});
+}
+
+TEST_F(SequenceTest, ImageAfterTheGroundtruthSpanFails) {
   WriteText(Path("groundtruth.txt"), "10.0 0 0 0 0 0 0 1\n10.1 0 0 0 0 0 0 1\n");
-  ExpectError(Read(), {Path("images.txt") + ":5: no pose in " + Path("groundtruth.txt")});
+  ExpectError(Read(), {Path("images.txt") + ":5: timestamp 10.2 is outside the time span of " +
+                       Path("groundtruth.txt") + " (10 to 10.1 s): 0.1 s after its last pose"});
+}
+
+// --- Association of images with trajectory lines ------------------------------------------------
+
+// Collects glog messages holding "interpolated", to check the log says so once per file.
+class InterpolationLogSink : public google::LogSink {
+ public:
+  InterpolationLogSink() : saved_minloglevel_(FLAGS_minloglevel) {
+    FLAGS_minloglevel = google::GLOG_INFO;  // the test main keeps only warnings and up
+    google::AddLogSink(this);
+  }
+  ~InterpolationLogSink() override {
+    google::RemoveLogSink(this);
+    FLAGS_minloglevel = saved_minloglevel_;
+  }
+  void send(google::LogSeverity severity, const char*, const char*, int, const google::LogMessageTime&,
+            const char* message, size_t message_len) override {
+    const std::string text(message, message_len);
+    if (text.find("interpolated") != std::string::npos) messages.push_back({severity, text});
+  }
+  std::vector<std::pair<google::LogSeverity, std::string>> messages;
+
+ private:
+  int saved_minloglevel_;
+};
+
+Pose3 RotationAboutZ(double angle, const Eigen::Vector3d& translation) {
+  return Pose3(Eigen::Quaterniond(Eigen::AngleAxisd(angle, Eigen::Vector3d::UnitZ())), translation);
+}
+
+TEST_F(SequenceTest, ImageBetweenTwoOdometryLinesGetsTheInterpolatedPose) {
+  // Lines 40 ms apart at 10.08 and 10.12: translation (1,2,3) -> (3,-2,5), rotation about z 0.2 -> 0.6
+  // rad. The line at 10.12 is written with the quaternion negated (the same rotation): slerp must
+  // still take the 0.4 rad arc, not the 2 pi - 0.4 one. By hand, at the midpoint 10.1 the pose is
+  // (2,0,4) and 0.4 rad about z; at the quarter point 10.09 (which tells s from 1 - s) it is
+  // (1.5,1,3.5) and 0.3 rad. Tolerance 1e-12 m and rad: the fraction s = (10.1 - 10.08) / 0.04 is
+  // off by ~1e-15 / 0.04 from rounding of the decimal timestamps, times at most 4 m or 0.4 rad.
+  WriteText(Path("images.txt"), "10.0 images/000000.png\n10.09 images/000001.png\n10.1 images/000002.png\n");
+  WriteText(Path("odometry.txt"),
+            "10.0 0 0 0 0 0 0 1\n"
+            "10.08 1 2 3 0 0 " + ShortestNumberText(std::sin(0.1)) + " " + ShortestNumberText(std::cos(0.1)) + "\n"
+            "10.12 3 -2 5 0 0 " + ShortestNumberText(-std::sin(0.3)) + " " + ShortestNumberText(-std::cos(0.3)) + "\n");
+  WriteText(Path("groundtruth.txt"), "10.0 0 1 0 0 0 0 1\n10.2 0 3 0 0 0 0 1\n");
+  InterpolationLogSink log;
+  const Status status = Read();
+  ASSERT_TRUE(status.ok()) << status.message();
+
+  constexpr double kTolerance = 1e-12;
+  const Pose3 quarter = RotationAboutZ(0.3, {1.5, 1, 3.5});
+  const Pose3 midpoint = RotationAboutZ(0.4, {2, 0, 4});
+  EXPECT_LT((sequence_.frames[1].world_T_base_odometry.translation - quarter.translation).norm(), kTolerance);
+  EXPECT_LT(RotationAngle(sequence_.frames[1].world_T_base_odometry.rotation, quarter.rotation), kTolerance);
+  EXPECT_LT((sequence_.frames[2].world_T_base_odometry.translation - midpoint.translation).norm(), kTolerance);
+  EXPECT_LT(RotationAngle(sequence_.frames[2].world_T_base_odometry.rotation, midpoint.rotation), kTolerance);
+  EXPECT_NEAR(sequence_.frames[2].world_T_base_odometry.rotation.norm(), 1, 1e-15);
+  // The frame on a line keeps that line's pose exactly.
+  EXPECT_EQ(sequence_.frames[0].world_T_base_odometry.translation, Eigen::Vector3d::Zero());
+  EXPECT_EQ(sequence_.frames[0].world_T_base_odometry.rotation.coeffs(), Eigen::Quaterniond::Identity().coeffs());
+
+  // Ground truth follows the same rule between its lines at 10.0 (y = 1) and 10.2 (y = 3): 10.09 is
+  // 45 % of the way (y = 1.9), 10.1 midway (y = 2).
+  ASSERT_TRUE(sequence_.frames[1].world_T_base_groundtruth.has_value());
+  EXPECT_NEAR(sequence_.frames[1].world_T_base_groundtruth->translation.y(), 1.9, kTolerance);
+  EXPECT_NEAR(sequence_.frames[2].world_T_base_groundtruth->translation.y(), 2, kTolerance);
+  EXPECT_EQ(sequence_.frames[0].world_T_base_groundtruth->translation.y(), 1);
+
+  // Said once per file, at INFO, with the count of frames: not once per frame.
+  ASSERT_EQ(log.messages.size(), 2u);
+  EXPECT_EQ(log.messages[0].first, google::GLOG_INFO);
+  EXPECT_THAT(log.messages[0].second, HasSubstr(Path("odometry.txt") + ": 2 of 3 images"));
+  EXPECT_THAT(log.messages[0].second, HasSubstr("widest gap 0.04 s"));
+  EXPECT_THAT(log.messages[1].second, HasSubstr(Path("groundtruth.txt") + ": 2 of 3 images"));
+}
+
+TEST_F(SequenceTest, HighRateOdometryIsSubsampledAtTheImageTimes) {
+  // 100 Hz odometry, x = line index, rotation about z 0.01 rad per line; images at 10.0 and
+  // 10.1008 (0.8 ms after line 10: within 1 ms, so that line as is, not interpolated) and 10.1045
+  // (4.5 ms from the nearest line: interpolated, x = 10.45 to 1e-12).
+  std::string odometry;
+  for (int k = 0; k <= 20; ++k) {
+    const Pose3 pose = RotationAboutZ(0.01 * k, {double(k), 0, 0});
+    char timestamp[16];
+    std::snprintf(timestamp, sizeof(timestamp), "%.2f", 10 + 0.01 * k);  // "10.07", as a logger writes
+    odometry += std::string(timestamp) + " " + std::to_string(k) + " 0 0 0 0 " +
+                ShortestNumberText(pose.rotation.z()) + " " + ShortestNumberText(pose.rotation.w()) + "\n";
+  }
+  WriteText(Path("odometry.txt"), odometry);
+  WriteText(Path("images.txt"), "10.0 images/000000.png\n10.1008 images/000001.png\n10.1045 images/000002.png\n");
+  std::filesystem::remove(Path("groundtruth.txt"));
+  InterpolationLogSink log;
+  const Status status = Read();
+  ASSERT_TRUE(status.ok()) << status.message();
+  std::vector<StampedPose> lines;
+  ASSERT_TRUE(ReadTumTrajectory(Path("odometry.txt"), &lines).ok());
+  ASSERT_EQ(lines.size(), 21u);
+
+  // Lines 0 and 10 bit for bit.
+  EXPECT_EQ(sequence_.frames[0].world_T_base_odometry.translation, lines[0].pose.translation);
+  EXPECT_EQ(sequence_.frames[0].world_T_base_odometry.rotation.coeffs(), lines[0].pose.rotation.coeffs());
+  EXPECT_EQ(sequence_.frames[1].world_T_base_odometry.translation, lines[10].pose.translation);
+  EXPECT_EQ(sequence_.frames[1].world_T_base_odometry.rotation.coeffs(), lines[10].pose.rotation.coeffs());
+  // 10.1045 lies between lines 10 and 11, 45 % of the way.
+  const Pose3 expected = RotationAboutZ(0.1045, {10.45, 0, 0});
+  EXPECT_NEAR(sequence_.frames[2].world_T_base_odometry.translation.x(), 10.45, 1e-12);
+  EXPECT_LT(RotationAngle(sequence_.frames[2].world_T_base_odometry.rotation, expected.rotation), 1e-12);
+  ASSERT_EQ(log.messages.size(), 1u);
+  EXPECT_THAT(log.messages[0].second, HasSubstr("1 of 3 images"));
+}
+
+TEST_F(SequenceTest, ImageWithin1msOutsideTheSpanTakesTheEndLine) {
+  // 0.9 ms before the first line and 0.9 ms after the last: within the tolerance, so those lines.
+  WriteText(Path("odometry.txt"), "10.0009 1 0 0 0 0 0 1\n10.1 2 0 0 0 0 0 1\n10.1991 3 0 0 0 0 0 1\n");
+  const Status status = Read();
+  ASSERT_TRUE(status.ok()) << status.message();
+  EXPECT_EQ(sequence_.frames[0].world_T_base_odometry.translation.x(), 1);
+  EXPECT_EQ(sequence_.frames[2].world_T_base_odometry.translation.x(), 3);
 }
 
 TEST_F(SequenceTest, FewerThanTwoFramesFails) {
