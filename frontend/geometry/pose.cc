@@ -33,4 +33,11 @@ double RotationAngle(const Eigen::Quaterniond& a, const Eigen::Quaterniond& b) {
   return a.angularDistance(b);
 }
 
+Pose3 InterpolatePose(const Pose3& a, const Pose3& b, double fraction) {
+  // Eigen's slerp takes the shorter arc (it flips the sign of a quaternion on the far hemisphere);
+  // it blends linearly when the two are nearly equal, hence the normalisation.
+  return Pose3(a.rotation.slerp(fraction, b.rotation).normalized(),
+               a.translation + fraction * (b.translation - a.translation));
+}
+
 }  // namespace sfm

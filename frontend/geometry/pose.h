@@ -33,6 +33,10 @@ struct Pose3 {
   Eigen::Vector3d operator*(const Eigen::Vector3d& p_b) const;  // a_T_b * p_b = p_a
 };
 
+// The pose a fraction in [0, 1] of the way from a to b: translation linear, rotation by slerp (the
+// shorter arc). Used where a trajectory is sampled between two of its timestamps.
+Pose3 InterpolatePose(const Pose3& a, const Pose3& b, double fraction);
+
 // Angle of the rotation between two poses, radians in [0, pi].
 double RotationAngle(const Eigen::Quaterniond& a, const Eigen::Quaterniond& b);
 

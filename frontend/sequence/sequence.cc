@@ -232,10 +232,7 @@ Association PoseAtTime(const std::vector<StampedPose>& poses, double timestamp, 
   const StampedPose& b = *after;
   *gap = b.timestamp - a.timestamp;
   const double s = (timestamp - a.timestamp) / *gap;  // in (0, 1)
-  pose->translation = a.pose.translation + s * (b.pose.translation - a.pose.translation);
-  // Eigen's slerp takes the shorter arc (it flips the sign of a quaternion on the far hemisphere);
-  // it blends linearly when the two are nearly equal, hence the normalisation.
-  pose->rotation = a.pose.rotation.slerp(s, b.pose.rotation).normalized();
+  *pose = InterpolatePose(a.pose, b.pose, s);
   return Association::kInterpolated;
 }
 

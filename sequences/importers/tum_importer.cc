@@ -88,11 +88,6 @@ Status TumImportOptions::Check() const {
   return Status::Ok();
 }
 
-Pose3 InterpolatePose(const Pose3& a, const Pose3& b, double fraction) {
-  return Pose3(a.rotation.slerp(fraction, b.rotation).normalized(),
-               (1 - fraction) * a.translation + fraction * b.translation);
-}
-
 Status ReadTumSequence(const std::string& input_dir, const TumImportOptions& options, ImportedSequence* sequence) {
   SFM_RETURN_IF_ERROR(options.Check());
   const fs::path dir(input_dir);

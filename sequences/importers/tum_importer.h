@@ -30,9 +30,6 @@ struct TumImportOptions {
   Status Check() const;
 };
 
-// The pose a fraction in [0, 1] of the way from a to b: translation linear, rotation by slerp.
-Pose3 InterpolatePose(const Pose3& a, const Pose3& b, double fraction);
-
 // Reads the folder. Each image's true pose is interpolated between the ground-truth poses just
 // before and after its timestamp; images outside the ground truth's time span or in a gap longer
 // than max_groundtruth_gap are skipped (and counted in the log). Fails, naming the file (and line),
