@@ -31,6 +31,7 @@
 #include <glog/logging.h>
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
 
 #include "frontend/geometry/image_undistorter.h"
 #include "frontend/junctions/junction_detector.h"
@@ -72,6 +73,10 @@ DEFINE_double(noise_sigma, sfm::RenderOptions().noise_sigma,
 DEFINE_double(min_contrast_sigmas, 3.0,
               "Contrast-visible reading: a true edge counts when its noise-free grey-level step is at least this "
               "many noise sigmas.");
+DEFINE_string(miss_dir, "",
+              "If set, write there misses.csv (one row per long edge of each missed detectable vertex whose "
+              "segments are missing: length, contrast, the closest detection) and a crop of each such vertex "
+              "(8x enlarged, true long edges orange), for finding why edges get no segment.");
 DEFINE_double(radius, 3.0, "A true junction is found when a detected one lies within this, px.");
 DEFINE_double(min_edge_px, kTruthDefaults.min_edge_px,
               "Generated: a vertex is detectable when at least two visible edges at least this long (px) meet there.");
@@ -155,6 +160,55 @@ MissKind WhySegmentsMissed(const TrueVertexJunction& v, const LineSegments& segm
   if (detected < 2) return kEdgesMissing;
   if (close < 2) return kEndsFar;
   return kNotJoined;
+}
+
+// Mean absolute grey-level step across the segment a -> b, sampled every pixel 3 px in from each
+// end, 2 px to each side (as EdgeContrasts); -1 without samples.
+double StepAcross(const cv::Mat& image, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+  const double length = (b - a).norm();
+  if (image.empty() || length < 7) return -1;
+  const Eigen::Vector2d d = (b - a) / length, n(-d.y(), d.x());
+  double sum = 0;
+  int count = 0;
+  for (double s = 3; s <= length - 3; s += 1) {
+    const Eigen::Vector2d p = a + s * d, l = p - 2 * n, r = p + 2 * n;
+    if (l.x() < 0 || r.x() < 0 || l.y() < 0 || r.y() < 0 || l.x() > image.cols - 2 || r.x() > image.cols - 2 ||
+        l.y() > image.rows - 2 || r.y() > image.rows - 2) continue;
+    auto at = [&](const Eigen::Vector2d& q) {
+      const int x = static_cast<int>(q.x()), y = static_cast<int>(q.y());
+      const double fx = q.x() - x, fy = q.y() - y;
+      return (1 - fx) * (1 - fy) * image.at<uchar>(y, x) + fx * (1 - fy) * image.at<uchar>(y, x + 1) +
+             (1 - fx) * fy * image.at<uchar>(y + 1, x) + fx * fy * image.at<uchar>(y + 1, x + 1);
+    };
+    sum += std::abs(at(r) - at(l));
+    ++count;
+  }
+  return count ? sum / count : -1;
+}
+
+// The detection closest to lying on the true edge a -> b: among those within 10 degrees and 4 px of
+// its line that overlap it, the one with the largest overlap. Its angle (deg), largest end-point
+// distance to the true line (px) and overlap (px); overlap 0 when there is none.
+struct Candidate {
+  double angle = 0, distance = 0, overlap = 0, length = 0;
+};
+Candidate ClosestDetection(const LineSegments& segments, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+  LineSegment edge;
+  edge.p0 = a;
+  edge.p1 = b;
+  const Eigen::Vector2d n = edge.Direction(), q = edge.Normal();
+  const double length = edge.Length();
+  Candidate best;
+  for (const LineSegment& d : segments) {
+    if (!(d.Length() > 0)) continue;
+    const double angle = std::acos(std::min(1.0, std::abs(d.Direction().dot(n)))) * 180 / M_PI;
+    const double distance = std::max(std::abs(q.dot(d.p0 - a)), std::abs(q.dot(d.p1 - a)));
+    if (angle > 10 || distance > 4) continue;
+    const double s0 = n.dot(d.p0 - a), s1 = n.dot(d.p1 - a);
+    const double overlap = std::min(std::max(s0, s1), length) - std::max(std::min(s0, s1), 0.0);
+    if (overlap > best.overlap) best = {angle, distance, overlap, d.Length()};
+  }
+  return best;
 }
 
 double Ms(Clock::time_point since) { return std::chrono::duration<double, std::milli>(Clock::now() - since).count(); }
@@ -355,6 +409,91 @@ std::vector<std::pair<std::string, GeneratorOptions>> StandardSequences(int fram
   return sequences;
 }
 
+// One missed vertex whose edges have no segment, for --miss_dir: a row per long edge in misses.csv
+// and a crop of the image around it.
+Status WriteMiss(const std::string& tag, int frame, const TrueVertexJunction& v, bool crowded,
+                 const std::vector<Eigen::Vector2d>& any_truth, const cv::Mat& grey, const cv::Mat& clean,
+                 const LineSegments& segments, const SegmentDetectorOptions& detector) {
+  static int counter = 0;  // numbers the misses of the whole run (one run per process)
+  // The same detector without the length cut and the NFA (0), without the length cut (1), without
+  // the NFA (2): which of the two removed the edge's segment, if either.
+  std::array<LineSegments, 3> relaxed;
+  for (int k = 0; k < 3; ++k) {
+    SegmentDetectorOptions o = detector;
+    if (k != 2) o.min_length = 3;
+    if (k != 1) o.fast.log10_nfa_max = 1e9;
+    relaxed[k] = DetectLineSegments(grey, o);
+  }
+  const int id = counter++;
+  const std::string csv_path = FLAGS_miss_dir + "/misses.csv";
+  const bool fresh = id == 0;
+  FILE* csv = std::fopen(csv_path.c_str(), fresh ? "w" : "a");
+  if (csv == nullptr) return Status::Error(csv_path + ": cannot open");
+  if (fresh) {
+    std::fprintf(csv, "id,tag,frame,vx,vy,crowded,nearest_truth_px,edge,length_px,step,cand_angle_deg,cand_dist_px,"
+                      "cand_overlap_px,cand_length_px,relaxed_all,relaxed_length,relaxed_nfa\n");
+  }
+  double nearest = HUGE_VAL;
+  for (const Eigen::Vector2d& q : any_truth) {
+    const double d = (q - v.location).norm();
+    if (d > 1e-6) nearest = std::min(nearest, d);
+  }
+  LineSegments edges;
+  for (size_t e = 0; e < v.long_edge_ends.size(); ++e) {
+    const Eigen::Vector2d& far = v.long_edge_ends[e];
+    const Candidate c = ClosestDetection(segments, v.location, far);
+    // Whether the edge would have a segment on it (as the "edges missing" test reads it) without
+    // the length cut and the NFA, without the length cut alone, without the NFA alone.
+    auto on_edge = [&](const LineSegments& relaxed) {
+      LineSegment edge;
+      edge.p0 = v.location;
+      edge.p1 = far;
+      EndpointOffsetOptions options;
+      options.max_abs_t = 1e9;
+      options.min_true_length = 0;
+      EndpointOffsets offsets;
+      const bool one[2] = {true, false};
+      CollectEndpointOffsets(relaxed, edge, one, options, &offsets);
+      return offsets.t.empty() ? 0 : 1;
+    };
+    std::fprintf(csv, "%d,%s,%d,%.2f,%.2f,%d,%.2f,%zu,%.1f,%.1f,%.2f,%.2f,%.1f,%.1f,%d,%d,%d\n", id, tag.c_str(), frame,
+                 v.location.x(), v.location.y(), crowded ? 1 : 0, nearest, e, (far - v.location).norm(),
+                 StepAcross(clean, v.location, far), c.angle, c.distance, c.overlap, c.length, on_edge(relaxed[0]),
+                 on_edge(relaxed[1]), on_edge(relaxed[2]));
+    LineSegment edge;
+    edge.p0 = v.location;
+    edge.p1 = far;
+    edges.push_back(edge);
+  }
+  std::fclose(csv);
+  // Crop: 40 x 40 px around the vertex, drawn 8x: the grey levels stretched to the crop's range on
+  // the left, the overlay on the right (18 black rows on top hold its legend).
+  const int half = 20, legend_rows = 18;
+  const cv::Rect box = cv::Rect(static_cast<int>(v.location.x()) - half, static_cast<int>(v.location.y()) - half,
+                                2 * half, 2 * half) & cv::Rect(0, 0, grey.cols, grey.rows);
+  cv::Mat padded(box.height + legend_rows, box.width, CV_8U, cv::Scalar(0));
+  grey(box).copyTo(padded(cv::Rect(0, legend_rows, box.width, box.height)));
+  const Eigen::Vector2d origin(box.x, box.y - legend_rows);
+  LineSegments shifted = segments;
+  for (LineSegment& s : shifted) s.p0 -= origin, s.p1 -= origin;
+  for (LineSegment& s : edges) s.p0 -= origin, s.p1 -= origin;
+  std::vector<Eigen::Vector2d> others;
+  for (const Eigen::Vector2d& q : any_truth) others.push_back(q - origin);
+  const cv::Mat overlay = DrawJunctionOverlay(padded, shifted, {}, 8,
+                                              {{{}, edges, cv::Scalar(0, 140, 255), "true long edges"},
+                                               {others, {}, cv::Scalar(0, 255, 0), "true junctions"},
+                                               {{v.location - origin}, {}, cv::Scalar(255, 255, 255), "missed"}});
+  cv::Mat stretched;
+  cv::normalize(padded, stretched, 0, 255, cv::NORM_MINMAX, CV_8U, padded > 0);
+  cv::resize(stretched, stretched, cv::Size(), 8, 8, cv::INTER_NEAREST);
+  cv::cvtColor(stretched, stretched, cv::COLOR_GRAY2BGR);
+  cv::Mat both;
+  cv::hconcat(stretched, overlay, both);
+  char name[128];
+  std::snprintf(name, sizeof name, "/%04d_%s_%03d.png", id, tag.c_str(), frame);
+  return WritePng(FLAGS_miss_dir + name, both);
+}
+
 // Measures one generated sequence with each method.
 // `clean_directory`: the same sequence rendered without noise (for the contrast-visible reading), or
 // empty.
@@ -393,10 +532,12 @@ Status MeasureSequence(const std::string& directory, const std::string& clean_di
     // stored image's field of view falls outside the undistorted frame), radius px inside.
     // Contrast of every visible segment, measured in the undistorted noise-free twin.
     std::vector<double> contrast;
+    cv::Mat clean_grey;
     if (!clean_directory.empty()) {
       cv::Mat clean;
       SFM_RETURN_IF_ERROR(LoadFrameImage(clean_sequence, static_cast<int>(f), &clean));
-      contrast = EdgeContrasts(undistorter.Apply(clean), truth.frames[f], EdgeContrastOptions());
+      clean_grey = undistorter.Apply(clean);
+      contrast = EdgeContrasts(clean_grey, truth.frames[f], EdgeContrastOptions());
     }
     TrueJunctionOptions contrast_options = truth_options;
     if (!contrast.empty()) {
@@ -493,8 +634,13 @@ Status MeasureSequence(const std::string& directory, const std::string& clean_di
         const MissKind kind = WhyMissed(*detectable_vertex[i], any_truth, segments, junction_options.max_gap_px);
         ++s.misses[kind];
         if (!contrast.empty() && detectable_seen[i]) ++s.contrast_misses[kind];
-        if (kind != kCrowded) continue;
         const MissKind inner = WhySegmentsMissed(*detectable_vertex[i], segments, junction_options.max_gap_px);
+        if (!FLAGS_miss_dir.empty() && inner == kEdgesMissing) {
+          SFM_RETURN_IF_ERROR(WriteMiss(std::filesystem::path(directory).filename().string() + "_" + methods[m].name,
+                                        static_cast<int>(f), *detectable_vertex[i], kind == kCrowded, any_truth, grey,
+                                        clean_grey, segments, methods[m].options));
+        }
+        if (kind != kCrowded) continue;
         if (inner != kNotJoined) {
           ++s.crowded[inner == kEdgesMissing ? 0 : 1];
         } else {
@@ -761,8 +907,9 @@ int main(int argc, char** argv) {
   junction_options.collinear_max_offset_px = FLAGS_collinear_max_offset_px;
   junction_options.min_arm_px = FLAGS_min_arm_px;
   if (const Status check = junction_options.Check(); !check.ok()) return fail(2, check.message());
-  if (!FLAGS_overlay_dir.empty()) {
-    if (const Status s = EnsureWritableDirectory(FLAGS_overlay_dir); !s.ok()) return fail(1, s.message());
+  for (const std::string& directory : {FLAGS_overlay_dir, FLAGS_miss_dir}) {
+    if (directory.empty()) continue;
+    if (const Status s = EnsureWritableDirectory(directory); !s.ok()) return fail(1, s.message());
   }
 
   // The sequences: given, or generated.

@@ -38,6 +38,8 @@ DEFINE_string(vgg_dir, "../shared/data/vgg-corridor",
 DEFINE_string(images_dir, "", "Optional further directory of images (for example a sequence's images/).");
 DEFINE_int32(repetitions, 7, "Runs of each method per image, taken in turns; the median time is kept.");
 DEFINE_string(output, "", "Also write the markdown report to this file.");
+DEFINE_double(min_segment_length, sfm::SegmentDetectorOptions().min_length,
+              "Our detectors: shortest segment kept, px (to measure another value beside the default).");
 DEFINE_string(overlay_dir, "", "If set, write <method>_<image>.png overlays of the segments found there.");
 
 namespace sfm {
@@ -70,10 +72,12 @@ std::vector<Method> Methods() {
                      }});
   SegmentDetectorOptions reference;
   reference.method = SegmentMethod::kReference;
+  reference.min_length = FLAGS_min_segment_length;
   methods.push_back({"ours: reference (Canny/Devernay + Hough)",
                      [reference](const cv::Mat& grey) { return DetectLineSegments(grey, reference); }});
   SegmentDetectorOptions fast;
   fast.method = SegmentMethod::kFast;
+  fast.min_length = FLAGS_min_segment_length;
   methods.push_back(
       {"ours: fast (Sobel + chaining)", [fast](const cv::Mat& grey) { return DetectLineSegments(grey, fast); }});
   const cv::Ptr<cv::LineSegmentDetector> lsd = cv::createLineSegmentDetector();

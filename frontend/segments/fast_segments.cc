@@ -231,20 +231,27 @@ class FastDetector {
 
   // EDLines' splitting: fit the first min_pixels_ points; if they are straight, extend the line
   // point by point while each next point is within the tolerance, then start again after it.
+  // Two changes at corners, where the chain turns through a rounded arc:
+  //  - the seed window must be straight to half the tolerance (SeedTolerance). With the full
+  //    tolerance a window holding the arc and the first pixels of the next side passes as a line
+  //    at some middle angle, and that piece eats the start of the side: a short side (a box's
+  //    bottom edge, 10-15 px) was left with too few points to be a segment;
+  //  - a piece also grows backwards, over the points the seed search skipped since the previous
+  //    piece, while they are within the tolerance of its line: the side keeps its full length.
   // Returns the chain index where the first piece ended (the chain's size if there is none).
   size_t SplitChain() {
     points_.clear();
     for (const int index : chain_) points_.push_back(SubpixelPoint(index));
-    const double tolerance = options_.fast.line_tolerance;
+    const double tolerance = options_.fast.line_tolerance, seed_tolerance = SeedTolerance(tolerance);
     const size_t n = points_.size(), window = static_cast<size_t>(min_pixels_);
-    size_t start = 0, first_break = n;
+    size_t start = 0, previous_end = 0, first_break = n;
     while (start + window <= n) {
       LineFitAccumulator fit;
       for (size_t i = start; i < start + window; ++i) fit.Add(points_[i]);
       FittedLine line = fit.Fit();
       bool straight = true;
       for (size_t i = start; i < start + window && straight; ++i) {
-        straight = std::abs(line.Distance(points_[i])) <= tolerance;
+        straight = std::abs(line.Distance(points_[i])) <= seed_tolerance;
       }
       if (!straight) {
         ++start;
@@ -257,12 +264,41 @@ class FastDetector {
         line = fit.Fit();
         ++end;
       }
+      while (start > previous_end && std::abs(line.Distance(points_[start - 1])) <= seed_tolerance) {
+        fit.Add(points_[--start]);
+        line = fit.Fit();
+      }
+      // The growth's tolerance lets the first pixels of a corner's arc in, and they tilt a short
+      // line: the line is refitted without the end points farther than the seed tolerance from it
+      // (refitting after each). The piece still spans [start, end): its end-points stay the
+      // projections of its outermost edge points, as the paper defines them.
+      size_t first = start, last = end;
+      while (last - first > window) {
+        if (std::abs(line.Distance(points_[last - 1])) > seed_tolerance) {
+          fit.Remove(points_[--last]);
+        } else if (std::abs(line.Distance(points_[first])) > seed_tolerance) {
+          fit.Remove(points_[first++]);
+        } else {
+          break;
+        }
+        line = fit.Fit();
+      }
       AddPiece(start, end, fit);
       if (first_break == n) first_break = end;
-      start = end;
+      start = previous_end = end;
     }
     return first_break;
   }
+
+  // The seed window's tolerance: half the growth tolerance, but never below the scatter of
+  // sub-pixel points on a straight edge (kMinSeedTolerance), so that a small line_tolerance still
+  // finds seeds on noisy edges.
+  static double SeedTolerance(double tolerance) { return std::max(0.5 * tolerance, std::min(tolerance, kMinSeedTolerance)); }
+  static constexpr double kMinSeedTolerance = 0.5;
+  // Pixels left out of the NFA's samples at each end (Validate): the scale of the edge filter
+  // (presmoothing and Sobel together: sigma = 1 px at the default), over which a corner's second
+  // edge bends the gradient.
+  static constexpr double kEndTrim = 1.0;
 
   // Records chain points [begin, end), fitted by `fit`, as a piece.
   void AddPiece(size_t begin, size_t end, const LineFitAccumulator& fit) {
@@ -282,7 +318,12 @@ class FastDetector {
   }
 
   // Appends the piece's segment, oriented by its polarity, if it is long enough and meaningful:
-  // its NFA, from the gradient sampled every pixel along the whole segment, is small enough.
+  // its NFA, from the gradient sampled every pixel along the segment, is small enough. The samples
+  // start and end kEndTrim px inside the end-points: an end-point lies a pixel or two short of the
+  // corner where its edge meets another, and there the smoothed gradient mixes both edges'
+  // directions, so end samples fail the alignment test on real corners, not only on noise. Short
+  // sides of boxes, bevels and frames (10-15 px, a corner at each end) lost up to 4 of their ~12
+  // samples that way and were rejected. Fewer samples make the test stricter, never looser.
   void Validate(const LinePiece& piece, LineSegments* segments) const {
     LineSegment segment = SegmentOnLine(piece.fit.Fit(), piece.first, piece.last, piece.fit.count());
     const double length = segment.Length();
@@ -294,11 +335,14 @@ class FastDetector {
     }
     const int16_t* gx = gx_.ptr<int16_t>();
     const int16_t* gy = gy_.ptr<int16_t>();
-    const int samples = static_cast<int>(length) + 1;
-    const Eigen::Vector2d step = (segment.p1 - segment.p0) / (samples - 1);
+    const double sampled = std::max(0.0, length - 2 * kEndTrim);
+    const int samples = static_cast<int>(sampled) + 1;
+    const Eigen::Vector2d direction = (segment.p1 - segment.p0) / length;
+    const Eigen::Vector2d first = segment.p0 + (0.5 * (length - sampled)) * direction;
+    const Eigen::Vector2d step = samples > 1 ? Eigen::Vector2d(direction * (sampled / (samples - 1))) : Eigen::Vector2d::Zero();
     int aligned = 0;
     for (int i = 0; i < samples; ++i) {
-      const Eigen::Vector2d p = segment.p0 + i * step;
+      const Eigen::Vector2d p = first + i * step;
       // Rounding as truncation of p + 0.5 (p >= -0.5 here; a point farther out is clamped anyway).
       const int x = std::clamp(static_cast<int>(p.x() + 0.5), 0, cols_ - 1);
       const int y = std::clamp(static_cast<int>(p.y() + 0.5), 0, rows_ - 1);

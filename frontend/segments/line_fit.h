@@ -45,6 +45,16 @@ class LineFitAccumulator {
     syy_ += y * y;
   }
   void Add(const Eigen::Vector2d& p) { Add(p.x(), p.y()); }
+  // Takes back a point added before (the sums are exact up to rounding; the origin stays).
+  void Remove(const Eigen::Vector2d& p) {
+    const double x = p.x() - ox_, y = p.y() - oy_;
+    --n_;
+    sx_ -= x;
+    sy_ -= y;
+    sxx_ -= x * x;
+    sxy_ -= x * y;
+    syy_ -= y * y;
+  }
   // Adds all the points of `other`, as if each had been added here.
   void Merge(const LineFitAccumulator& other);
   int count() const { return n_; }
