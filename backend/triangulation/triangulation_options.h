@@ -70,13 +70,42 @@ struct LineTriangulationOptions {
   }
 };
 
+// Which landmarks the wireframe shows (SelectWireframeLandmarks, wireframe_selection.h), judged on
+// the final poses. docs/tracks_and_triangulation.md, "Wireframe vertices", says why each default.
+struct WireframeOptions {
+  // Pixel noise of a junction location and across an image segment's end. Pixels, > 0. 0.3 px: the
+  // junction detector's location error on rendered images (docs/junctions.md: median 0.16 px,
+  // 90th percentile 0.27 px).
+  double pixel_sigma_px = 0.3;
+  // A landmark's residuals must pass the chi-square test at this level (its observations agree
+  // with one 3D point or line to within the pixel noise), else it is not drawn. In (0, 1).
+  double consistency_level = 0.999;
+  // A vertex is drawn only when it is determined at least as well, relative to its depth, as a
+  // point seen in two views whose rays meet at this angle: sigma <= sqrt(2) (pixel_sigma_px / f)
+  // depth / tan(angle), sigma the first-order standard deviation of its position across the
+  // worst direction, depth its smallest in a view that sees it, f = fx. Degrees, in (0, 90).
+  double min_equivalent_parallax_deg = 1.5;
+
+  Status Check() const {
+    auto bad = [](const std::string& what) { return Status::Error("WireframeOptions: " + what); };
+    if (!(pixel_sigma_px > 0 && std::isfinite(pixel_sigma_px))) return bad("pixel_sigma_px must be finite and > 0");
+    if (!(consistency_level > 0 && consistency_level < 1)) return bad("consistency_level must be in (0, 1)");
+    if (!(min_equivalent_parallax_deg > 0 && min_equivalent_parallax_deg < 90)) {
+      return bad("min_equivalent_parallax_deg must be in (0, 90)");
+    }
+    return Status::Ok();
+  }
+};
+
 struct TriangulationOptions {
   PointTriangulationOptions point;
   LineTriangulationOptions line;
+  WireframeOptions wireframe;
 
   Status Check() const {
     SFM_RETURN_IF_ERROR(point.Check());
-    return line.Check();
+    SFM_RETURN_IF_ERROR(line.Check());
+    return wireframe.Check();
   }
 };
 

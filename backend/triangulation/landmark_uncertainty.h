@@ -1,0 +1,61 @@
+// How well the views determine a landmark, and whether its observations agree with it, from the
+// pixel noise alone: first-order position covariances of a point and of a point of a 3D line, and
+// a chi-square test of the reprojection residuals. Used to choose what the wireframe shows
+// (wireframe_selection.h); docs/tracks_and_triangulation.md, "Wireframe vertices".
+// Pixels are undistorted pixels (K only); positions in the world frame, metres.
+#pragma once
+
+#include <Eigen/Core>
+#include <vector>
+
+#include "frontend/geometry/pose.h"
+
+namespace sfm {
+
+// One view of a line: the camera and the observed image segment (junction location p0, far end p1).
+struct LineSegmentView {
+  Pose3 world_T_camera;
+  Eigen::Vector2d p0 = Eigen::Vector2d::Zero();
+  Eigen::Vector2d p1 = Eigen::Vector2d::Zero();
+};
+
+// Standard deviation, metres, of `point` along its worst-determined direction: the square root of
+// the largest eigenvalue of sigma_px^2 (sum_i J_i^T J_i)^-1, J_i the 2x3 derivative of view i's
+// pixel by the world point (H&Z section 5.2.4 / A6: the first-order covariance of the
+// least-squares triangulation). +infinity when the views leave a direction undetermined (one view,
+// or every ray parallel) or the point is not in front of every camera.
+double PointPositionSigma(const Eigen::Matrix3d& K, const std::vector<Pose3>& world_T_camera,
+                          const Eigen::Vector3d& point, double sigma_px);
+
+// Standard deviation, metres, across the line (the worst of the two directions normal to
+// `direction`) of the 3D line's position at its point `x`. Each view's image line is fixed by its
+// two end-points, each off by sigma_px across the line independently; where x projects at the
+// fraction t along p0 -> p1 (t < 0 or > 1: extrapolated), the image line is then off by
+// sigma_px * sqrt((1 - t)^2 + t^2) across itself, which moves x only along the view's plane
+// normal. The information sum_i g_i g_i^T / var_i (g_i = J_i^T m_i, m_i the image line's unit
+// normal) restricted to the plane normal to the line gives a 2x2 covariance. +infinity when the
+// planes do not fix both directions (fewer than two views, or all planes one: a line parallel to
+// the motion) or x is not in front of every camera.
+double LinePositionSigma(const Eigen::Matrix3d& K, const std::vector<LineSegmentView>& views,
+                         const Eigen::Vector3d& x, const Eigen::Vector3d& direction, double sigma_px);
+
+// The chi-square statistic of a point's residuals, sum_i |pixel_i - project_i(point)|^2 / sigma_px^2
+// (2 per view), and its degrees of freedom 2n - 3. +infinity when the point is behind a camera.
+double PointChiSquare(const Eigen::Matrix3d& K, const std::vector<Pose3>& world_T_camera,
+                      const std::vector<Eigen::Vector2d>& pixels, const Eigen::Vector3d& point,
+                      double sigma_px, int* degrees_of_freedom);
+
+// The same for a line: the distances of p0 and p1 from the projected line, over sigma_px, squared
+// and summed (2 per view), with 2n - 4 degrees of freedom (a line has 4). +infinity when the line
+// passes through a camera centre.
+double LineChiSquare(const Eigen::Matrix3d& K, const std::vector<LineSegmentView>& views,
+                     const Eigen::Vector3d& point, const Eigen::Vector3d& direction, double sigma_px,
+                     int* degrees_of_freedom);
+
+// The p-quantile of the chi-square distribution with k >= 1 degrees of freedom, p in (0, 1):
+// Wilson & Hilferty's cube-root normal approximation (1931), k (1 - 2/(9k) + z sqrt(2/(9k)))^3 with
+// z the standard normal p-quantile. At p = 0.999 it is high by 3.0 % for k = 1 (11.16 against
+// 10.83), 1.7 % for k = 3, 0.6 % for k = 10: the test is then slightly lenient, never strict.
+double ChiSquareQuantile(double p, int k);
+
+}  // namespace sfm

@@ -1,0 +1,114 @@
+#include "backend/triangulation/wireframe_selection.h"
+
+#include <glog/logging.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "backend/triangulation/landmark_uncertainty.h"
+
+namespace sfm {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+bool PassesChiSquare(double statistic, int degrees_of_freedom, double level) {
+  // With no redundancy (two views of a line) there is nothing to test.
+  if (degrees_of_freedom < 1) return std::isfinite(statistic);
+  return statistic <= ChiSquareQuantile(level, degrees_of_freedom);
+}
+
+double SmallestDepth(const std::vector<Pose3>& cameras, const Eigen::Vector3d& x) {
+  double smallest = std::numeric_limits<double>::infinity();
+  for (const Pose3& camera : cameras) smallest = std::min(smallest, (camera.Inverse() * x).z());
+  return smallest;
+}
+
+Eigen::Vector3d ProjectOntoLine(const LineLandmark& line, const Eigen::Vector3d& x) {
+  return line.point + line.direction * line.direction.dot(x - line.point);
+}
+
+}  // namespace
+
+double MaxVertexSigma(const WireframeOptions& options, double fx, double depth) {
+  return std::sqrt(2.0) * options.pixel_sigma_px / fx * depth /
+         std::tan(options.min_equivalent_parallax_deg * kPi / 180);
+}
+
+Landmarks SelectWireframeLandmarks(const Eigen::Matrix3d& K, const std::vector<Pose3>& world_T_camera,
+                                   const Landmarks& landmarks, const WireframeOptions& options,
+                                   WireframeSelectionReport* report) {
+  CHECK(options.Check().ok()) << options.Check().message();
+  const double sigma_px = options.pixel_sigma_px;
+  const double fx = K(0, 0);
+  auto camera = [&world_T_camera](int frame) -> const Pose3& {
+    CHECK(frame >= 0 && frame < static_cast<int>(world_T_camera.size())) << "frame " << frame;
+    return world_T_camera[frame];
+  };
+  // A vertex is determined when its sigma is within the bound at its smallest depth (> 0).
+  auto determined = [&](double sigma, double depth) {
+    return depth > 0 && sigma <= MaxVertexSigma(options, fx, depth);
+  };
+  WireframeSelectionReport counts;
+  Landmarks selected;
+  std::vector<int> new_index(landmarks.points.size(), -1);
+  for (size_t i = 0; i < landmarks.points.size(); ++i) {
+    const PointLandmark& point = landmarks.points[i];
+    std::vector<Pose3> cameras;
+    std::vector<Eigen::Vector2d> pixels;
+    for (const PointObservation& observation : point.observations) {
+      cameras.push_back(camera(observation.frame));
+      pixels.push_back(observation.pixel);
+    }
+    int dof = 0;
+    const double chi_square = PointChiSquare(K, cameras, pixels, point.position, sigma_px, &dof);
+    if (!PassesChiSquare(chi_square, dof, options.consistency_level)) {
+      ++counts.points_inconsistent;
+      continue;
+    }
+    if (!determined(PointPositionSigma(K, cameras, point.position, sigma_px), SmallestDepth(cameras, point.position))) {
+      ++counts.points_uncertain;
+      continue;
+    }
+    new_index[i] = static_cast<int>(selected.points.size());
+    selected.points.push_back(point);
+  }
+  for (const LineLandmark& line : landmarks.lines) {
+    std::vector<LineSegmentView> views;
+    std::vector<Pose3> cameras;
+    for (const LineObservation& observation : line.observations) {
+      views.push_back({camera(observation.frame), observation.p0, observation.p1});
+      cameras.push_back(camera(observation.frame));
+    }
+    int dof = 0;
+    const double chi_square = LineChiSquare(K, views, line.point, line.direction, sigma_px, &dof);
+    if (!PassesChiSquare(chi_square, dof, options.consistency_level)) {
+      ++counts.lines_inconsistent;
+      continue;
+    }
+    LineLandmark kept = line;
+    kept.point_landmark = line.point_landmark >= 0 ? new_index[line.point_landmark] : -1;
+    if (kept.point_landmark < 0) {
+      // A dropped point is not the line's end: its position may lie off the line.
+      if (line.point_landmark >= 0) kept.end0 = ProjectOntoLine(line, line.end0);
+      if (!determined(LinePositionSigma(K, views, kept.end0, line.direction, sigma_px),
+                      SmallestDepth(cameras, kept.end0))) {
+        ++counts.lines_uncertain_end0;
+        continue;
+      }
+    }
+    if (!determined(LinePositionSigma(K, views, line.end1, line.direction, sigma_px),
+                    SmallestDepth(cameras, line.end1))) {
+      ++counts.lines_uncertain_end1;
+      continue;
+    }
+    selected.lines.push_back(std::move(kept));
+  }
+  counts.points_kept = static_cast<int>(selected.points.size());
+  counts.lines_kept = static_cast<int>(selected.lines.size());
+  if (report != nullptr) *report = counts;
+  return selected;
+}
+
+}  // namespace sfm

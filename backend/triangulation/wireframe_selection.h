@@ -1,0 +1,42 @@
+// The landmarks the wireframe shows: those whose observations agree with them (a chi-square test
+// of the residuals at the pixel noise) and whose vertices the views determine well enough (the
+// first-order position uncertainty against a relative bound), judged on the final (refined) poses.
+// Bundle adjustment keeps using every landmark: an imprecise distant point still fixes rotation.
+// docs/tracks_and_triangulation.md, "Wireframe vertices".
+#pragma once
+
+#include <Eigen/Core>
+#include <vector>
+
+#include "backend/triangulation/landmarks.h"
+#include "backend/triangulation/triangulation_options.h"
+#include "frontend/geometry/pose.h"
+
+namespace sfm {
+
+struct WireframeSelectionReport {
+  int points_inconsistent = 0;    // point residuals fail the chi-square test
+  int points_uncertain = 0;       // point position sigma above the bound
+  int lines_inconsistent = 0;     // line residuals fail the chi-square test
+  int lines_uncertain_end0 = 0;   // the junction end (the line's own, or a dropped point's) too uncertain
+  int lines_uncertain_end1 = 0;   // the far end too uncertain
+  int points_kept = 0, lines_kept = 0;
+};
+
+// The largest position sigma (metres) that WireframeOptions allows for a vertex whose smallest
+// depth in a view that sees it is `depth`: sqrt(2) (pixel_sigma_px / fx) depth /
+// tan(min_equivalent_parallax_deg).
+double MaxVertexSigma(const WireframeOptions& options, double fx, double depth);
+
+// The subset of `landmarks` to draw, with the cameras world_T_camera[f] of every frame (the refined
+// poses when bundle adjustment ran). A point is kept when it passes the test and its
+// PointPositionSigma is within MaxVertexSigma of its smallest depth. A line is kept when it passes
+// its test and both its vertices are within the bound (LinePositionSigma at end1, and at end0 unless
+// end0 is a kept point). A line whose point was dropped keeps its own end0 (the point projected
+// onto the line) and point_landmark -1; point_landmark is renumbered. Order is preserved.
+// options must pass Check(), every observation must index world_T_camera (CHECKed).
+Landmarks SelectWireframeLandmarks(const Eigen::Matrix3d& K, const std::vector<Pose3>& world_T_camera,
+                                   const Landmarks& landmarks, const WireframeOptions& options,
+                                   WireframeSelectionReport* report = nullptr);
+
+}  // namespace sfm

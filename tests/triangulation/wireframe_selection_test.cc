@@ -1,0 +1,207 @@
+// Landmark uncertainty (landmark_uncertainty.h) and the wireframe's selection rules
+// (wireframe_selection.h), each on a hand-built case with its expected figure.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+
+#include "backend/triangulation/landmark_uncertainty.h"
+#include "backend/triangulation/wireframe_selection.h"
+#include "tests/triangulation/synthetic_cameras.h"
+
+namespace sfm {
+namespace {
+
+using testing::Project;
+using testing::TestK;
+
+// A camera at `centre` looking along world +z (identity rotation: x right, y down, z forward).
+Pose3 Forward(const Eigen::Vector3d& centre) { return Pose3(Eigen::Matrix3d::Identity(), centre); }
+
+// Rectified stereo, baseline B along x, point at depth Z on the midline: disparity d = f B / Z, each
+// view's x off by sigma, so sigma_d = sqrt(2) sigma and sigma_Z = Z^2 / (f B) sqrt(2) sigma, the
+// largest axis for Z >> B. The first-order covariance must give it to 2 % (the lateral terms and
+// the midline's slight obliquity are below that for Z / B = 20).
+TEST(LandmarkUncertaintyTest, PointSigmaIsTheStereoDepthError) {
+  const double f = 450, B = 0.2, Z = 4, sigma = 0.3;
+  const std::vector<Pose3> cameras = {Forward({-B / 2, 0, 0}), Forward({B / 2, 0, 0})};
+  const double expected = Z * Z / (f * B) * std::sqrt(2.0) * sigma;  // 0.0754 m
+  EXPECT_NEAR(PointPositionSigma(TestK(), cameras, {0, 0, Z}, sigma), expected, 0.02 * expected);
+}
+
+TEST(LandmarkUncertaintyTest, PointWithoutBaselineIsUndetermined) {
+  const std::vector<Pose3> cameras = {Forward({0, 0, 0}), Forward({0, 0, 0})};
+  EXPECT_TRUE(std::isinf(PointPositionSigma(TestK(), cameras, {0.3, 0.1, 4}, 0.3)));
+}
+
+// A vertical line (along y) at depth Z seen by the same stereo pair, x taken where it projects in
+// the middle of each observed segment (t = 1/2): each image line is off by sigma sqrt(1/4 + 1/4)
+// = sigma / sqrt(2) there, so the line's depth error is Z^2 / (f B) sigma. To 2 %.
+TEST(LandmarkUncertaintyTest, LineSigmaIsTheStereoDepthErrorOfItsImageLines) {
+  const double B = 0.2, Z = 4, sigma = 0.3;
+  const Eigen::Matrix3d K = TestK();
+  std::vector<LineSegmentView> views;
+  for (const double x : {-B / 2, B / 2}) {
+    const Pose3 camera = Forward({x, 0, 0});
+    views.push_back({camera, Project(K, camera, {0, -0.5, Z}), Project(K, camera, {0, 0.5, Z})});
+  }
+  const double expected = Z * Z / (450 * B) * sigma;  // 0.0533 m
+  EXPECT_NEAR(LinePositionSigma(K, views, {0, 0, Z}, Eigen::Vector3d::UnitY(), sigma), expected,
+              0.02 * expected);
+  // At the far end (t = 1) the image line is off by sigma: sqrt(2) times more.
+  EXPECT_NEAR(LinePositionSigma(K, views, {0, 0.5, Z}, Eigen::Vector3d::UnitY(), sigma), std::sqrt(2.0) * expected,
+              0.03 * expected);
+}
+
+// A line parallel to the baseline lies in an epipolar plane of the pair: both planes are one, its
+// position across them is free.
+TEST(LandmarkUncertaintyTest, LineParallelToTheMotionIsUndetermined) {
+  const Eigen::Matrix3d K = TestK();
+  std::vector<LineSegmentView> views;
+  for (const double x : {-0.1, 0.1}) {
+    const Pose3 camera = Forward({x, 0, 0});
+    views.push_back({camera, Project(K, camera, {-0.5, 0.3, 4}), Project(K, camera, {0.5, 0.3, 4})});
+  }
+  EXPECT_TRUE(std::isinf(LinePositionSigma(K, views, {0, 0.3, 4}, Eigen::Vector3d::UnitX(), 0.3)));
+}
+
+// Reference values of the chi-square quantile (any statistics table). Wilson-Hilferty at p = 0.999
+// is 3.0 % high for k = 1, 1.7 % for k = 3, 0.6 % for k = 10 (the test is then slightly lenient).
+TEST(LandmarkUncertaintyTest, ChiSquareQuantileMatchesTables) {
+  EXPECT_NEAR(ChiSquareQuantile(0.999, 1), 10.828, 0.035 * 10.828);
+  EXPECT_NEAR(ChiSquareQuantile(0.999, 3), 16.266, 0.02 * 16.266);
+  EXPECT_NEAR(ChiSquareQuantile(0.999, 10), 29.588, 0.01 * 29.588);
+  EXPECT_NEAR(ChiSquareQuantile(0.99, 4), 13.277, 0.01 * 13.277);
+  EXPECT_NEAR(ChiSquareQuantile(0.5, 20), 19.337, 0.005 * 19.337);
+}
+
+TEST(LandmarkUncertaintyTest, ChiSquareOfExactObservationsIsZero) {
+  const Eigen::Matrix3d K = TestK();
+  const std::vector<Pose3> cameras = {Forward({-0.5, 0, 0}), Forward({0, 0, 0}), Forward({0.5, 0, 0})};
+  const Eigen::Vector3d point(0.2, -0.1, 3);
+  std::vector<Eigen::Vector2d> pixels;
+  for (const Pose3& camera : cameras) pixels.push_back(Project(K, camera, point));
+  int dof = 0;
+  EXPECT_NEAR(PointChiSquare(K, cameras, pixels, point, 0.3, &dof), 0, 1e-12);
+  EXPECT_EQ(dof, 3);
+  pixels[1].x() += 0.6;  // 2 sigma: chi-square 4
+  EXPECT_NEAR(PointChiSquare(K, cameras, pixels, point, 0.3, &dof), 4, 1e-9);
+}
+
+// The selection on hand-built landmarks, five cameras 0.25 m apart along x looking along z.
+class WireframeSelectionTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    for (int i = 0; i < 5; ++i) cameras_.push_back(Forward({0.25 * i, 0, 0}));
+  }
+  PointLandmark Point(const Eigen::Vector3d& position) const {
+    PointLandmark point;
+    point.position = position;
+    for (int f = 0; f < 5; ++f) point.observations.push_back({f, 0, Project(K_, cameras_[f], position)});
+    return point;
+  }
+  LineLandmark Line(const Eigen::Vector3d& end0, const Eigen::Vector3d& end1, int point_landmark) const {
+    LineLandmark line;
+    line.point = line.end0 = end0;
+    line.end1 = end1;
+    line.direction = (end1 - end0).normalized();
+    line.point_landmark = point_landmark;
+    for (int f = 0; f < 5; ++f) {
+      line.observations.push_back({f, 0, 0, Project(K_, cameras_[f], end0), Project(K_, cameras_[f], end1)});
+    }
+    return line;
+  }
+  const Eigen::Matrix3d K_ = TestK();
+  std::vector<Pose3> cameras_;
+};
+
+// A point 3 m ahead (parallax 19 degrees over the 1 m path): sigma 3 mm, far below the 1.5-degree
+// bound at 3 m (MaxVertexSigma = 0.0216 m). Kept, and its vertical edge too.
+TEST_F(WireframeSelectionTest, AWellDeterminedConsistentCornerIsKept) {
+  EXPECT_NEAR(MaxVertexSigma(WireframeOptions(), 450, 3), std::sqrt(2.0) * 0.3 / 450 * 3 / std::tan(1.5 * M_PI / 180),
+              1e-12);
+  Landmarks landmarks;
+  landmarks.points.push_back(Point({0.5, 0.2, 3}));
+  landmarks.lines.push_back(Line({0.5, 0.2, 3}, {0.5, -0.6, 3}, 0));
+  WireframeSelectionReport report;
+  const Landmarks kept = SelectWireframeLandmarks(K_, cameras_, landmarks, WireframeOptions(), &report);
+  ASSERT_EQ(kept.points.size(), 1u);
+  ASSERT_EQ(kept.lines.size(), 1u);
+  EXPECT_EQ(kept.lines[0].point_landmark, 0);
+  EXPECT_EQ(report.points_kept, 1);
+  EXPECT_EQ(report.lines_kept, 1);
+}
+
+// A wrong track: one of five views sees another corner 2 px away (6.7 sigma). The refined point
+// would spread that over all views; here the point stays at the truth, so the statistic is
+// (2 / 0.3)^2 = 44 against the 0.999 quantile of chi-square with 7 degrees of freedom (24.3):
+// dropped as inconsistent. Its line, whose own end0 is the point projected on it, stays.
+TEST_F(WireframeSelectionTest, ATrackThatDoesNotTriangulateConsistentlyIsDropped) {
+  Landmarks landmarks;
+  landmarks.points.push_back(Point({0.5, 0.2, 3}));
+  landmarks.points[0].observations[2].pixel.x() += 2.0;
+  landmarks.points.push_back(Point({-0.3, 0.2, 3}));
+  landmarks.lines.push_back(Line({0.5, 0.2, 3}, {0.5, -0.6, 3}, 0));
+  landmarks.lines.push_back(Line({-0.3, 0.2, 3}, {-0.3, -0.6, 3}, 1));
+  WireframeSelectionReport report;
+  const Landmarks kept = SelectWireframeLandmarks(K_, cameras_, landmarks, WireframeOptions(), &report);
+  EXPECT_EQ(report.points_inconsistent, 1);
+  ASSERT_EQ(kept.points.size(), 1u);
+  EXPECT_EQ(kept.points[0].position, landmarks.points[1].position);
+  ASSERT_EQ(kept.lines.size(), 2u);
+  EXPECT_EQ(kept.lines[0].point_landmark, -1);  // its point was dropped
+  EXPECT_LT((kept.lines[0].end0 - Eigen::Vector3d(0.5, 0.2, 3)).norm(), 1e-9);
+  EXPECT_EQ(kept.lines[1].point_landmark, 0);  // renumbered
+}
+
+// A corner 60 m ahead, seen over the same 1 m of path: its rays meet at 0.95 degrees, so its
+// five-view sigma (3.0 m, mostly depth) is above the bound at 60 m (2.16 m: a two-view point at
+// 1.5 degrees). Bundle adjustment can leave such a point behind (it keeps every landmark that
+// passes its 1-degree test); the wireframe does not draw it, nor the line from it, whose junction
+// end is as uncertain.
+TEST_F(WireframeSelectionTest, ADistantLowParallaxCornerIsNotDrawn) {
+  Landmarks landmarks;
+  landmarks.points.push_back(Point({0.5, 0.2, 60}));
+  landmarks.lines.push_back(Line({0.5, 0.2, 60}, {0.5, -2.6, 60}, 0));
+  const double sigma = PointPositionSigma(K_, cameras_, {0.5, 0.2, 60}, 0.3);
+  EXPECT_NEAR(sigma, 3.0, 0.1);
+  EXPECT_NEAR(MaxVertexSigma(WireframeOptions(), 450, 60), 2.16, 0.01);
+  WireframeSelectionReport report;
+  const Landmarks kept = SelectWireframeLandmarks(K_, cameras_, landmarks, WireframeOptions(), &report);
+  EXPECT_TRUE(kept.points.empty());
+  EXPECT_TRUE(kept.lines.empty());
+  EXPECT_EQ(report.points_uncertain, 1);
+  EXPECT_EQ(report.lines_uncertain_end0, 1);
+}
+
+// A line nearly parallel to the motion (5 degrees off the path, in the cameras' horizontal plane
+// shifted 0.3 m down): its planes nearly coincide, its far end is placed by noise. The far end is
+// dropped although the junction point is fine; the point stays.
+TEST_F(WireframeSelectionTest, ALineNearlyAlongTheMotionIsNotDrawn) {
+  Landmarks landmarks;
+  const Eigen::Vector3d corner(0.5, 0.3, 3);
+  landmarks.points.push_back(Point(corner));
+  const Eigen::Vector3d along(std::cos(5 * M_PI / 180), 0.0, std::sin(5 * M_PI / 180));
+  landmarks.lines.push_back(Line(corner, corner + 1.0 * along, 0));
+  WireframeSelectionReport report;
+  const Landmarks kept = SelectWireframeLandmarks(K_, cameras_, landmarks, WireframeOptions(), &report);
+  EXPECT_EQ(kept.points.size(), 1u);
+  EXPECT_TRUE(kept.lines.empty());
+  EXPECT_EQ(report.lines_uncertain_end1, 1);
+}
+
+TEST(WireframeOptionsTest, BadOptionsAreRejected) {
+  WireframeOptions options;
+  EXPECT_TRUE(options.Check().ok());
+  options.pixel_sigma_px = 0;
+  EXPECT_FALSE(options.Check().ok());
+  options = WireframeOptions();
+  options.consistency_level = 1;
+  EXPECT_FALSE(options.Check().ok());
+  options = WireframeOptions();
+  options.min_equivalent_parallax_deg = 0;
+  EXPECT_FALSE(options.Check().ok());
+}
+
+}  // namespace
+}  // namespace sfm
