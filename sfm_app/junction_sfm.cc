@@ -15,6 +15,15 @@
 
 namespace {
 const sfm::PipelineOptions kDefaults;
+
+const char* FloorPriorName(sfm::FloorPriorMode mode) {
+  switch (mode) {
+    case sfm::FloorPriorMode::kOff: return "off";
+    case sfm::FloorPriorMode::kAuto: return "auto";
+    case sfm::FloorPriorMode::kOn: return "on";
+  }
+  return "auto";
+}
 }  // namespace
 
 DEFINE_string(sequence, SFM_DEFAULT_SEQUENCE,
@@ -54,6 +63,10 @@ DEFINE_double(ba_outlier_threshold, kDefaults.bundle_adjustment_options.outlier_
               "Bundle adjustment: observations with a larger error (px) are removed and the problem solved again.");
 DEFINE_double(ba_loss_scale, kDefaults.bundle_adjustment_options.robust_loss_scale_px,
               "Bundle adjustment: scale (px) of the robust loss on image residuals.");
+DEFINE_string(floor_prior, FloorPriorName(kDefaults.bundle_adjustment_options.floor_prior),
+              "Bundle adjustment: ground-plane prior that fixes the odometry's scale: 'auto' (when the rig, the "
+              "odometry and the map show a ground robot with its base origin on the floor), 'on' (whenever a floor "
+              "plane is found) or 'off'.");
 DEFINE_int32(threads, kDefaults.bundle_adjustment_options.num_threads, "Threads for the bundle adjustment.");
 
 namespace {
@@ -86,6 +99,16 @@ bool OptionsFromFlags(sfm::PipelineOptions* options, std::string* error) {
   options->bundle_adjustment_options.outlier_threshold_px = FLAGS_ba_outlier_threshold;
   options->bundle_adjustment_options.robust_loss_scale_px = FLAGS_ba_loss_scale;
   options->bundle_adjustment_options.num_threads = FLAGS_threads;
+  if (FLAGS_floor_prior == "auto") {
+    options->bundle_adjustment_options.floor_prior = sfm::FloorPriorMode::kAuto;
+  } else if (FLAGS_floor_prior == "on") {
+    options->bundle_adjustment_options.floor_prior = sfm::FloorPriorMode::kOn;
+  } else if (FLAGS_floor_prior == "off") {
+    options->bundle_adjustment_options.floor_prior = sfm::FloorPriorMode::kOff;
+  } else {
+    *error = "--floor_prior must be 'auto', 'on' or 'off', not '" + FLAGS_floor_prior + "'";
+    return false;
+  }
   if (FLAGS_match_rho1 == "exponential") {
     options->matching.rho1_kind = sfm::Rho1Kind::kExponential;
   } else if (FLAGS_match_rho1 == "linear") {

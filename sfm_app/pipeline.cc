@@ -118,6 +118,7 @@ Status Refine(const Sequence& sequence, const PipelineOptions& options, Pipeline
   SFM_RETURN_IF_ERROR(BundleAdjust(sequence.calibration, world_T_base_odometry, options.bundle_adjustment_options,
                                    &result->landmarks, &world_T_base_refined, &summary));
   result->unobservable_lines += summary.lines_unobservable;
+  result->bundle_adjustment = summary;
   result->world_T_camera_refined.clear();
   for (const Pose3& world_T_base : world_T_base_refined) {
     result->world_T_camera_refined.push_back(world_T_base * sequence.calibration.base_T_camera);
@@ -127,6 +128,8 @@ Status Refine(const Sequence& sequence, const PipelineOptions& options, Pipeline
             << " outlier observations removed, " << summary.lines_unobservable << " more lines unobservable; "
             << "RMS " << summary.point_rms_px << " px (points), " << summary.line_rms_px << " px (lines); "
             << summary.solver_report;
+  LOG(INFO) << summary.floor_prior_report
+            << (summary.floor_prior_used ? "; odometry scale " + std::to_string(summary.odometry_scale) : "");
   return Status::Ok();
 }
 

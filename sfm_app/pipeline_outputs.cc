@@ -78,6 +78,19 @@ std::string RpeJson(const std::optional<DriftMetrics>& drift) {
   return "{\"trans_m\": " + JsonNumber(drift->rpe_trans_m) + ", \"rot_rad\": " + JsonNumber(drift->rpe_rot_rad) + "}";
 }
 
+// Not in SPEC's list (extra keys are allowed): whether the bundle adjustment's floor prior was
+// used, the landmarks it held in the last solve, the floor's height when first found (before
+// the prior moved it; null when none was found) and the odometry's scale factor it gave.
+std::string FloorPriorJson(const PipelineResult& result, bool refined) {
+  if (!refined) return "null";
+  const BundleAdjustmentSummary& summary = result.bundle_adjustment;
+  return "{\"used\": " + std::string(summary.floor_prior_used ? "true" : "false") +
+         ", \"points\": " + std::to_string(summary.floor_points) + ", \"lines\": " + std::to_string(summary.floor_lines) +
+         ", \"plane_z_m\": " + JsonNumber(summary.floor_plane_z_m) +
+         ", \"odometry_scale\": " + JsonNumber(summary.odometry_scale) +
+         ", \"report\": " + JsonString(summary.floor_prior_report) + "}";
+}
+
 std::optional<double> Ate(const std::optional<DriftMetrics>& drift) {
   return drift ? std::optional<double>(drift->ate_m) : std::nullopt;
 }
@@ -110,7 +123,8 @@ std::string MetricsJson(const Sequence& sequence, const PipelineResult& result) 
        << "  \"rpe_refined\": " << RpeJson(refined ? result.drift_refined : std::nullopt) << ",\n"
        << "  \"time_s\": {\"frontend\": " << JsonNumber(times.frontend)
        << ", \"matching\": " << JsonNumber(times.matching) << ", \"backend\": " << JsonNumber(times.backend)
-       << ", \"total\": " << JsonNumber(times.total) << "}\n"
+       << ", \"total\": " << JsonNumber(times.total) << "},\n"
+       << "  \"floor_prior\": " << FloorPriorJson(result, refined) << "\n"
        << "}\n";
   return json.str();
 }

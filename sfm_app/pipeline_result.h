@@ -4,6 +4,7 @@
 #include <optional>
 #include <vector>
 
+#include "backend/bundle_adjustment/bundle_adjustment_options.h"
 #include "backend/metrics/drift.h"
 #include "backend/triangulation/landmarks.h"
 #include "frontend/geometry/pose.h"
@@ -25,6 +26,7 @@ struct PipelineResult {
   int unobservable_lines = 0;             // segment tracks dropped as parallel to the motion
   std::vector<Pose3> world_T_camera_odometry;
   std::vector<Pose3> world_T_camera_refined;               // empty until bundle adjustment ran
+  BundleAdjustmentSummary bundle_adjustment;               // when it ran (floor prior, counts)
   std::optional<std::vector<Pose3>> world_T_camera_truth;  // when the sequence has ground truth
   std::optional<DriftMetrics> drift_odometry, drift_refined;  // against the ground truth
   StageTimes times;
