@@ -105,13 +105,13 @@ TEST_P(DetectorTest, FindsEachPolygonSideWithSubpixelLineAndEndpointsNearCorners
 }
 
 // Bevelled corners: squares of 60 px with one corner cut by a chamfer 13-16 px long (two obtuse
-// corners of 135 degrees), at assorted angles and both polarities. Each chamfer must come out as a
-// segment of its own: one detection covering >= 50 % of it, on its line within 0.5 px at both
-// end-points. At an obtuse corner the edge turns gently, so a seed window of the fast path's
-// splitting could straddle it within the 1 px tolerance and take the chamfer's first pixels into
-// a piece at a middle angle; and the chamfer's NFA samples next to both corners mix two edges'
-// gradients. Measured: before those fixes the fast path found FOUND_BEFORE of the 16 chamfers, now 16; the
-// reference path 16.
+// corners of 135 degrees), at assorted angles and both polarities, blur 0.7 px, noise 2. Each
+// chamfer must come out as a segment of its own: one detection covering >= 50 % of it, on its line
+// within 0.5 px at both end-points. At an obtuse corner the edge turns gently, so the fast path's
+// growing line (tolerance 1 px) takes in the first pixels of the corner's arc, which tilt a short
+// line. Measured: before the fast path refitted its lines without such end points (commit
+// 242c04e) it found all 16 chamfers but 8 of them with an end-point 0.5-0.6 px off the line; now
+// the largest offset is 0.40 px (reference path: 0.15 px).
 TEST_P(DetectorTest, FindsShortChamfersBetweenObtuseCorners) {
   std::vector<Polygon> scene;
   const double chamfers[4] = {13.2, 14.1, 15.0, 15.8}, angles_deg[4] = {4, 23, 52, 77};
@@ -172,17 +172,23 @@ TEST_P(DetectorTest, FindsNothingInNoise) {
   EXPECT_EQ(DetectLineSegments(image, Options()).size(), 0u);
 }
 
-// Heavy noise (sigma 4: 5 % and more of the pixels pass the low threshold, so chains form) gives at
-// most a stray segment: the NFA, with the chains' sub-runs as its tests, still guards.
-TEST_P(DetectorTest, FindsAlmostNothingInHeavyNoise) {
+// Heavy noise (sigma 4, twice a camera's noise: 5 % and more of the pixels pass the low threshold,
+// so chains form) gives at most one false segment per 640 x 480 image on average, over 40 images:
+// the rule that sets min_length (docs/segments.md). Measured: fast path 0.88 per image at the
+// default 9 px (it would be 1.95 at 8 px and 0.45 at 10 px), reference path 0.
+TEST_P(DetectorTest, FindsAtMostOneSegmentPerImageInHeavyNoiseOnAverage) {
   SyntheticImageOptions image_options;
+  image_options.width = 640;
+  image_options.height = 480;
   image_options.blur_sigma = 0;
   image_options.noise_sigma = 4;
-  for (int seed = 1; seed <= 3; ++seed) {
+  const int images = 40;
+  size_t found = 0;
+  for (int seed = 1; seed <= images; ++seed) {
     image_options.seed = seed;
-    const cv::Mat image = testing::RenderPolygons({}, image_options);
-    EXPECT_LE(DetectLineSegments(image, Options()).size(), 1u) << "seed " << seed;
+    found += DetectLineSegments(testing::RenderPolygons({}, image_options), Options()).size();
   }
+  EXPECT_LE(static_cast<double>(found) / images, 1.0);
 }
 
 TEST_P(DetectorTest, LeavesTheInputUnchanged) {
