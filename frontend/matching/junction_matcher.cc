@@ -23,8 +23,11 @@ std::vector<JunctionMatch> Match(const Junctions& a, const TopologyGraph& graph_
 
   // Step 1 of section 4.4: the candidate list S. sigma = rho = 0 where rho is (C is empty then).
   std::vector<JunctionMatch> candidates;
+  std::vector<int> partners;
   for (int i = 0; i < num_a; ++i) {
-    for (int j = 0; j < num_b; ++j) {
+    partners.clear();
+    similarity.PossiblePartners(i, &partners);  // the others have rho unmatched
+    for (const int j : partners) {
       const PairSimilarity& rho = table.Get(i, j);
       if (!rho.Matched()) continue;
       const double similarity_ij = topology ? topology->Sigma(i, j) : rho.rho;
@@ -48,12 +51,40 @@ std::vector<JunctionMatch> MatchJunctions(const Junctions& a, const TopologyGrap
 
 std::vector<JunctionMatch> MatchJunctions(const Junctions& a, const TopologyGraph& graph_a, const Junctions& b,
                                          const TopologyGraph& graph_b, const PairGeometry& geometry,
-                                         const MatchingOptions& options) {
+                                         const MatchingOptions& options, MatchingDiagnostics* diagnostics) {
   const Status status = options.Check();
   CHECK(status.ok()) << status.message();
   CHECK(geometry.K.allFinite() && geometry.covariance.allFinite() && geometry.camera2_T_camera1.translation.allFinite())
       << "PairGeometry not finite";
-  return Match(a, graph_a, b, graph_b, JunctionSimilarity(a, b, geometry, options), options);
+  MatchingDiagnostics local;
+  MatchingDiagnostics& report = diagnostics ? *diagnostics : local;
+  report = MatchingDiagnostics();
+  std::vector<JunctionMatch> first = Match(a, graph_a, b, graph_b, JunctionSimilarity(a, b, geometry, options), options);
+  report.first_pass_matches = static_cast<int>(first.size());
+  if (!options.refine_geometry) return first;
+
+  // Verification: the pose the first pass's matches support, with the odometry as the prior.
+  std::vector<Eigen::Vector2d> x1, x2;
+  x1.reserve(first.size());
+  x2.reserve(first.size());
+  for (const JunctionMatch& match : first) {
+    x1.push_back(a[match.index_a].location);
+    x2.push_back(b[match.index_b].location);
+  }
+  PairRefinementSettings settings;
+  settings.location_sigma_px = options.location_sigma_px;
+  settings.gate_sigmas = options.refine_gate_sigmas;
+  settings.min_inliers = options.refine_min_inliers;
+  report.refinement = RefinePairGeometry(geometry, x1, x2, settings);
+  if (!report.refinement.Refined()) return first;
+
+  // The guided pass: every pair again, in the band of the refined pose. A first-pass match off the
+  // refined epipolar geometry is no longer a candidate; a pair the wide band lost to a wrong
+  // competitor can now win.
+  MatchingOptions guided = options;
+  guided.use_pose_band = true;
+  guided.band_sigmas = options.refine_gate_sigmas;
+  return Match(a, graph_a, b, graph_b, JunctionSimilarity(a, b, report.refinement.geometry, guided), guided);
 }
 
 }  // namespace sfm

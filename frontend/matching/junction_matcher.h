@@ -9,6 +9,7 @@
 #include "frontend/matching/matching_options.h"
 #include "frontend/matching/matching_rule.h"
 #include "frontend/matching/pair_geometry.h"
+#include "frontend/matching/pair_refinement.h"
 
 namespace sfm {
 
@@ -21,12 +22,23 @@ std::vector<JunctionMatch> MatchJunctions(const Junctions& a, const TopologyGrap
                                          const TopologyGraph& graph_b, const Eigen::Matrix3d& F,
                                          const MatchingOptions& options);
 
+// What the PairGeometry overload did, for diagnosis and the benchmark.
+struct MatchingDiagnostics {
+  int first_pass_matches = 0;
+  // Filled when options.refine_geometry; refinement.Refined() says whether the guided pass ran.
+  PairRefinement refinement;
+};
+
 // The same with the pair's relative pose and its uncertainty (PairGeometryFromOdometry): F =
 // geometry.Fundamental(), and in place of the fixed R each pair's band is options.band_sigmas times
 // the spread of its epipolar distances under the pose covariance and the location noise; pairs
 // that triangulate behind either camera are rejected (options.use_cheirality). The pipeline's call.
+// With options.refine_geometry, the pose is then refined from these matches (RefinePairGeometry,
+// the odometry as prior) and the matching runs again with the refined pose and its covariance in a
+// band of options.refine_gate_sigmas: the result of that guided pass is returned, or the first
+// pass's when the refinement falls back. diagnostics may be null.
 std::vector<JunctionMatch> MatchJunctions(const Junctions& a, const TopologyGraph& graph_a, const Junctions& b,
                                          const TopologyGraph& graph_b, const PairGeometry& geometry,
-                                         const MatchingOptions& options);
+                                         const MatchingOptions& options, MatchingDiagnostics* diagnostics = nullptr);
 
 }  // namespace sfm

@@ -57,7 +57,22 @@ JunctionSimilarity::JunctionSimilarity(const Junctions& a, const Junctions& b, c
     : options_(options),
       min_sin_(std::sin(options.cyclic_order_min_angle_deg * kPi / 180)),
       side_a_(MakeSide(a, F)),
-      side_b_(MakeSide(b, F.transpose())) {}
+      side_b_(MakeSide(b, F.transpose())) {
+  locations_b_.resize(3, static_cast<Eigen::Index>(b.size()));
+  for (size_t j = 0; j < b.size(); ++j) locations_b_.col(static_cast<Eigen::Index>(j)) = b[j].location.homogeneous();
+}
+
+void JunctionSimilarity::PossiblePartners(int index_a, std::vector<int>* out) const {
+  const int n = side_a_.count[index_a];
+  if (n == 0) return;
+  const double bound = has_geometry_ && options_.use_pose_band ? side_a_.deviation_bound[index_a]
+                                                                : options_.max_epipolar_distance_px;
+  // d' of every b at once (one 1x3 by 3xQ product), then the two tests Rho starts with.
+  const Eigen::RowVectorXd d_prime = (side_a_.location_line[index_a].transpose() * locations_b_).cwiseAbs();
+  for (Eigen::Index j = 0; j < d_prime.size(); ++j) {
+    if (d_prime(j) <= bound && side_b_.count[static_cast<size_t>(j)] == n) out->push_back(static_cast<int>(j));
+  }
+}
 
 JunctionSimilarity::JunctionSimilarity(const Junctions& a, const Junctions& b, const PairGeometry& geometry,
                                        const MatchingOptions& options)
@@ -93,7 +108,8 @@ JunctionSimilarity::JunctionSimilarity(const Junctions& a, const Junctions& b, c
       }
     }
     const double norm = side_a_.location_line_norm[side_a_.deviation.size() - 1];
-    side_a_.deviation_bound.push_back(norm > 0 ? sigma_e / norm : std::numeric_limits<double>::infinity());
+    side_a_.deviation_bound.push_back(EpipolarBand(norm > 0 ? sigma_e / norm : std::numeric_limits<double>::infinity(),
+                                                   options.location_sigma_px, options.band_sigmas));
   }
 }
 
@@ -171,10 +187,8 @@ PairSimilarity JunctionSimilarity::Rho(int index_a, int index_b) const {
   // that rejects nearly every pair.
   const double d_prime = std::abs(side_a_.location_line[index_a].dot(side_b_.location[index_b].homogeneous()));
   if (has_geometry_ && options_.use_pose_band) {
-    // Cheap rejection first, with the largest sigma_d' over b's locations.
-    const double bound =
-        EpipolarBand(side_a_.deviation_bound[index_a], options_.location_sigma_px, options_.band_sigmas);
-    if (!(d_prime <= bound)) return result;
+    // Cheap rejection first, with the band of the largest sigma_d' over b's locations.
+    if (!(d_prime <= side_a_.deviation_bound[index_a])) return result;
   }
   const Bands bands = BandsOf(index_a, index_b);
   if (!(d_prime <= bands.in_image2)) return result;

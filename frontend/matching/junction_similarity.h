@@ -43,6 +43,12 @@ class JunctionSimilarity {
   // Eq. (34): rho = 0.5 (rho1 + rho2), rho2 = max_k M(k) (33) over the shifts allowed.
   PairSimilarity Rho(int index_a, int index_b) const;
 
+  // The junctions of b that Rho(index_a, .) does not reject by its first, cheap tests (same segment
+  // count, p'0 within R or the largest band of index_a from the epipolar line of p0), appended to
+  // `out` in increasing index. Every other pair has Rho unmatched: the candidate scan of (38) needs
+  // Rho only for these.
+  void PossiblePartners(int index_a, std::vector<int>* out) const;
+
   // Eq. (32): M(k) = (1/N) sum_i H(p_i, p'_j) H'(p_i, p'_j), j = (i + k) mod N. nullopt when the
   // shift violates (36) or (37) or a segment pairing fails (17); the segment counts must agree.
   std::optional<double> M(int index_a, int index_b, int shift) const;
@@ -69,7 +75,7 @@ class JunctionSimilarity {
     std::vector<Eigen::Matrix<double, 3, 6>> deviation;  // image 1 only, with geometry: G_k p0
     std::vector<ParallaxFrame> parallax;  // with geometry: the cheirality test of each location
     std::vector<double> parallax_tolerance;  // band_sigmas sqrt(sigma_v^2 + 2 location_sigma^2)
-    std::vector<double> deviation_bound;  // image 1 only: the largest sigma_d' over image 2's locations
+    std::vector<double> deviation_bound;  // image 1 only: the band of the largest sigma_d' over image 2's locations
     std::vector<OrientedSegment> segments;
     std::vector<Eigen::Vector2d> directions;      // segments[k].direction, contiguous for (36)-(37)
     std::vector<EndpointEpipolar> epipolar;       // of each end-point, into the other image
@@ -81,6 +87,8 @@ class JunctionSimilarity {
   double min_sin_;  // sin(options.cyclic_order_min_angle_deg)
   Side side_a_;     // lines through F
   Side side_b_;     // lines through F^T
+  // b's locations as homogeneous columns, for PossiblePartners' scan.
+  Eigen::Matrix<double, 3, Eigen::Dynamic> locations_b_;
 };
 
 }  // namespace sfm

@@ -51,6 +51,18 @@ struct MatchingOptions {
   // parallax's uncertainty (PassesCheirality).
   bool use_cheirality = true;
 
+  // Geometric verification and the guided second pass (PairGeometry overload only; docs/matching.md,
+  // "Geometric verification and the guided pass"): the pair's pose is re-estimated from the first
+  // pass's matches with the odometry as its prior (RefinePairGeometry), then rule (38) runs again
+  // with the refined pose and its posterior covariance, in a band of refine_gate_sigmas (in place of
+  // band_sigmas). Falls back to the first pass when fewer than refine_min_inliers matches lie within
+  // that gate at the estimate, or the estimate is outside the prior's chi-square 99 % ellipsoid.
+  bool refine_geometry = true;
+  // sqrt of the chi-square 99 % quantile with one degree of freedom: a 99 % gate on one distance.
+  double refine_gate_sigmas = 2.576;
+  // Three matches per degree of freedom of an epipolar geometry (5).
+  int refine_min_inliers = 15;
+
   Status Check() const {
     auto bad = [](const std::string& what) { return Status::Error("MatchingOptions: " + what); };
     if (!(max_epipolar_distance_px > 0 && std::isfinite(max_epipolar_distance_px))) {
@@ -68,6 +80,13 @@ struct MatchingOptions {
     if (!(band_sigmas > 0 && std::isfinite(band_sigmas))) return bad("band_sigmas must be finite and > 0");
     if (!(location_sigma_px >= 0 && std::isfinite(location_sigma_px))) {
       return bad("location_sigma_px must be finite and >= 0");
+    }
+    if (!(refine_gate_sigmas > 0 && std::isfinite(refine_gate_sigmas))) {
+      return bad("refine_gate_sigmas must be finite and > 0");
+    }
+    if (refine_min_inliers < 0) return bad("refine_min_inliers must be >= 0");
+    if (refine_geometry && !(location_sigma_px > 0)) {
+      return bad("refine_geometry needs location_sigma_px > 0");
     }
     return Status::Ok();
   }

@@ -217,5 +217,91 @@ TEST(JunctionMatcherTest, RectanglesWithTopologyOn150Junctions) {
   }
 }
 
+// The pose odometry would give for views: 0.3 degrees and 1 cm off (as OdometryF), with a
+// covariance of 0.005 rad per rotation axis and 1 cm per translation axis, so that the first pass's
+// band is about 3 sqrt((0.005 * 500)^2 + 2 * 0.5^2) = 8 px wide.
+PairGeometry OdometryGeometry(const TwoViews& views) {
+  PairGeometry geometry;
+  geometry.K = views.K;
+  const Pose3 noisy_world_T_camera2 =
+      views.world_T_camera2 *
+      Pose3(Eigen::AngleAxisd(0.3 * M_PI / 180, Eigen::Vector3d(1, 2, 0).normalized()).toRotationMatrix(),
+            Eigen::Vector3d(0.01, 0, 0));
+  geometry.camera2_T_camera1 = noisy_world_T_camera2.Inverse() * views.world_T_camera1;
+  geometry.covariance.diagonal() << 0.005 * 0.005, 0.005 * 0.005, 0.005 * 0.005, 1e-4, 1e-4, 1e-4;
+  return geometry;
+}
+
+// 60 junctions (15 rectangles) and, in image 2, the partner of junction 0 replaced by a decoy: the
+// same junction moved 4 px across the true epipolar line of a[0]. That is inside the odometry's
+// band, so the first pass, which has no other candidate, matches it; the refined pose puts it
+// 4 px off (about 6 sigma of the refined band), so the guided pass must not.
+TEST(JunctionMatcherTest, VerificationRemovesAnInjectedMismatch) {
+  std::mt19937 rng(14);
+  const TwoViews views = testing::MakeTwoViews();
+  std::vector<Junction3d> junctions3d;
+  for (int r = 0; r < 15; ++r) {
+    for (const Junction3d& corner : RandomRectangle(views, &rng)) junctions3d.push_back(corner);
+  }
+  Scene scene = MakeScene(views, junctions3d, 15, &rng);
+  const int decoy = scene.b_of_a[0];
+  const Eigen::Vector3d line = views.F() * scene.a[0].location.homogeneous();
+  const Eigen::Vector2d across = line.head<2>().normalized() * 4.0;
+  scene.b[decoy].location += across;
+  for (JunctionSegment& segment : scene.b[decoy].segments) segment.end += across;
+  const PairGeometry odometry = OdometryGeometry(views);
+  auto matched_decoy = [&](const std::vector<JunctionMatch>& matches) {
+    return std::any_of(matches.begin(), matches.end(),
+                       [&](const JunctionMatch& m) { return m.index_a == 0 && m.index_b == decoy; });
+  };
+
+  MatchingOptions first_pass_only;
+  first_pass_only.refine_geometry = false;
+  const std::vector<JunctionMatch> first =
+      MatchJunctions(scene.a, scene.graph_a, scene.b, scene.graph_b, odometry, first_pass_only);
+  ASSERT_TRUE(matched_decoy(first)) << "the test needs the first pass to take the decoy";
+
+  MatchingDiagnostics diagnostics;
+  const std::vector<JunctionMatch> verified =
+      MatchJunctions(scene.a, scene.graph_a, scene.b, scene.graph_b, odometry, MatchingOptions(), &diagnostics);
+  ASSERT_TRUE(diagnostics.refinement.Refined()) << static_cast<int>(diagnostics.refinement.outcome);
+  EXPECT_EQ(diagnostics.first_pass_matches, static_cast<int>(first.size()));
+  EXPECT_FALSE(matched_decoy(verified));
+  // Evaluate counts the decoy as right (it stands at the partner's index). Scene 14: the first
+  // pass matches all 60 (59 right and the decoy), the guided pass the 59 right ones and nothing
+  // wrong: verification loses no right match here.
+  const Score before = Evaluate(scene, first), after = Evaluate(scene, verified);
+  EXPECT_EQ(before.wrong, 0);
+  EXPECT_EQ(before.correct, 60);
+  EXPECT_EQ(after.wrong, 0);
+  EXPECT_EQ(after.correct, 59);
+}
+
+// Ten junctions are fewer than refine_min_inliers (15): the refinement falls back and the result
+// is the first pass's, match for match.
+TEST(JunctionMatcherTest, FallsBackToTheOdometryWithTooFewMatches) {
+  std::mt19937 rng(15);
+  const TwoViews views = testing::MakeTwoViews();
+  std::vector<Junction3d> junctions3d;
+  for (int k = 0; k < 10; ++k) junctions3d.push_back(testing::RandomJunction3d(views, 3, &rng));
+  const Scene scene = MakeScene(views, junctions3d, 0, &rng);
+  const PairGeometry odometry = OdometryGeometry(views);
+  MatchingOptions first_pass_only;
+  first_pass_only.refine_geometry = false;
+  MatchingDiagnostics diagnostics;
+  const std::vector<JunctionMatch> with =
+      MatchJunctions(scene.a, scene.graph_a, scene.b, scene.graph_b, odometry, MatchingOptions(), &diagnostics);
+  const std::vector<JunctionMatch> without =
+      MatchJunctions(scene.a, scene.graph_a, scene.b, scene.graph_b, odometry, first_pass_only);
+  EXPECT_EQ(diagnostics.refinement.outcome, PairRefinement::Outcome::kTooFewMatches);
+  ASSERT_EQ(with.size(), without.size());
+  for (size_t k = 0; k < with.size(); ++k) {
+    EXPECT_EQ(with[k].index_a, without[k].index_a);
+    EXPECT_EQ(with[k].index_b, without[k].index_b);
+    EXPECT_EQ(with[k].similarity, without[k].similarity);
+  }
+  EXPECT_EQ(Evaluate(scene, with).correct, 10);
+}
+
 }  // namespace
 }  // namespace sfm
