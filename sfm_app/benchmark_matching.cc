@@ -384,7 +384,7 @@ void TrueVertexEpipolarErrors(const FrameTruth& a, const FrameTruth& b, const Ei
 struct RefinementTally {
   int pairs = 0;
   int outcomes[5] = {};  // by PairRefinement::Outcome
-  std::vector<double> first_matches, inliers, steps;
+  std::vector<double> first_matches, inliers, steps, prior_distance;
   std::vector<double> rotation_before, rotation_after;    // degrees, odometry / the pose used
   std::vector<double> direction_before, direction_after;  // angle of the translation, degrees
   std::vector<double> epipolar_before, epipolar_after;    // px, true correspondences under each F
@@ -400,6 +400,10 @@ struct RefinementTally {
     ++pairs;
     ++outcomes[static_cast<int>(d.refinement.outcome)];
     first_matches.push_back(d.first_pass_matches);
+    if (d.refinement.outcome != PairRefinement::Outcome::kTooFewMatches &&
+        d.refinement.outcome != PairRefinement::Outcome::kNoPriorUncertainty) {
+      prior_distance.push_back(d.refinement.prior_distance_squared);
+    }
     const Pose3& used = d.refinement.Refined() ? d.refinement.geometry.camera2_T_camera1 : odometry;
     if (d.refinement.Refined()) {
       inliers.push_back(d.refinement.inliers);
@@ -428,7 +432,10 @@ std::string RefinementRow(const std::string& data, const RefinementTally& t) {
       << t.outcomes[static_cast<int>(Outcome::kTooFewInliers)] << " | "
       << t.outcomes[static_cast<int>(Outcome::kInconsistentWithPrior)] << " | " << Fixed(Median(t.first_matches), 0)
       << " | " << (t.inliers.empty() ? "-" : Fixed(Median(t.inliers), 0)) << " | "
-      << (t.steps.empty() ? "-" : Fixed(Median(t.steps), 0)) << " | " << spread(t.rotation_before, t.rotation_after)
+      << (t.steps.empty() ? "-" : Fixed(Median(t.steps), 0)) << " | "
+      << (t.prior_distance.empty() ? "-"
+                                   : Fixed(Median(t.prior_distance), 1) + " / " + Fixed(Quantile(t.prior_distance, 1.0), 1))
+      << " | " << spread(t.rotation_before, t.rotation_after)
       << " | " << spread(t.direction_before, t.direction_after) << " | "
       << spread(t.epipolar_before, t.epipolar_after) << " |\n";
   return row.str();
@@ -512,7 +519,8 @@ Sweep RunSweep(const LoadedFrame& a, const LoadedFrame& b, const PairInput& F, c
       for (bool topology : {false, true}) {
         MatchingOptions options = base;
         options.max_epipolar_distance_px = R;
-        options.use_pose_band = false;  // the sweep is over R
+        options.use_pose_band = false;    // the sweep is over R
+        options.refine_geometry = false;  // the guided pass would replace R by the refined band
         options.tau2 = tau2;
         options.use_topology = topology;
         const std::vector<JunctionMatch> matches = Match(a, b, F, options);
@@ -1019,9 +1027,10 @@ int main(int argc, char** argv) {
            << "poses: rotation angle, and the angle between the translation directions (the scale is not observable "
            << "from two images); median / 90 %, odometry -> the pose used by the guided pass.\n\n"
            << "| data | pairs | refined | fell back: too few matches | too few inliers | inconsistent with the odometry | "
-           << "first-pass matches (median) | inliers (median) | Gauss-Newton steps (median) | rotation error (deg) | "
+           << "first-pass matches (median) | inliers (median) | Gauss-Newton steps (median) | "
+           << "squared Mahalanobis distance from the odometry (median / max; gate 16.8 for 6 DoF) | rotation error (deg) | "
            << "translation direction error (deg) | epipolar error of true correspondences (px) |\n"
-           << "|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+           << "|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
     if (refinement_generated.pairs > 0) report << RefinementRow("generated, consecutive", refinement_generated);
     for (const auto& [gap, tally] : refinement_vgg) {
       report << RefinementRow("VGG, " + std::to_string(gap) + " apart", tally);
