@@ -5,6 +5,7 @@
 #
 #   scripts/benchmark_backend.sh
 #   BUILD=build-other WORK=/tmp/elsewhere scripts/benchmark_backend.sh
+#   SFM_FLAGS="--floor_prior=off" scripts/benchmark_backend.sh   # extra junction_sfm flags
 #
 # Sequences (fixed seeds: the same bytes every run):
 #   room-loop            make_sequence --scene=room --trajectory=loop --frames=60 --seed=1
@@ -56,7 +57,9 @@ fi
 
 for name in $sequences; do
   echo "junction_sfm on $name" >&2
-  "$build/bin/junction_sfm" --sequence "$work/$name" --output "$work/$name.out" --progress=false 2>"$work/$name.log"
+  # shellcheck disable=SC2086  # SFM_FLAGS is a list of flags
+  "$build/bin/junction_sfm" --sequence "$work/$name" --output "$work/$name.out" --progress=false ${SFM_FLAGS:-} \
+    2>"$work/$name.log"
   if [ -d "$work/$name/truth" ]; then
     "$build/bin/evaluate_wireframe" --sequence "$work/$name" --output "$work/$name.out" >"$work/$name.out/wireframe_eval.json"
   fi
@@ -121,6 +124,17 @@ for name, m, w, width, height, jpf in rows:
     rot_goal = (verdict(rot_ratio <= 0.5) + " (<= 0.5)") if generated and rot_ratio is not None else "-"
     print(f"| {name} | {fmt(ao)} | {fmt(ar)} | {fmt(ate_ratio, 2)} | {ate_goal} | {fmt(ro['trans_m'])} | "
           f"{fmt(rr['trans_m'])} | {fmt(ro['rot_rad'])} | {fmt(rr['rot_rad'])} | {fmt(rot_ratio, 2)} | {rot_goal} |")
+
+print("\n### Floor prior (metrics.json floor_prior)\n")
+print("| sequence | used | floor points | floor lines | plane z when found m | odometry scale | report |")
+print("|---|---|---|---|---|---|---|")
+for name, m, w, width, height, jpf in rows:
+    f = m.get("floor_prior")
+    if not f:
+        print(f"| {name} | - | - | - | - | - | - |")
+        continue
+    print(f"| {name} | {'yes' if f['used'] else 'no'} | {f['points']} | {f['lines']} | {fmt(f['plane_z_m'])} | "
+          f"{fmt(f['odometry_scale'], 4)} | {f['report']} |")
 
 print("\n### Wireframe against the truth (generated sequences)\n")
 print("Goal: 90 % of the wireframe vertices within 5 cm of a true edge (no alignment: the odometry starts on"

@@ -63,14 +63,22 @@ FloorPlane FindFloorPlane(const Landmarks& landmarks, double camera_z_m, double 
   plane.below_camera = static_cast<int>(heights.size());
   const double width_m = 2 * half_width_m;
   const int needed = min_support;
-  // The lowest window [heights[i], heights[i] + width] holding enough, then centred on its median
-  // and counted again (the slab the selection will use).
+  // The lowest window [heights[i], heights[i] + width] holding enough; then the slab is moved to
+  // the median of what it holds until it stays (a window that starts on a few stray landmarks
+  // below the floor holds only the floor's lower part, and its own median is too low).
   size_t end = 0;
   for (size_t i = 0; i < heights.size(); ++i) {
     end = std::max(end, i);
     while (end < heights.size() && heights[end] <= heights[i] + width_m) ++end;
     if (static_cast<int>(end - i) < needed) continue;
-    const double centre = heights[i + (end - i) / 2];
+    double centre = heights[i + (end - i) / 2];
+    for (int iteration = 0; iteration < 20; ++iteration) {
+      const auto first = std::lower_bound(heights.begin(), heights.end(), centre - half_width_m);
+      const auto last = std::upper_bound(heights.begin(), heights.end(), centre + half_width_m);
+      const double median = *(first + (last - first) / 2);
+      if (median == centre) break;
+      centre = median;
+    }
     plane.z_m = centre;
     plane.support = static_cast<int>(std::count_if(heights.begin(), heights.end(),
                                                    [&](double z) { return InSlab(z, centre, half_width_m); }));
