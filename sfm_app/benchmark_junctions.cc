@@ -35,6 +35,7 @@
 
 #include "frontend/geometry/image_undistorter.h"
 #include "frontend/junctions/junction_detector.h"
+#include "frontend/junctions/pair_probability.h"
 #include "frontend/segments/endpoint_fit.h"
 #include "frontend/segments/segment_detector.h"
 #include "frontend/segments/segment_evaluation.h"
@@ -65,6 +66,8 @@ DEFINE_double(min_segment_length, sfm::SegmentDetectorOptions().min_length, "Seg
 DEFINE_double(edge_contrast_low, sfm::SegmentDetectorOptions().edge_contrast_low, "Segment detectors: low edge contrast, grey levels.");
 DEFINE_double(edge_contrast_high, sfm::SegmentDetectorOptions().edge_contrast_high, "Segment detectors: high edge contrast, grey levels.");
 DEFINE_double(log10_nfa_max, sfm::SegmentDetectorOptions().fast.log10_nfa_max, "Fast segments: NFA threshold, log10.");
+DEFINE_double(presmooth_sigma, sfm::SegmentDetectorOptions().fast.presmooth_sigma,
+              "Fast segments: Gaussian pre-smoothing before the Sobel pass, px.");
 DEFINE_double(line_tolerance, sfm::SegmentDetectorOptions().fast.line_tolerance, "Fast segments: splitting tolerance, px.");
 DEFINE_string(overlay_dir, "", "If set, write overlays there (every 10th generated frame, every VGG image), "
                                "with missed true junctions circled in white.");
@@ -494,6 +497,63 @@ Status WriteMiss(const std::string& tag, int frame, const TrueVertexJunction& v,
   return WritePng(FLAGS_miss_dir + name, both);
 }
 
+// One missed vertex whose segments end near it, for --miss_dir: in notjoined.csv, a row per pair of
+// segments on two of its long edges: the pair test's verdict with the default options, the eq. (6)
+// point's distance from the vertex, and the t of each segment.
+Status WriteNotJoined(const std::string& tag, int frame, const TrueVertexJunction& v, bool crowded,
+                      const LineSegments& segments, const JunctionDetectorOptions& options) {
+  static int counter = 0;
+  const int id = counter++;
+  const std::string csv_path = FLAGS_miss_dir + "/notjoined.csv";
+  FILE* csv = std::fopen(csv_path.c_str(), id == 0 ? "w" : "a");
+  if (csv == nullptr) return Status::Error(csv_path + ": cannot open");
+  if (id == 0) std::fprintf(csv, "id,tag,frame,vx,vy,crowded,edge_a,edge_b,seg_a,seg_b,passes,probability,location_error_px,t_a,t_b,angle_deg,len_a,len_b\n");
+  // The segments on each long edge (same line within 1 px at both ends, 3 degrees, overlapping).
+  std::vector<std::vector<int>> on_edge(v.long_edge_ends.size());
+  for (size_t e = 0; e < v.long_edge_ends.size(); ++e) {
+    LineSegment edge;
+    edge.p0 = v.location;
+    edge.p1 = v.long_edge_ends[e];
+    EndpointOffsetOptions o;
+    o.max_abs_t = 1e9;
+    o.min_true_length = 0;
+    for (size_t k = 0; k < segments.size(); ++k) {
+      EndpointOffsets offsets;
+      const bool one[2] = {true, false};
+      CollectEndpointOffsets({segments[k]}, edge, one, o, &offsets);
+      if (!offsets.t.empty() && offsets.t[0] >= -options.max_gap_px) on_edge[e].push_back(static_cast<int>(k));
+    }
+  }
+  std::vector<SegmentLine> lines;
+  for (const LineSegment& s : segments) lines.emplace_back(s);
+  JunctionDetectorOptions loose = options;
+  loose.min_probability = 1e-12;
+  loose.max_gap_px = 1e9;
+  for (size_t a = 0; a < on_edge.size(); ++a) {
+    for (size_t b = a + 1; b < on_edge.size(); ++b) {
+      for (int sa : on_edge[a]) {
+        for (int sb : on_edge[b]) {
+          if (sa == sb) continue;
+          const std::optional<PairHit> strict = TestPair(lines, sa, sb, options);
+          const std::optional<PairHit> hit = TestPair(lines, sa, sb, loose);
+          const double angle = std::acos(std::min(1.0, std::abs(lines[sa].n.dot(lines[sb].n)))) * 180 / M_PI;
+          double ta = 0, tb = 0, error = -1;
+          if (hit && hit->location) {
+            ta = NearEndChange(lines[sa], *hit->location).t;
+            tb = NearEndChange(lines[sb], *hit->location).t;
+            error = (*hit->location - v.location).norm();
+          }
+          std::fprintf(csv, "%d,%s,%d,%.2f,%.2f,%d,%zu,%zu,%d,%d,%d,%.4f,%.2f,%.2f,%.2f,%.1f,%.1f,%.1f\n", id, tag.c_str(),
+                       frame, v.location.x(), v.location.y(), crowded ? 1 : 0, a, b, sa, sb, strict ? 1 : 0,
+                       hit ? hit->probability : 0.0, error, ta, tb, angle, lines[sa].length, lines[sb].length);
+        }
+      }
+    }
+  }
+  std::fclose(csv);
+  return Status::Ok();
+}
+
 // Measures one generated sequence with each method.
 // `clean_directory`: the same sequence rendered without noise (for the contrast-visible reading), or
 // empty.
@@ -635,6 +695,11 @@ Status MeasureSequence(const std::string& directory, const std::string& clean_di
         ++s.misses[kind];
         if (!contrast.empty() && detectable_seen[i]) ++s.contrast_misses[kind];
         const MissKind inner = WhySegmentsMissed(*detectable_vertex[i], segments, junction_options.max_gap_px);
+        if (!FLAGS_miss_dir.empty() && inner == kNotJoined) {
+          SFM_RETURN_IF_ERROR(WriteNotJoined(std::filesystem::path(directory).filename().string() + "_" + methods[m].name,
+                                             static_cast<int>(f), *detectable_vertex[i], kind == kCrowded, segments,
+                                             junction_options));
+        }
         if (!FLAGS_miss_dir.empty() && inner == kEdgesMissing) {
           SFM_RETURN_IF_ERROR(WriteMiss(std::filesystem::path(directory).filename().string() + "_" + methods[m].name,
                                         static_cast<int>(f), *detectable_vertex[i], kind == kCrowded, any_truth, grey,
@@ -878,6 +943,7 @@ int main(int argc, char** argv) {
     method.options.edge_contrast_high = FLAGS_edge_contrast_high;
     method.options.fast.log10_nfa_max = FLAGS_log10_nfa_max;
     method.options.fast.line_tolerance = FLAGS_line_tolerance;
+    method.options.fast.presmooth_sigma = FLAGS_presmooth_sigma;
     if (name == "fast") {
       method.options.method = SegmentMethod::kFast;
     } else if (name == "reference") {

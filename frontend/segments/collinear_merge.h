@@ -18,6 +18,10 @@ struct LinePiece {
   Eigen::Vector2d last = Eigen::Vector2d::Zero();         // its last edge point, pixels
   Eigen::Vector2d gradient_sum = Eigen::Vector2d::Zero();  // sum of the image gradient over its points
   bool merged_away = false;                               // true once joined into another piece
+  // For a piece between two long pieces of the same chain (a short side between two corners): its
+  // length between the intersections of its line with theirs, pixels; 0 otherwise (and for a
+  // joined piece).
+  double corner_length = 0;
 };
 
 // Joins pairs of pieces of the same polarity with end-points at most `max_gap` pixels apart when

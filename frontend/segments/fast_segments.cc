@@ -108,17 +108,27 @@ class FastDetector {
       const double length = static_cast<double>(chain_.size());
       num_tests_ += 0.5 * length * (length + 1);
       const size_t first_piece = pieces_.size();
+      ranges_.clear();
       const size_t first_break = SplitChain();
       // A closed contour has no natural start: the anchor may lie mid-side, which would cut that
       // side in two. Start it again where its first piece ended, which is a corner.
-      if (pieces_.size() - first_piece >= 2 && IsClosed()) {
+      const bool closed = IsClosed();
+      if (pieces_.size() - first_piece >= 2 && closed) {
         pieces_.resize(first_piece);
+        ranges_.clear();
         std::rotate(chain_.begin(), chain_.begin() + static_cast<std::ptrdiff_t>(first_break), chain_.end());
         SplitChain();
       }
+      MarkCornerLengths(first_piece, closed);
     }
     // A piece joined across chains is one more candidate: count every piece once more.
     num_tests_ += static_cast<double>(pieces_.size());
+    // Short sides between two corners are a family of candidates of their own (see Validate).
+    double short_sides = 0;
+    for (const LinePiece& piece : pieces_) {
+      if (piece.corner_length >= options_.min_length) ++short_sides;
+    }
+    log10_short_side_tests_ = std::log10(std::max(short_sides, 1.0));
     MergeCollinearPieces(options_.max_gap, options_.fast.line_tolerance, &pieces_);
     log10_tests_ = std::log10(std::max(num_tests_, 1.0));
     LineSegments segments;
@@ -299,9 +309,63 @@ class FastDetector {
   // (presmoothing and Sobel together: sigma = 1 px at the default), over which a corner's second
   // edge bends the gradient.
   static constexpr double kEndTrim = 1.0;
+  // Chain points that may lie between a short side and its neighbours (MarkCornerLengths): the
+  // corner's arc left out of both pieces.
+  static constexpr size_t kMaxCornerSkip = 3;
+  // Lines closer to parallel than about 11.5 degrees give no corner: a line error of 0.2 px would
+  // move their intersection by more than 1 px.
+  static constexpr double kMinCornerSine = 0.2;
+
+  // A side of a polygon-like chain shorter than min_length: rounded corners shorten every detected
+  // side by 1-2 px at each end (more at acute corners), so a true side of 10-12 px comes out as a
+  // piece of 7-9 px. A piece whose chain continues, within kMaxCornerSkip points at both ends,
+  // into pieces at least min_length long (or which closes on itself) has corners at both ends; its
+  // corner_length is the distance between the intersections of its line with theirs, when each
+  // intersection lies within max_gap of its own end (a corner, not a near-parallel continuation).
+  // Validate measures such a piece by that length. `first`: its chain's first piece.
+  void MarkCornerLengths(size_t first, bool closed) {
+    const size_t count = pieces_.size() - first, n = chain_.size();
+    if (count < 3) return;
+    std::vector<FittedLine>& lines = lines_;
+    lines.clear();
+    for (size_t k = first; k < pieces_.size(); ++k) lines.push_back(pieces_[k].fit.Fit());
+    auto long_enough = [&](size_t k) {
+      const LinePiece& p = pieces_[first + k];
+      return (lines[k].Project(p.last) - lines[k].Project(p.first)).norm() >= options_.min_length;
+    };
+    for (size_t k = 0; k < count; ++k) {
+      if (!closed && (k == 0 || k + 1 == count)) continue;
+      const size_t before = (k + count - 1) % count, after = (k + 1) % count;
+      if (!long_enough(before) || !long_enough(after)) continue;
+      // Points between the pieces, around the chain when it is closed.
+      const size_t skip_before = (ranges_[k].first + n - ranges_[before].second) % n;
+      const size_t skip_after = (ranges_[after].first + n - ranges_[k].second) % n;
+      if (skip_before > kMaxCornerSkip || skip_after > kMaxCornerSkip) continue;
+      LinePiece& piece = pieces_[first + k];
+      const Eigen::Vector2d ends[2] = {lines[k].Project(piece.first), lines[k].Project(piece.last)};
+      Eigen::Vector2d corners[2];
+      bool ok = true;
+      for (int e = 0; e < 2 && ok; ++e) {
+        ok = Intersect(lines[k], lines[e == 0 ? before : after], &corners[e]) &&
+             (corners[e] - ends[e]).norm() <= options_.max_gap;
+      }
+      if (ok) piece.corner_length = (corners[1] - corners[0]).norm();
+    }
+  }
+
+  // The common point of two lines, if they are at least kMinCornerSine from parallel.
+  static bool Intersect(const FittedLine& a, const FittedLine& b, Eigen::Vector2d* point) {
+    const double sine = a.direction.x() * b.direction.y() - a.direction.y() * b.direction.x();
+    if (std::abs(sine) < kMinCornerSine) return false;
+    // a.centroid + s a.direction lies on b: b.Distance(...) = 0.
+    const double s = -b.Distance(a.centroid) / (b.direction.x() * a.direction.y() - b.direction.y() * a.direction.x());
+    *point = a.centroid + s * a.direction;
+    return true;
+  }
 
   // Records chain points [begin, end), fitted by `fit`, as a piece.
   void AddPiece(size_t begin, size_t end, const LineFitAccumulator& fit) {
+    ranges_.emplace_back(begin, end);
     LinePiece piece;
     piece.fit = fit;
     piece.first = points_[begin];
@@ -327,7 +391,11 @@ class FastDetector {
   void Validate(const LinePiece& piece, LineSegments* segments) const {
     LineSegment segment = SegmentOnLine(piece.fit.Fit(), piece.first, piece.last, piece.fit.count());
     const double length = segment.Length();
-    if (length < options_.min_length) return;
+    // A short side between two corners (MarkCornerLengths) counts by its corner-to-corner length,
+    // and is tested against the family of such sides only: its number of tests is their count,
+    // tens to hundreds per image, not the chains' sub-runs.
+    const bool short_side = length < options_.min_length && piece.corner_length >= options_.min_length;
+    if (length < options_.min_length && !short_side) return;
     Eigen::Vector2d normal = segment.Normal();
     if (normal.dot(piece.gradient_sum) < 0) {
       std::swap(segment.p0, segment.p1);
@@ -350,14 +418,16 @@ class FastDetector {
       const double along = g_x * normal.x() + g_y * normal.y();
       if (along > 0 && along * along >= kAlignedCos2 * (g_x * g_x + g_y * g_y)) ++aligned;
     }
-    if (Log10Nfa(samples, aligned, kAlignedProbability, log10_tests_) > options_.fast.log10_nfa_max) return;
+    const double log10_tests = short_side ? log10_short_side_tests_ : log10_tests_;
+    if (Log10Nfa(samples, aligned, kAlignedProbability, log10_tests) > options_.fast.log10_nfa_max) return;
     segments->push_back(segment);
   }
 
   const SegmentDetectorOptions& options_;
   const int rows_, cols_;
   int low_ = 0, high_ = 0, min_pixels_ = 0;
-  double num_tests_ = 0, log10_tests_ = 0;  // candidate segments tested by the NFA (see Run)
+  double num_tests_ = 0, log10_tests_ = 0;
+  double log10_short_side_tests_ = 0;  // log10 of the number of short sides between corners  // candidate segments tested by the NFA (see Run)
   // Views of the workspace's buffers (see Workspace for their contents).
   cv::Mat& gx_;
   cv::Mat& gy_;
@@ -371,6 +441,8 @@ class FastDetector {
   std::vector<int>& chain_;
   std::vector<Eigen::Vector2d>& points_;
   std::vector<LinePiece>& pieces_;
+  std::vector<std::pair<size_t, size_t>> ranges_;  // chain points [begin, end) of the current chain's pieces
+  std::vector<FittedLine> lines_;                   // their fitted lines (MarkCornerLengths)
 };
 
 }  // namespace
