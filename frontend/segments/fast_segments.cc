@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <utility>
 #include <vector>
 
 #include <glog/logging.h>
@@ -42,6 +43,8 @@ struct Workspace {
   std::vector<uint8_t> row_marks;                      // 1 at a row's anchors
   std::vector<Eigen::Vector2d> points;                 // sub-pixel points of chain
   std::vector<LinePiece> pieces;                       // straight pieces of all chains
+  std::vector<std::pair<size_t, size_t>> ranges;       // chain points [begin, end) of the current chain's pieces
+  std::vector<FittedLine> lines;                       // their fitted lines (MarkCornerLengths)
 };
 
 // One image's detection.
@@ -62,7 +65,9 @@ class FastDetector {
         forward_(workspace->forward),
         chain_(workspace->chain),
         points_(workspace->points),
-        pieces_(workspace->pieces) {
+        pieces_(workspace->pieces),
+        ranges_(workspace->ranges),
+        lines_(workspace->lines) {
     pieces_.clear();
     const cv::Mat* smoothed = &grey;
     const double sigma = options.fast.presmooth_sigma;
@@ -241,13 +246,14 @@ class FastDetector {
 
   // EDLines' splitting: fit the first min_pixels_ points; if they are straight, extend the line
   // point by point while each next point is within the tolerance, then start again after it.
-  // Two changes at corners, where the chain turns through a rounded arc:
+  // Three rules for corners, where the chain turns through a rounded arc:
   //  - the seed window must be straight to half the tolerance (SeedTolerance). With the full
   //    tolerance a window holding the arc and the first pixels of the next side passes as a line
   //    at some middle angle, and that piece eats the start of the side: a short side (a box's
   //    bottom edge, 10-15 px) was left with too few points to be a segment;
   //  - a piece also grows backwards, over the points the seed search skipped since the previous
-  //    piece, while they are within the tolerance of its line: the side keeps its full length.
+  //    piece, while they are within the seed tolerance of its line: the side keeps its length;
+  //  - its line is refitted without the end points beyond the seed tolerance (below).
   // Returns the chain index where the first piece ended (the chain's size if there is none).
   size_t SplitChain() {
     points_.clear();
@@ -326,7 +332,7 @@ class FastDetector {
   void MarkCornerLengths(size_t first, bool closed) {
     const size_t count = pieces_.size() - first, n = chain_.size();
     if (count < 3) return;
-    std::vector<FittedLine>& lines = lines_;
+    std::vector<FittedLine>& lines = lines_;  // of this chain's pieces, from `first`
     lines.clear();
     for (size_t k = first; k < pieces_.size(); ++k) lines.push_back(pieces_[k].fit.Fit());
     auto long_enough = [&](size_t k) {
@@ -387,7 +393,8 @@ class FastDetector {
   // corner where its edge meets another, and there the smoothed gradient mixes both edges'
   // directions, so end samples fail the alignment test on real corners, not only on noise. Short
   // sides of boxes, bevels and frames (10-15 px, a corner at each end) lost up to 4 of their ~12
-  // samples that way and were rejected. Fewer samples make the test stricter, never looser.
+  // samples that way and were rejected. In noise a sample is aligned with probability 1/8 wherever
+  // it lies, so leaving the end samples out keeps the test's bound on false alarms.
   void Validate(const LinePiece& piece, LineSegments* segments) const {
     LineSegment segment = SegmentOnLine(piece.fit.Fit(), piece.first, piece.last, piece.fit.count());
     const double length = segment.Length();
@@ -426,8 +433,8 @@ class FastDetector {
   const SegmentDetectorOptions& options_;
   const int rows_, cols_;
   int low_ = 0, high_ = 0, min_pixels_ = 0;
-  double num_tests_ = 0, log10_tests_ = 0;
-  double log10_short_side_tests_ = 0;  // log10 of the number of short sides between corners  // candidate segments tested by the NFA (see Run)
+  double num_tests_ = 0, log10_tests_ = 0;  // candidate segments tested by the NFA (see Run)
+  double log10_short_side_tests_ = 0;       // log10 of the number of short sides between corners
   // Views of the workspace's buffers (see Workspace for their contents).
   cv::Mat& gx_;
   cv::Mat& gy_;
@@ -441,8 +448,8 @@ class FastDetector {
   std::vector<int>& chain_;
   std::vector<Eigen::Vector2d>& points_;
   std::vector<LinePiece>& pieces_;
-  std::vector<std::pair<size_t, size_t>> ranges_;  // chain points [begin, end) of the current chain's pieces
-  std::vector<FittedLine> lines_;                   // their fitted lines (MarkCornerLengths)
+  std::vector<std::pair<size_t, size_t>>& ranges_;
+  std::vector<FittedLine>& lines_;
 };
 
 }  // namespace
