@@ -133,6 +133,21 @@ Status Refine(const Sequence& sequence, const PipelineOptions& options, Pipeline
   return Status::Ok();
 }
 
+// The landmarks the wireframe draws (docs/tracks_and_triangulation.md, "Wireframe vertices"):
+// judged on the final poses; bundle adjustment and the COLMAP model keep every landmark.
+void SelectWireframe(const Sequence& sequence, const PipelineOptions& options, PipelineResult* result) {
+  const std::vector<Pose3>& poses =
+      result->world_T_camera_refined.empty() ? result->world_T_camera_odometry : result->world_T_camera_refined;
+  WireframeSelectionReport& report = result->wireframe_selection;
+  result->wireframe_landmarks = SelectWireframeLandmarks(sequence.calibration.camera.K(), poses, result->landmarks,
+                                                         options.triangulation.wireframe, &report);
+  LOG(INFO) << "wireframe: " << report.points_kept << " of " << result->landmarks.points.size() << " points and "
+            << report.lines_kept << " of " << result->landmarks.lines.size() << " lines drawn (pixel noise "
+            << report.pixel_sigma_px << " px; dropped: " << report.points_inconsistent << " + "
+            << report.lines_inconsistent << " inconsistent, " << report.points_uncertain << " + "
+            << report.lines_uncertain_end0 + report.lines_uncertain_end1 << " undetermined points + lines)";
+}
+
 }  // namespace
 
 Status PipelineOptions::Check() const {
@@ -173,6 +188,7 @@ Status RunPipeline(const PipelineOptions& options, PipelineResult* result_out) {
   stage_start = Clock::now();
   Reconstruct(sequence, options, &result);
   if (options.bundle_adjustment) SFM_RETURN_IF_ERROR(Refine(sequence, options, &result));
+  SelectWireframe(sequence, options, &result);
   result.times.backend = SecondsSince(stage_start);
   if (result.world_T_camera_truth) {
     result.drift_odometry = ComputeDrift(result.world_T_camera_odometry, *result.world_T_camera_truth);

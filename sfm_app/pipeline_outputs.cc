@@ -91,6 +91,17 @@ std::string FloorPriorJson(const PipelineResult& result, bool refined) {
          ", \"report\": " + JsonString(summary.floor_prior_report) + "}";
 }
 
+// Not in SPEC's list: how many landmarks wireframe.ply draws and why the others are left out.
+std::string WireframeJson(const PipelineResult& result) {
+  const WireframeSelectionReport& report = result.wireframe_selection;
+  return "{\"points\": " + std::to_string(report.points_kept) + ", \"lines\": " + std::to_string(report.lines_kept) +
+         ", \"pixel_sigma_px\": " + JsonNumber(report.pixel_sigma_px) +
+         ", \"points_inconsistent\": " + std::to_string(report.points_inconsistent) +
+         ", \"points_undetermined\": " + std::to_string(report.points_uncertain) +
+         ", \"lines_inconsistent\": " + std::to_string(report.lines_inconsistent) +
+         ", \"lines_undetermined\": " + std::to_string(report.lines_uncertain_end0 + report.lines_uncertain_end1) + "}";
+}
+
 std::optional<double> Ate(const std::optional<DriftMetrics>& drift) {
   return drift ? std::optional<double>(drift->ate_m) : std::nullopt;
 }
@@ -124,7 +135,8 @@ std::string MetricsJson(const Sequence& sequence, const PipelineResult& result) 
        << "  \"time_s\": {\"frontend\": " << JsonNumber(times.frontend)
        << ", \"matching\": " << JsonNumber(times.matching) << ", \"backend\": " << JsonNumber(times.backend)
        << ", \"total\": " << JsonNumber(times.total) << "},\n"
-       << "  \"floor_prior\": " << FloorPriorJson(result, refined) << "\n"
+       << "  \"floor_prior\": " << FloorPriorJson(result, refined) << ",\n"
+       << "  \"wireframe\": " << WireframeJson(result) << "\n"
        << "}\n";
   return json.str();
 }
@@ -157,7 +169,7 @@ Status WriteOutputs(const Sequence& sequence, const PipelineResult& result, cons
     SFM_RETURN_IF_ERROR(WriteTumTrajectory((out / "trajectory_groundtruth.txt").string(),
                                            Stamped(sequence, *result.world_T_camera_truth)));
   }
-  SFM_RETURN_IF_ERROR(WritePly((out / "wireframe.ply").string(), WireframeOf(result.landmarks)));
+  SFM_RETURN_IF_ERROR(WritePly((out / "wireframe.ply").string(), WireframeOf(result.wireframe_landmarks)));
   const std::vector<Pose3>& poses =
       result.world_T_camera_refined.empty() ? result.world_T_camera_odometry : result.world_T_camera_refined;
   SFM_RETURN_IF_ERROR(WriteColmapModel((out / "colmap").string(), ColmapModelOf(sequence, poses, result.landmarks)));

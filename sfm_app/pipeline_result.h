@@ -7,6 +7,7 @@
 #include "backend/bundle_adjustment/bundle_adjustment_options.h"
 #include "backend/metrics/drift.h"
 #include "backend/triangulation/landmarks.h"
+#include "backend/triangulation/wireframe_selection.h"
 #include "frontend/geometry/pose.h"
 #include "frontend/junctions/junction.h"
 #include "frontend/tracks/tracks.h"
@@ -23,6 +24,9 @@ struct PipelineResult {
   std::vector<FramePairMatches> pairs;    // every pair matched (consecutive and two back)
   std::vector<JunctionTrack> tracks;
   Landmarks landmarks;
+  // The landmarks wireframe.ply draws: those SelectWireframeLandmarks keeps on the final poses.
+  Landmarks wireframe_landmarks;
+  WireframeSelectionReport wireframe_selection;
   int unobservable_lines = 0;             // segment tracks dropped as parallel to the motion
   std::vector<Pose3> world_T_camera_odometry;
   std::vector<Pose3> world_T_camera_refined;               // empty until bundle adjustment ran

@@ -77,6 +77,12 @@ struct WireframeOptions {
   // junction detector's location error on rendered images (docs/junctions.md: median 0.16 px,
   // 90th percentile 0.27 px).
   double pixel_sigma_px = 0.3;
+  // Real images are noisier than rendered ones, and the detector's error there is not known in
+  // advance: when true, the noise of the chi-square test is the larger of pixel_sigma_px and the
+  // robust scale of the points' own reprojection residuals on the final poses (EstimatePixelSigma),
+  // so pixel_sigma_px acts as a floor. The determination test does not depend on the noise (both
+  // sides scale with it).
+  bool estimate_pixel_sigma = true;
   // A landmark's residuals must pass the chi-square test at this level (its observations agree
   // with one 3D point or line to within the pixel noise), else it is not drawn. In (0, 1).
   double consistency_level = 0.999;

@@ -36,11 +36,35 @@ double MaxVertexSigma(const WireframeOptions& options, double fx, double depth) 
          std::tan(options.min_equivalent_parallax_deg * kPi / 180);
 }
 
+double EstimatePixelSigma(const Eigen::Matrix3d& K, const std::vector<Pose3>& world_T_camera,
+                          const Landmarks& landmarks) {
+  std::vector<double> components;
+  for (const PointLandmark& point : landmarks.points) {
+    for (const PointObservation& observation : point.observations) {
+      CHECK(observation.frame >= 0 && observation.frame < static_cast<int>(world_T_camera.size()))
+          << "frame " << observation.frame;
+      const Eigen::Vector3d in_camera = world_T_camera[observation.frame].Inverse() * point.position;
+      if (!(in_camera.z() > 0)) continue;
+      const Eigen::Vector3d projected = K * in_camera;
+      const Eigen::Vector2d residual = projected.hnormalized() - observation.pixel;
+      components.push_back(std::abs(residual.x()));
+      components.push_back(std::abs(residual.y()));
+    }
+  }
+  if (components.empty()) return 0;
+  auto middle = components.begin() + components.size() / 2;
+  std::nth_element(components.begin(), middle, components.end());
+  return 1.4826 * *middle;  // the median absolute deviation of a zero-mean Gaussian is 0.6745 sigma
+}
+
 Landmarks SelectWireframeLandmarks(const Eigen::Matrix3d& K, const std::vector<Pose3>& world_T_camera,
                                    const Landmarks& landmarks, const WireframeOptions& options,
                                    WireframeSelectionReport* report) {
   CHECK(options.Check().ok()) << options.Check().message();
-  const double sigma_px = options.pixel_sigma_px;
+  const double sigma_px =
+      options.estimate_pixel_sigma
+          ? std::max(options.pixel_sigma_px, EstimatePixelSigma(K, world_T_camera, landmarks))
+          : options.pixel_sigma_px;
   const double fx = K(0, 0);
   auto camera = [&world_T_camera](int frame) -> const Pose3& {
     CHECK(frame >= 0 && frame < static_cast<int>(world_T_camera.size())) << "frame " << frame;
@@ -105,6 +129,7 @@ Landmarks SelectWireframeLandmarks(const Eigen::Matrix3d& K, const std::vector<P
     }
     selected.lines.push_back(std::move(kept));
   }
+  counts.pixel_sigma_px = sigma_px;
   counts.points_kept = static_cast<int>(selected.points.size());
   counts.lines_kept = static_cast<int>(selected.lines.size());
   if (report != nullptr) *report = counts;

@@ -21,12 +21,20 @@ struct WireframeSelectionReport {
   int lines_uncertain_end0 = 0;   // the junction end (the line's own, or a dropped point's) too uncertain
   int lines_uncertain_end1 = 0;   // the far end too uncertain
   int points_kept = 0, lines_kept = 0;
+  double pixel_sigma_px = 0;      // the noise the chi-square tests used
 };
 
 // The largest position sigma (metres) that WireframeOptions allows for a vertex whose smallest
 // depth in a view that sees it is `depth`: sqrt(2) (pixel_sigma_px / fx) depth /
 // tan(min_equivalent_parallax_deg).
 double MaxVertexSigma(const WireframeOptions& options, double fx, double depth);
+
+// The pixel noise seen in the points' observations: 1.4826 x the median absolute component of the
+// reprojection residuals (x and y) of every point observation on world_T_camera (the scale of a
+// Gaussian, robust to the few outliers left). 0 when there are no point observations in front of
+// their cameras.
+double EstimatePixelSigma(const Eigen::Matrix3d& K, const std::vector<Pose3>& world_T_camera,
+                          const Landmarks& landmarks);
 
 // The subset of `landmarks` to draw, with the cameras world_T_camera[f] of every frame (the refined
 // poses when bundle adjustment ran). A point is kept when it passes the test and its

@@ -143,6 +143,10 @@ std::string SummarySection(const Context& c) {
   html += Row({"3D points", std::to_string(r.landmarks.points.size()), "triangulated junctions"});
   html += Row({"3D lines", std::to_string(r.landmarks.lines.size()),
                std::to_string(r.unobservable_lines) + " more dropped as parallel to the motion"});
+  html += Row({"wireframe", std::to_string(r.wireframe_landmarks.points.size()) + " points, " +
+                                std::to_string(r.wireframe_landmarks.lines.size()) + " lines",
+               "drawn: consistent with their views and well determined (pixel noise " +
+                   Num(r.wireframe_selection.pixel_sigma_px, "%.2f") + " px)"});
   html += "</table>\n";
 
   html += "<h3>Drift against ground truth</h3>\n";
@@ -330,7 +334,7 @@ std::string MatchPictureSection(const Context& c, const std::vector<cv::Mat>& im
 // A view of the wireframe along one world axis: 3D lines as segments, 3D points as dots, and the
 // camera path, projected orthographically onto the (h, v) plane.
 cv::Mat WireframeView(const Context& c, int h, int v, const std::string& title) {
-  const Landmarks& landmarks = c.result.landmarks;
+  const Landmarks& landmarks = c.result.wireframe_landmarks;  // what wireframe.ply holds
   const std::vector<Pose3>& cameras = c.refined ? c.result.world_T_camera_refined : c.result.world_T_camera_odometry;
   std::vector<std::array<double, 4>> segments;
   std::vector<double> hs, vs;  // every drawn coordinate, for the range
@@ -372,7 +376,7 @@ cv::Mat WireframeView(const Context& c, int h, int v, const std::string& title) 
 }
 
 std::string WireframeSection(const Context& c) {
-  const Landmarks& landmarks = c.result.landmarks;
+  const Landmarks& landmarks = c.result.wireframe_landmarks;  // what wireframe.ply holds
   std::string html = "<h2 id=\"wireframe\">Wireframe</h2>\n";
   if (landmarks.lines.empty() && landmarks.points.empty()) {
     return html + Note("No 3D point or line was reconstructed, so there is no wireframe to show.");

@@ -104,6 +104,7 @@ struct HandBuiltRun {
       line.point_landmark = k;
       result.landmarks.lines.push_back(line);
     }
+    result.wireframe_landmarks = result.landmarks;  // all drawn
     result.drift_odometry = ComputeDrift(result.world_T_camera_odometry, truth);
     result.drift_refined = ComputeDrift(result.world_T_camera_refined, truth);
     result.times = {1.5, 0.25, 2.0, 3.9};
