@@ -54,6 +54,13 @@ DEFINE_double(match_tau2, kDefaults.matching.tau2,
               "tau2 of rule (38): how much the best candidate must beat the second, both ways.");
 DEFINE_string(match_rho1, kDefaults.matching.rho1_kind == sfm::Rho1Kind::kLinear ? "linear" : "exponential",
               "rho1 of eq. (31): 'exponential' or 'linear' (more tolerant of a poor epipolar geometry).");
+DEFINE_bool(match_refine, kDefaults.matching.refine_geometry,
+            "Verify each pair's matches: refine the pair's pose from its first-pass matches (odometry as prior), "
+            "then match again in the refined geometry's band (docs/matching.md).");
+DEFINE_double(match_refine_gate, kDefaults.matching.refine_gate_sigmas,
+              "Band of the guided second pass, in standard deviations of the refined epipolar distance.");
+DEFINE_int32(match_refine_min_inliers, kDefaults.matching.refine_min_inliers,
+             "Fewest supporting first-pass matches for the refined pose; fewer: keep the first pass.");
 DEFINE_bool(match_topology, kDefaults.matching.use_topology,
             "Match on sigma (junction topology, section 4.2) rather than on plain rho (34).");
 
@@ -95,6 +102,9 @@ bool OptionsFromFlags(sfm::PipelineOptions* options, std::string* error) {
   options->matching.use_pose_band = FLAGS_match_pose_band;
   options->matching.band_sigmas = FLAGS_match_band_sigmas;
   options->matching.use_cheirality = FLAGS_match_cheirality;
+  options->matching.refine_geometry = FLAGS_match_refine;
+  options->matching.refine_gate_sigmas = FLAGS_match_refine_gate;
+  options->matching.refine_min_inliers = FLAGS_match_refine_min_inliers;
   options->bundle_adjustment = FLAGS_bundle_adjustment;
   options->bundle_adjustment_options.outlier_threshold_px = FLAGS_ba_outlier_threshold;
   options->bundle_adjustment_options.robust_loss_scale_px = FLAGS_ba_loss_scale;
