@@ -402,7 +402,7 @@ class FastDetector {
     // and is tested against the family of such sides only: its number of tests is their count,
     // tens to hundreds per image, not the chains' sub-runs.
     const bool short_side = length < options_.min_length && piece.corner_length >= options_.min_length;
-    if (length < options_.min_length && !short_side) return;
+    if ((length < options_.min_length && !short_side) || !(length > 0)) return;
     Eigen::Vector2d normal = segment.Normal();
     if (normal.dot(piece.gradient_sum) < 0) {
       std::swap(segment.p0, segment.p1);
