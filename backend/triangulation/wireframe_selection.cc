@@ -7,6 +7,7 @@
 #include <limits>
 
 #include "backend/triangulation/landmark_uncertainty.h"
+#include "backend/triangulation/line_triangulation.h"
 
 namespace sfm {
 namespace {
@@ -25,8 +26,19 @@ double SmallestDepth(const std::vector<Pose3>& cameras, const Eigen::Vector3d& x
   return smallest;
 }
 
-Eigen::Vector3d ProjectOntoLine(const LineLandmark& line, const Eigen::Vector3d& x) {
-  return line.point + line.direction * line.direction.dot(x - line.point);
+// The line's extent measured again on `cameras` (the final poses) by BoundLine's rule: end0 at
+// `junction_point` projected onto the line when there is one, else the median of the
+// back-projected junction locations; end1 the median of the back-projected far ends. The
+// landmark's own ends were bounded on the poses it was triangulated with (the odometry's) and
+// bundle adjustment only slides them onto the refined line, so a pose correction of a few
+// centimetres along the line stays in them. False when no segment of positive length in front of
+// every camera results. The depth floor is not applied again (min_depth_m 0): the triangulation
+// applied it.
+bool BoundOnFinalPoses(const Eigen::Matrix3d& K, const std::vector<LineView>& views, const LineLandmark& line,
+                       const Eigen::Vector3d* junction_point, Segment3* segment) {
+  LineTriangulationOptions options;
+  options.min_depth_m = 0;
+  return BoundLine(K, views, Line3{line.point, line.direction}, junction_point, options, segment) == LineStatus::kOk;
 }
 
 }  // namespace
@@ -100,9 +112,11 @@ Landmarks SelectWireframeLandmarks(const Eigen::Matrix3d& K, const std::vector<P
   }
   for (const LineLandmark& line : landmarks.lines) {
     std::vector<LineSegmentView> views;
+    std::vector<LineView> line_views;
     std::vector<Pose3> cameras;
     for (const LineObservation& observation : line.observations) {
       views.push_back({camera(observation.frame), observation.p0, observation.p1});
+      line_views.push_back({camera(observation.frame), observation.p0, observation.p1});
       cameras.push_back(camera(observation.frame));
     }
     int dof = 0;
@@ -113,17 +127,25 @@ Landmarks SelectWireframeLandmarks(const Eigen::Matrix3d& K, const std::vector<P
     }
     LineLandmark kept = line;
     kept.point_landmark = line.point_landmark >= 0 ? new_index[line.point_landmark] : -1;
-    if (kept.point_landmark < 0) {
-      // A dropped point is not the line's end: its position may lie off the line.
-      if (line.point_landmark >= 0) kept.end0 = ProjectOntoLine(line, line.end0);
-      if (!determined(LinePositionSigma(K, views, kept.end0, line.direction, sigma_px),
-                      SmallestDepth(cameras, kept.end0))) {
-        ++counts.lines_uncertain_end0;
-        continue;
-      }
+    // A dropped point is not the line's end (it may lie off the line): the line's own junction
+    // end is used instead.
+    const Eigen::Vector3d* junction_point =
+        kept.point_landmark >= 0 ? &landmarks.points[line.point_landmark].position : nullptr;
+    Segment3 segment;
+    if (!BoundOnFinalPoses(K, line_views, line, junction_point, &segment)) {
+      ++counts.lines_unbounded;
+      continue;
     }
-    if (!determined(LinePositionSigma(K, views, line.end1, line.direction, sigma_px),
-                    SmallestDepth(cameras, line.end1))) {
+    kept.direction = (segment.end1 - segment.end0).normalized();
+    kept.end0 = kept.point_landmark >= 0 ? line.end0 : segment.end0;
+    kept.end1 = segment.end1;
+    if (kept.point_landmark < 0 && !determined(LinePositionSigma(K, views, kept.end0, kept.direction, sigma_px),
+                                               SmallestDepth(cameras, kept.end0))) {
+      ++counts.lines_uncertain_end0;
+      continue;
+    }
+    if (!determined(LinePositionSigma(K, views, kept.end1, kept.direction, sigma_px),
+                    SmallestDepth(cameras, kept.end1))) {
       ++counts.lines_uncertain_end1;
       continue;
     }

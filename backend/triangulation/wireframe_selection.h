@@ -20,6 +20,7 @@ struct WireframeSelectionReport {
   int lines_inconsistent = 0;     // line residuals fail the chi-square test
   int lines_uncertain_end0 = 0;   // the junction end (the line's own, or a dropped point's) too uncertain
   int lines_uncertain_end1 = 0;   // the far end too uncertain
+  int lines_unbounded = 0;        // no extent of positive length in front of the cameras on the final poses
   int points_kept = 0, lines_kept = 0;
   double pixel_sigma_px = 0;      // the noise the chi-square tests used
 };

@@ -191,6 +191,48 @@ TEST_F(WireframeSelectionTest, ALineNearlyAlongTheMotionIsNotDrawn) {
   EXPECT_EQ(report.lines_uncertain_end1, 1);
 }
 
+// The stored ends were bounded on the poses the line was triangulated with (the odometry) and
+// bundle adjustment only slides them onto the refined line, so they keep that pose error along the
+// line: here end1 is 0.2 m beyond, and the line's own end0 0.1 m before, what the views see. The
+// selection measures the extent again on the final poses (BoundLine's rule: the medians of the
+// back-projected ends): both ends at the true corners to 1e-9 m (noise-free views), and the
+// direction still from end0 towards end1.
+TEST_F(WireframeSelectionTest, LineEndsAreBoundedAgainOnTheFinalPoses) {
+  Landmarks landmarks;
+  const Eigen::Vector3d top(0.5, 0.2, 3), bottom(0.5, -0.6, 3);
+  landmarks.lines.push_back(Line(top, bottom, -1));
+  LineLandmark& line = landmarks.lines[0];
+  line.end0 = top + 0.1 * Eigen::Vector3d::UnitY();
+  line.end1 = bottom - 0.2 * Eigen::Vector3d::UnitY();
+  line.point = line.end0;
+  WireframeSelectionReport report;
+  const Landmarks kept = SelectWireframeLandmarks(K_, cameras_, landmarks, WireframeOptions(), &report);
+  ASSERT_EQ(kept.lines.size(), 1u);
+  EXPECT_LT((kept.lines[0].end0 - top).norm(), 1e-9);
+  EXPECT_LT((kept.lines[0].end1 - bottom).norm(), 1e-9);
+  EXPECT_GT(kept.lines[0].direction.dot(bottom - top), 0);
+  EXPECT_EQ(report.lines_unbounded, 0);
+}
+
+// A line whose views disagree on which side of the junction its far end lies: three views end it
+// 0.1 m below the corner, two 2 m above. The summed far-minus-near parameters orient it upwards,
+// the median far end lies below: no segment of positive length (BoundLine's kNoExtent). Not drawn,
+// counted as unbounded; all views lie on one 3D line, so it passes the consistency test first.
+TEST_F(WireframeSelectionTest, ALineWithNoExtentOnTheFinalPosesIsNotDrawn) {
+  Landmarks landmarks;
+  const Eigen::Vector3d top(0.5, 0.2, 3), bottom(0.5, -0.6, 3), down(0, -1, 0);
+  landmarks.lines.push_back(Line(top, bottom, -1));
+  for (LineObservation& observation : landmarks.lines[0].observations) {
+    const Eigen::Vector3d far_end = top + (observation.frame < 3 ? 0.1 : -2.0) * down;
+    observation.p1 = Project(K_, cameras_[observation.frame], far_end);
+  }
+  WireframeSelectionReport report;
+  const Landmarks kept = SelectWireframeLandmarks(K_, cameras_, landmarks, WireframeOptions(), &report);
+  EXPECT_TRUE(kept.lines.empty());
+  EXPECT_EQ(report.lines_inconsistent, 0);
+  EXPECT_EQ(report.lines_unbounded, 1);
+}
+
 // Real images: 40 corners seen with 1 px Gaussian noise (seeded) instead of the 0.3 px of rendered
 // ones. The estimate is the noise to 10 % (1.4826 x median |component| of 400 samples: its relative
 // standard error is about 1.1 / sqrt(400) = 6 %). With it, the chi-square test keeps (nearly) every
