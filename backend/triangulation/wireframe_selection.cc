@@ -14,9 +14,8 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
+// Callers first make sure there is something to test (degrees_of_freedom >= 1).
 bool PassesChiSquare(double statistic, int degrees_of_freedom, double level) {
-  // With no redundancy (two views of a line) there is nothing to test.
-  if (degrees_of_freedom < 1) return std::isfinite(statistic);
   return statistic <= ChiSquareQuantile(level, degrees_of_freedom);
 }
 
@@ -99,6 +98,10 @@ Landmarks SelectWireframeLandmarks(const Eigen::Matrix3d& K, const std::vector<P
     }
     int dof = 0;
     const double chi_square = PointChiSquare(K, cameras, pixels, point.position, sigma_px, &dof);
+    if (dof < 1) {  // one view left (bundle adjustment removed the others): nothing to test
+      ++counts.points_untestable;
+      continue;
+    }
     if (!PassesChiSquare(chi_square, dof, options.consistency_level)) {
       ++counts.points_inconsistent;
       continue;
@@ -121,6 +124,12 @@ Landmarks SelectWireframeLandmarks(const Eigen::Matrix3d& K, const std::vector<P
     }
     int dof = 0;
     const double chi_square = LineChiSquare(K, views, line.point, line.direction, sigma_px, &dof);
+    // Two views of a line always meet in one (their planes intersect): a track that pairs two
+    // different edges passes an empty test. Only landmarks whose consistency was tested are drawn.
+    if (dof < 1) {
+      ++counts.lines_untestable;
+      continue;
+    }
     if (!PassesChiSquare(chi_square, dof, options.consistency_level)) {
       ++counts.lines_inconsistent;
       continue;

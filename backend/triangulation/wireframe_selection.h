@@ -15,8 +15,10 @@
 namespace sfm {
 
 struct WireframeSelectionReport {
+  int points_untestable = 0;      // fewer than two views: no redundancy to test
   int points_inconsistent = 0;    // point residuals fail the chi-square test
   int points_uncertain = 0;       // point position sigma above the bound
+  int lines_untestable = 0;       // seen in two views only: no redundancy to test (a point in two views has 1 dof)
   int lines_inconsistent = 0;     // line residuals fail the chi-square test
   int lines_uncertain_end0 = 0;   // the junction end (the line's own, or a dropped point's) too uncertain
   int lines_uncertain_end1 = 0;   // the far end too uncertain
@@ -39,10 +41,12 @@ double EstimatePixelSigma(const Eigen::Matrix3d& K, const std::vector<Pose3>& wo
 
 // The subset of `landmarks` to draw, with the cameras world_T_camera[f] of every frame (the refined
 // poses when bundle adjustment ran). A point is kept when it passes the test and its
-// PointPositionSigma is within MaxVertexSigma of its smallest depth. A line is kept when it passes
-// its test and both its vertices are within the bound (LinePositionSigma at end1, and at end0 unless
-// end0 is a kept point). A line whose point was dropped keeps its own end0 (the point projected
-// onto the line) and point_landmark -1; point_landmark is renumbered. Order is preserved.
+// PointPositionSigma is within MaxVertexSigma of its smallest depth. A line is kept when it has
+// something to test (three views or more), passes its test, bounds a segment on these poses
+// (BoundLine's rule: its stored ends were bounded on the triangulation's poses) and both its
+// vertices are within the bound (LinePositionSigma at end1, and at end0 unless end0 is a kept
+// point). A line whose point was dropped takes its own end0 (the median of its back-projected
+// junction locations) and point_landmark -1; point_landmark is renumbered. Order is preserved.
 // options must pass Check(), every observation must index world_T_camera (CHECKed).
 Landmarks SelectWireframeLandmarks(const Eigen::Matrix3d& K, const std::vector<Pose3>& world_T_camera,
                                    const Landmarks& landmarks, const WireframeOptions& options,

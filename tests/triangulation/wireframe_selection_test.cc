@@ -233,6 +233,24 @@ TEST_F(WireframeSelectionTest, ALineWithNoExtentOnTheFinalPosesIsNotDrawn) {
   EXPECT_EQ(report.lines_unbounded, 1);
 }
 
+// Two views of a line always meet in one: a two-view segment track on two different edges passes
+// an empty chi-square test. The same edge seen in views 0 and 4 only is not drawn (untestable);
+// seen in views 0, 2 and 4 (2 degrees of freedom) it is.
+TEST_F(WireframeSelectionTest, ATwoViewLineIsNotDrawn) {
+  Landmarks landmarks;
+  landmarks.lines.push_back(Line({0.5, 0.2, 3}, {0.5, -0.6, 3}, -1));
+  landmarks.lines.push_back(landmarks.lines[0]);
+  std::vector<LineObservation>& two = landmarks.lines[0].observations;
+  two = {two[0], two[4]};
+  std::vector<LineObservation>& three = landmarks.lines[1].observations;
+  three = {three[0], three[2], three[4]};
+  WireframeSelectionReport report;
+  const Landmarks kept = SelectWireframeLandmarks(K_, cameras_, landmarks, WireframeOptions(), &report);
+  ASSERT_EQ(kept.lines.size(), 1u);
+  EXPECT_EQ(kept.lines[0].observations.size(), 3u);
+  EXPECT_EQ(report.lines_untestable, 1);
+}
+
 // Real images: 40 corners seen with 1 px Gaussian noise (seeded) instead of the 0.3 px of rendered
 // ones. The estimate is the noise to 10 % (1.4826 x median |component| of 400 samples: its relative
 // standard error is about 1.1 / sqrt(400) = 6 %). With it, the chi-square test keeps (nearly) every
