@@ -499,15 +499,18 @@ Status WriteMiss(const std::string& tag, int frame, const TrueVertexJunction& v,
 
 // One missed vertex whose segments end near it, for --miss_dir: in notjoined.csv, a row per pair of
 // segments on two of its long edges: the pair test's verdict with the default options, the eq. (6)
-// point's distance from the vertex, and the t of each segment.
+// point's distance from the vertex, the t of each segment, and for each segment the detected junction
+// that took it closest to the vertex (its distance from the vertex and its segments' indices, "-" if
+// none): which reading won over the vertex's own pair.
 Status WriteNotJoined(const std::string& tag, int frame, const TrueVertexJunction& v, bool crowded,
-                      const LineSegments& segments, const JunctionDetectorOptions& options) {
+                      const LineSegments& segments, const Junctions& junctions,
+                      const JunctionDetectorOptions& options) {
   static int counter = 0;
   const int id = counter++;
   const std::string csv_path = FLAGS_miss_dir + "/notjoined.csv";
   FILE* csv = std::fopen(csv_path.c_str(), id == 0 ? "w" : "a");
   if (csv == nullptr) return Status::Error(csv_path + ": cannot open");
-  if (id == 0) std::fprintf(csv, "id,tag,frame,vx,vy,crowded,edge_a,edge_b,seg_a,seg_b,passes,probability,location_error_px,t_a,t_b,angle_deg,len_a,len_b\n");
+  if (id == 0) std::fprintf(csv, "id,tag,frame,vx,vy,crowded,edge_a,edge_b,seg_a,seg_b,passes,probability,location_error_px,t_a,t_b,angle_deg,len_a,len_b,taken_a_px,taken_a_by,taken_b_px,taken_b_by\n");
   // The segments on each long edge (same line within 1 px at both ends, 3 degrees, overlapping).
   std::vector<std::vector<int>> on_edge(v.long_edge_ends.size());
   for (size_t e = 0; e < v.long_edge_ends.size(); ++e) {
@@ -543,9 +546,29 @@ Status WriteNotJoined(const std::string& tag, int frame, const TrueVertexJunctio
             tb = NearEndChange(lines[sb], *hit->location).t;
             error = (*hit->location - v.location).norm();
           }
-          std::fprintf(csv, "%d,%s,%d,%.2f,%.2f,%d,%zu,%zu,%d,%d,%d,%.4f,%.2f,%.2f,%.2f,%.1f,%.1f,%.1f\n", id, tag.c_str(),
+          std::fprintf(csv, "%d,%s,%d,%.2f,%.2f,%d,%zu,%zu,%d,%d,%d,%.4f,%.2f,%.2f,%.2f,%.1f,%.1f,%.1f", id, tag.c_str(),
                        frame, v.location.x(), v.location.y(), crowded ? 1 : 0, a, b, sa, sb, strict ? 1 : 0,
                        hit ? hit->probability : 0.0, error, ta, tb, angle, lines[sa].length, lines[sb].length);
+          for (const int seg : {sa, sb}) {
+            int closest = -1;
+            for (size_t j = 0; j < junctions.size(); ++j) {
+              const bool uses = std::any_of(junctions[j].segments.begin(), junctions[j].segments.end(),
+                                            [&](const JunctionSegment& js) { return js.line_segment == seg; });
+              if (uses && (closest < 0 || (junctions[j].location - v.location).norm() <
+                                              (junctions[closest].location - v.location).norm())) {
+                closest = static_cast<int>(j);
+              }
+            }
+            if (closest < 0) {
+              std::fprintf(csv, ",-,-");
+              continue;
+            }
+            std::fprintf(csv, ",%.2f,", (junctions[closest].location - v.location).norm());
+            for (size_t k = 0; k < junctions[closest].segments.size(); ++k) {
+              std::fprintf(csv, "%s%d", k ? "|" : "", junctions[closest].segments[k].line_segment);
+            }
+          }
+          std::fprintf(csv, "\n");
         }
       }
     }
@@ -698,7 +721,7 @@ Status MeasureSequence(const std::string& directory, const std::string& clean_di
         if (!FLAGS_miss_dir.empty() && inner == kNotJoined) {
           SFM_RETURN_IF_ERROR(WriteNotJoined(std::filesystem::path(directory).filename().string() + "_" + methods[m].name,
                                              static_cast<int>(f), *detectable_vertex[i], kind == kCrowded, segments,
-                                             junction_options));
+                                             junctions, junction_options));
         }
         if (!FLAGS_miss_dir.empty() && inner == kEdgesMissing) {
           SFM_RETURN_IF_ERROR(WriteMiss(std::filesystem::path(directory).filename().string() + "_" + methods[m].name,

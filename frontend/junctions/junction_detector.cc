@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
+#include <set>
 #include <utility>
 #include <vector>
 
@@ -89,23 +91,22 @@ struct Group {
 };
 
 // The node that can join `group` with the largest sum of pair probabilities, with its hits to the
-// members, or -1: it must pass the pair test with every member (a free end-point or an interior,
-// of a segment not yet in the group), through hits no other junction took, and each located hit
-// must lie within max_gap of the group's location.
-int BestJoiner(const PairGraph& graph, const Group& group, const std::vector<bool>& taken_end,
-               const std::vector<bool>& taken_hit, double max_gap, std::vector<int>* joiner_hits) {
+// members, or -1: it must pass the pair test with every member (an end-point or an interior of a
+// segment not yet in the group), and each located hit must lie within max_gap of the group's
+// location. Other junctions are not looked at here: ChooseJunctions resolves the conflicts.
+int BestJoiner(const PairGraph& graph, const Group& group, double max_gap, std::vector<int>* joiner_hits) {
   int best = -1;
   double best_sum = 0;
   std::vector<int> hits;
   const int anchor = group.nodes.front();
   for (int k = 0; k < graph.degree(anchor); ++k) {
     const int candidate = OtherNode(graph.hit(graph.incident(anchor)[k]), anchor);
-    if (taken_end[candidate] || group.HasSegment(SegmentOf(candidate))) continue;
+    if (group.HasSegment(SegmentOf(candidate))) continue;
     hits.clear();
     double sum = 0;
     for (int member : group.nodes) {
       const int h = graph.Between(candidate, member);
-      if (h < 0 || taken_hit[h]) break;
+      if (h < 0) break;
       const PairHit& hit = graph.hit(h);
       if (hit.location && group.Located() && (*hit.location - group.Location()).norm() > max_gap) break;
       hits.push_back(h);
@@ -139,6 +140,103 @@ Junction MakeJunction(const Group& group, const std::vector<SegmentLine>& lines,
   return junction;
 }
 
+// Candidates conflict when they share an end-point node (an end-point belongs to one junction) or a
+// pair (a pairing belongs to one junction); interiors may be shared (a bar holding several T's).
+// Returns the indices, in candidate order, of the conflict-free set with the largest total score
+// (the paper's junction score, the sum of pair probabilities): among readings that all pass the
+// pair test, the one that explains the most end-points with the most probable pairs. Solved
+// exactly per connected group of conflicting candidates by branch and bound (a vertex's conflicts
+// involve a handful of candidates); a group larger than kMaxExact falls back to greedy by score.
+std::vector<int> ChooseJunctions(const std::vector<Group>& candidates, size_t num_hits, int num_nodes) {
+  constexpr int kMaxExact = 20;
+  const int m = static_cast<int>(candidates.size());
+  // Candidates touching each end-point node and each hit.
+  std::vector<std::vector<int>> by_node(num_nodes), by_hit(num_hits);
+  for (int c = 0; c < m; ++c) {
+    for (int node : candidates[c].nodes) {
+      if (ContactOf(node) != Contact::kThrough) by_node[node].push_back(c);
+    }
+    for (int h : candidates[c].hits) by_hit[h].push_back(c);
+  }
+  std::vector<std::vector<int>> conflicts(m);
+  auto link = [&](const std::vector<int>& list) {
+    for (size_t i = 0; i < list.size(); ++i) {
+      for (size_t j = i + 1; j < list.size(); ++j) {
+        conflicts[list[i]].push_back(list[j]);
+        conflicts[list[j]].push_back(list[i]);
+      }
+    }
+  };
+  for (const auto& list : by_node) link(list);
+  for (const auto& list : by_hit) link(list);
+  for (auto& list : conflicts) {
+    std::sort(list.begin(), list.end());
+    list.erase(std::unique(list.begin(), list.end()), list.end());
+  }
+
+  std::vector<int> component(m, -1);
+  std::vector<bool> keep(m, false);
+  std::vector<int> blocked(m, 0);
+  for (int root = 0; root < m; ++root) {
+    if (component[root] >= 0) continue;
+    // The connected group of conflicting candidates around root, strongest first.
+    std::vector<int> members = {root};
+    component[root] = root;
+    for (size_t k = 0; k < members.size(); ++k) {
+      for (int other : conflicts[members[k]]) {
+        if (component[other] < 0) {
+          component[other] = root;
+          members.push_back(other);
+        }
+      }
+    }
+    std::stable_sort(members.begin(), members.end(), [&](int a, int b) {
+      return candidates[a].score > candidates[b].score || (candidates[a].score == candidates[b].score && a < b);
+    });
+    auto block = [&](int c, int delta) {
+      for (int other : conflicts[c]) blocked[other] += delta;
+    };
+    if (static_cast<int>(members.size()) > kMaxExact) {
+      for (int c : members) {
+        if (blocked[c] > 0) continue;
+        keep[c] = true;
+        block(c, +1);
+      }
+      continue;
+    }
+    // Branch and bound: take or leave each member in score order; prune when even taking all the
+    // rest cannot beat the best set found. Strict improvement keeps the earliest (greedy) set on ties.
+    std::vector<double> rest(members.size() + 1, 0.0);
+    for (int k = static_cast<int>(members.size()) - 1; k >= 0; --k) rest[k] = rest[k + 1] + candidates[members[k]].score;
+    std::vector<int> current, best;
+    double best_score = -1;
+    std::function<void(size_t, double)> search = [&](size_t k, double score) {
+      if (score + rest[k] <= best_score) return;
+      if (k == members.size()) {
+        best_score = score;
+        best = current;
+        return;
+      }
+      const int c = members[k];
+      if (blocked[c] == 0) {
+        current.push_back(c);
+        block(c, +1);
+        search(k + 1, score + candidates[c].score);
+        block(c, -1);
+        current.pop_back();
+      }
+      search(k + 1, score);
+    };
+    search(0, 0.0);
+    for (int c : best) keep[c] = true;
+  }
+  std::vector<int> chosen;
+  for (int c = 0; c < m; ++c) {
+    if (keep[c]) chosen.push_back(c);
+  }
+  return chosen;
+}
+
 }  // namespace
 
 Junctions DetectJunctions(const LineSegments& segments, const JunctionDetectorOptions& options) {
@@ -167,32 +265,40 @@ Junctions DetectJunctions(const LineSegments& segments, const JunctionDetectorOp
   std::stable_sort(order.begin(), order.end(),
                    [&](int a, int b) { return graph.hit(a).probability > graph.hit(b).probability; });
 
-  // End-point nodes are exclusive; interior nodes are never marked, a bar may hold several T's.
-  std::vector<bool> taken_end(3 * n, false);
-  std::vector<bool> taken_hit(graph.hits().size(), false);
-  const double collinear_tolerance_rad = options.collinear_tolerance_deg * M_PI / 180.0;
-  Junctions junctions;
+  // Candidate junctions: from every accepted pair, the group grown greedily as if no other junction
+  // existed, and the pair alone (which the choice below needs when the grown group conflicts where
+  // the pair does not). Collinear pieces alone are one broken line, not a junction.
+  std::vector<Group> candidates;
+  std::set<std::vector<int>> seen;
+  auto add_candidate = [&](const Group& group) {
+    if (!group.Located()) return;
+    std::vector<int> key = group.nodes;
+    std::sort(key.begin(), key.end());
+    if (seen.insert(key).second) candidates.push_back(group);
+  };
   std::vector<int> joiner_hits;
   for (int seed : order) {
     const PairHit& hit = graph.hit(seed);
-    if (taken_hit[seed] || taken_end[NodeA(hit)] || taken_end[NodeB(hit)]) continue;
     Group group;
     group.nodes = {NodeA(hit), NodeB(hit)};
     group.Add(hit, seed);
+    const Group pair = group;
     while (true) {
-      const int joiner = BestJoiner(graph, group, taken_end, taken_hit, options.max_gap_px, &joiner_hits);
+      const int joiner = BestJoiner(graph, group, options.max_gap_px, &joiner_hits);
       if (joiner < 0) break;
       group.nodes.push_back(joiner);
       for (int h : joiner_hits) group.Add(graph.hit(h), h);
     }
-    // Collinear pieces alone are one broken line, not a junction.
-    if (!group.Located()) continue;
-    for (int node : group.nodes) {
-      if (ContactOf(node) != Contact::kThrough) taken_end[node] = true;
-    }
-    for (int h : group.hits) taken_hit[h] = true;
+    add_candidate(group);
+    add_candidate(pair);
+  }
+
+  const std::vector<int> chosen = ChooseJunctions(candidates, graph.hits().size(), 3 * n);
+  const double collinear_tolerance_rad = options.collinear_tolerance_deg * M_PI / 180.0;
+  Junctions junctions;
+  for (int c : chosen) {
     junctions.push_back(
-        MakeJunction(group, lines, static_cast<int>(junctions.size()), collinear_tolerance_rad));
+        MakeJunction(candidates[c], lines, static_cast<int>(junctions.size()), collinear_tolerance_rad));
   }
   return junctions;
 }

@@ -189,6 +189,27 @@ TEST(JunctionDetectorTest, AnEndPointJoinsOneJunction) {
   EXPECT_NEAR(junctions[0].score, std::exp(-0.8), 1e-12);
 }
 
+TEST(JunctionDetectorTest, ConflictingEndPointGoesToTheBestOverallReading) {
+  // A thin face: b and c parallel, 3 px apart, a ending between them. a's end (10, 0) closes an L
+  // with b at (12, 0) (both ends 2 px short: e^-0.8 = 0.449) or with c at (9, 0) (a 1 px past,
+  // c 3 px short: e^-1.6 = 0.202); b's end (12, -2) also closes an L with d at (12, -2) (d 5 px
+  // short: e^-1.0 = 0.368). c and d alone fail (e^-2.6 < 0.1). Taking the strongest pair first
+  // (a-b) would leave one junction, score 0.449, and lose both vertices at (9, 0) and (12, -2);
+  // the best conflict-free set is a-c + b-d, score 0.570, every end-point used once.
+  const Junctions junctions = DetectJunctions({Segment(0, 0, 10, 0), Segment(12, -20, 12, -2), Segment(9, 20, 9, 3),
+                                               Segment(40, -2, 17, -2)},
+                                              Options());
+  ASSERT_EQ(junctions.size(), 2u);
+  std::vector<std::pair<double, double>> found;
+  for (const Junction& j : junctions) found.emplace_back(j.location.x(), j.location.y());
+  std::sort(found.begin(), found.end());
+  EXPECT_NEAR(found[0].first, 9, 1e-9);
+  EXPECT_NEAR(found[0].second, 0, 1e-9);
+  EXPECT_NEAR(found[1].first, 12, 1e-9);
+  EXPECT_NEAR(found[1].second, -2, 1e-9);
+  EXPECT_NEAR(junctions[0].score + junctions[1].score, std::exp(-1.6) + std::exp(-1.0), 1e-12);
+}
+
 TEST(JunctionDetectorTest, BarHoldsATAndEndsInAnL) {
   const Junctions junctions =
       DetectJunctions({Segment(0, 50, 100, 50), Segment(50, 100, 50, 53), Segment(0, 100, 0, 52)}, Options());
