@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <numeric>
+#include <random>
 
 #include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
@@ -20,11 +23,26 @@ constexpr double kChiSquare99[6] = {6.635, 9.210, 11.345, 13.277, 15.086, 16.812
 // Iterations of reweighted Gauss-Newton; the benchmark pairs converge in about 10 (docs/matching.md),
 // the limit only bounds the cost.
 constexpr int kMaxIterations = 30;
+// Sample size of the hypotheses: the degrees of freedom of an epipolar geometry with known K (the
+// prior fills in the rest).
+constexpr int kSampleSize = 5;
+// Gauss-Newton steps for a sample's fit: from the prior, five matches need two or three.
+constexpr int kSampleIterations = 3;
+// Bound on the number of samples (the adaptive count reaches it below an inlier share of 0.47;
+// it only bounds the cost).
+constexpr int kMaxSamples = 200;
+// A fixed seed: the same matches give the same pose, run to run.
+constexpr unsigned kSamplingSeed = 1;
 
 Eigen::Matrix3d Cross(const Eigen::Vector3d& v) {
   Eigen::Matrix3d m;
   m << 0, -v.z(), v.y(), v.z(), 0, -v.x(), -v.y(), v.x(), 0;
   return m;
+}
+
+Eigen::Vector3d LogRotation(const Eigen::Matrix3d& R) {
+  const Eigen::AngleAxisd angle_axis(R);
+  return angle_axis.angle() * angle_axis.axis();
 }
 
 using Vector6 = Eigen::Matrix<double, 6, 1>;
@@ -133,6 +151,174 @@ Eigen::VectorXd ResidualSigmas(const Jacobian& J, const Matrix6& covariance, dou
   return ((J * covariance).cwiseProduct(J).rowwise().sum().array() + sigma * sigma).sqrt().matrix();
 }
 
+// Residuals only (for scoring hypotheses).
+void Residuals(const PoseModel& model, const Vector6& z, const std::vector<Eigen::Vector2d>& x1,
+               const std::vector<Eigen::Vector2d>& x2, Eigen::VectorXd* r) {
+  const Eigen::Matrix3d F = model.FundamentalAt(z);
+  r->resize(static_cast<Eigen::Index>(x1.size()));
+  for (size_t i = 0; i < x1.size(); ++i) {
+    const Eigen::Vector3d line2 = F * x1[i].homogeneous();
+    const Eigen::Vector3d line1 = F.transpose() * x2[i].homogeneous();
+    const double s2 = line2.head<2>().squaredNorm() + line1.head<2>().squaredNorm();
+    (*r)(static_cast<Eigen::Index>(i)) = s2 > 0 ? x2[i].homogeneous().dot(line2) / std::sqrt(s2) : 0;
+  }
+}
+
+// The negative log-posterior of the mixture model "a match is right (Gaussian Sampson distance of
+// sigma) or wrong (uniform)", up to constants: |z|^2 + sum_i min((r_i / sigma)^2, gate^2), the
+// truncated quadratic of MSAC (Torr & Zisserman 2000) with the prior term. Unlike the Cauchy loss,
+// whose cost keeps growing (logarithmically) with the residual, a wrong match costs the same
+// wherever it lies outside the gate, so moving the pose to bring a group of wrong matches a few
+// pixels closer gains nothing unless they come inside the gate.
+double TruncatedCost(const Vector6& z, const Eigen::VectorXd& r, double sigma, double gate) {
+  return z.squaredNorm() + (r.array() / sigma).square().min(gate * gate).sum();
+}
+
+// Gauss-Newton with backtracking on |z|^2 + sum_i (r_i / sigma)^2 over the given matches, from z.
+Vector6 GaussNewton(const PoseModel& model, const std::vector<Eigen::Vector2d>& x1,
+                    const std::vector<Eigen::Vector2d>& x2, Vector6 z, double sigma, int max_steps, int* steps,
+                    Matrix6* covariance = nullptr) {
+  Eigen::VectorXd r, r_new;
+  Jacobian J, J_new;
+  Linearise(model, z, x1, x2, &r, &J);
+  Matrix6 H = Matrix6::Identity() + J.transpose() * J / (sigma * sigma);
+  for (int step = 0; step < max_steps; ++step) {
+    const Vector6 g = z + J.transpose() * r / (sigma * sigma);
+    Vector6 dz = -H.ldlt().solve(g);
+    const double cost = z.squaredNorm() + r.squaredNorm() / (sigma * sigma);
+    bool improved = false;
+    Vector6 z_new;
+    for (int halving = 0; halving < 20 && !improved; ++halving, dz /= 2) {
+      z_new = z + dz;
+      Linearise(model, z_new, x1, x2, &r_new, &J_new);
+      improved = z_new.squaredNorm() + r_new.squaredNorm() / (sigma * sigma) <= cost;
+    }
+    if (!improved) break;
+    ++*steps;
+    const double decrement = dz.dot(H * dz);
+    z = z_new;
+    r.swap(r_new);
+    J.swap(J_new);
+    H = Matrix6::Identity() + J.transpose() * J / (sigma * sigma);
+    if (decrement < 1e-4) break;
+  }
+  if (covariance != nullptr) *covariance = H.ldlt().solve(Matrix6::Identity());
+  return z;
+}
+
+// A local minimum of TruncatedCost found by majorise-minimise: the matches within the gate at the
+// current estimate (gate times each residual's predicted sigma, so an imprecise start still
+// collects the right matches) are fitted with the prior by Gauss-Newton, then selected again,
+// until the set stops changing.
+struct Fit {
+  Vector6 z = Vector6::Zero();
+  Matrix6 covariance = Matrix6::Identity();  // Laplace, over the final inlier set
+  double cost = std::numeric_limits<double>::infinity();  // TruncatedCost
+  int inliers = 0;
+  int iterations = 0;
+};
+
+Fit Consensus(const PoseModel& model, const std::vector<Eigen::Vector2d>& x1, const std::vector<Eigen::Vector2d>& x2,
+              const Vector6& start, double sigma, double gate) {
+  Fit fit;
+  fit.z = start;
+  Eigen::VectorXd r, r_new, w, w_previous;
+  Jacobian J, J_new;
+  Linearise(model, fit.z, x1, x2, &r, &J);
+  auto normal_matrix = [&](const Eigen::VectorXd& weights) {
+    return Matrix6(Matrix6::Identity() + J.transpose() * weights.asDiagonal() * J / (sigma * sigma));
+  };
+  auto selected_cost = [&](const Vector6& z, const Eigen::VectorXd& residuals, const Eigen::VectorXd& weights) {
+    return z.squaredNorm() + weights.dot(residuals.cwiseAbs2()) / (sigma * sigma);
+  };
+  fit.covariance = normal_matrix(Eigen::VectorXd::Ones(r.size())).ldlt().solve(Matrix6::Identity());
+  // One Gauss-Newton step per selection: the set and the estimate settle together.
+  for (int iteration = 0; iteration < kMaxIterations; ++iteration) {
+    const Eigen::VectorXd scales = ResidualSigmas(J, fit.covariance, sigma);
+    w = (r.array().abs() <= gate * scales.array()).cast<double>().matrix();
+    const Matrix6 H = normal_matrix(w);
+    const Eigen::LDLT<Matrix6> H_ldlt(H);
+    Vector6 dz = -H_ldlt.solve(fit.z + J.transpose() * w.cwiseProduct(r) / (sigma * sigma));
+    const double cost = selected_cost(fit.z, r, w);
+    bool improved = false;
+    Vector6 z_new;
+    for (int halving = 0; halving < 20 && !improved; ++halving, dz /= 2) {
+      z_new = fit.z + dz;
+      Linearise(model, z_new, x1, x2, &r_new, &J_new);
+      improved = selected_cost(z_new, r_new, w) <= cost;
+    }
+    if (!improved) break;
+    ++fit.iterations;
+    fit.z = z_new;
+    r.swap(r_new);
+    J.swap(J_new);
+    fit.covariance = H_ldlt.solve(Matrix6::Identity());
+    const bool same_set = w_previous.size() == w.size() && w_previous == w;
+    w_previous = w;
+    if (same_set && dz.dot(H * dz) < 1e-4) break;
+  }
+  fit.cost = TruncatedCost(fit.z, r, sigma, gate);
+  fit.inliers = static_cast<int>((r.array().abs() <= gate * sigma).count());
+  return fit;
+}
+
+// Samples needed for 99 % confidence that one of them holds only right matches, when `inliers`
+// of `n` matches are right.
+int RequiredSamples(int inliers, int n) {
+  const double share = n > 0 ? static_cast<double>(inliers) / n : 0;
+  const double all_right = std::pow(share, kSampleSize);
+  if (all_right >= 1) return 1;
+  if (all_right <= 0) return kMaxSamples;
+  return static_cast<int>(std::ceil(std::log(0.01) / std::log1p(-all_right)));
+}
+
+// Iteratively reweighted Gauss-Newton with graduated scales from the prior: every residual's
+// Cauchy scale is its predicted sigma under the current uncertainty of the estimate (the prior's
+// at first, so the odometry's own error does not count as an outlier); as the posterior shrinks,
+// the scales shrink towards the location noise alone and the wrong matches lose their weight.
+// The start of Consensus (a Cauchy fit alone can be captured by a group of wrong matches that a
+// weakly observed direction of the pose lets it fit: docs/matching.md).
+Vector6 CauchyStart(const PoseModel& model, const std::vector<Eigen::Vector2d>& x1,
+                    const std::vector<Eigen::Vector2d>& x2, double sigma, int* steps) {
+  Vector6 z = Vector6::Zero();
+  Matrix6 covariance = Matrix6::Identity();
+  Vector6 z_new;
+  Eigen::VectorXd r, r_new;
+  Jacobian J, J_new;
+  Linearise(model, z, x1, x2, &r, &J);
+  Eigen::VectorXd scales = ResidualSigmas(J, covariance, sigma);
+  for (int iteration = 0; iteration < kMaxIterations; ++iteration) {
+    // The Gauss-Newton system of the robust objective at fixed scales (IRLS weights w).
+    const Eigen::VectorXd c = kCauchyConstant * scales;
+    const Eigen::VectorXd w = (1.0 + (r.array() / c.array()).square()).inverse().matrix();
+    const Matrix6 H = Matrix6::Identity() + J.transpose() * w.asDiagonal() * J / (sigma * sigma);
+    const Eigen::LDLT<Matrix6> H_ldlt(H);
+    const Vector6 g = z + J.transpose() * (w.array() * r.array()).matrix() / (sigma * sigma);
+    Vector6 dz = -H_ldlt.solve(g);
+    // Backtracking: the objective is not quadratic (Sampson distances, Cauchy loss).
+    const double cost = Cost(z, r, c, sigma);
+    bool improved = false;
+    for (int halving = 0; halving < 20 && !improved; ++halving, dz /= 2) {
+      z_new = z + dz;
+      Linearise(model, z_new, x1, x2, &r_new, &J_new);
+      improved = Cost(z_new, r_new, c, sigma) <= cost;
+    }
+    if (!improved) break;
+    z.swap(z_new);
+    r.swap(r_new);
+    J.swap(J_new);
+    ++*steps;
+    covariance = H_ldlt.solve(Matrix6::Identity());
+    const Eigen::VectorXd new_scales = ResidualSigmas(J, covariance, sigma);
+    const double scale_change = ((new_scales - scales).array() / scales.array()).abs().maxCoeff();
+    scales = new_scales;
+    // Converged when the step is below a hundredth of the posterior's standard deviation along it
+    // (dz^T H dz, the squared Newton decrement) and no residual's scale moved by 1 %.
+    if (dz.dot(H * dz) < 1e-4 && scale_change < 1e-2) break;
+  }
+  return z;
+}
+
 }  // namespace
 
 double SampsonDistance(const Eigen::Matrix3d& F, const Eigen::Vector2d& x1, const Eigen::Vector2d& x2) {
@@ -143,12 +329,32 @@ double SampsonDistance(const Eigen::Matrix3d& F, const Eigen::Vector2d& x1, cons
   return x2.homogeneous().dot(line2) / std::sqrt(norm_squared);
 }
 
+double PriorDistanceSquared(const PairGeometry& prior, const Pose3& pose, int* rank) {
+  const Eigen::SelfAdjointEigenSolver<Matrix6> solver(prior.covariance);
+  const double largest = solver.eigenvalues().maxCoeff();
+  Vector6 xi;
+  xi.head<3>() = LogRotation(pose.RotationMatrix() * prior.camera2_T_camera1.RotationMatrix().transpose());
+  xi.tail<3>() = pose.translation - prior.camera2_T_camera1.translation;
+  double distance_squared = 0;
+  int kept = 0;
+  for (int k = 0; k < 6; ++k) {
+    const double variance = solver.eigenvalues()(k);
+    if (!(largest > 0 && variance > 1e-12 * largest)) continue;
+    ++kept;
+    const double projection = solver.eigenvectors().col(k).dot(xi);
+    distance_squared += projection * projection / variance;
+  }
+  if (rank != nullptr) *rank = kept;
+  return distance_squared;
+}
+
 PairRefinement RefinePairGeometry(const PairGeometry& prior, const std::vector<Eigen::Vector2d>& x1,
                                   const std::vector<Eigen::Vector2d>& x2, const PairRefinementSettings& settings) {
   CHECK_EQ(x1.size(), x2.size());
   CHECK(settings.location_sigma_px > 0 && settings.gate_sigmas > 0 && settings.min_inliers >= 0);
   PairRefinement result;
   result.geometry = prior;
+  result.estimate = prior.camera2_T_camera1;
   result.matches = static_cast<int>(x1.size());
 
   // Whitening of the prior: covariance = V diag(l) V^T, A = V_kept diag(sqrt(l_kept)). Directions
@@ -173,57 +379,47 @@ PairRefinement RefinePairGeometry(const PairGeometry& prior, const std::vector<E
   const PoseModel model(prior, A);
   const double sigma = settings.location_sigma_px;
 
-  // Iteratively reweighted Gauss-Newton with graduated scales: every residual's Cauchy scale is
-  // its predicted sigma under the current uncertainty of the estimate (the prior's at first, so
-  // the odometry's own error does not count as an outlier); as the posterior shrinks, the scales
-  // shrink towards the location noise alone and the wrong matches lose their weight.
-  Vector6 z = Vector6::Zero();
-  Matrix6 covariance = Matrix6::Identity();
-  Vector6 z_new;
-  Eigen::VectorXd r, r_new;
-  Jacobian J, J_new;
-  Linearise(model, z, x1, x2, &r, &J);
-  Eigen::VectorXd scales = ResidualSigmas(J, covariance, sigma);
-  auto normal_matrix = [&](const Eigen::VectorXd& c, Eigen::VectorXd* w) {
-    *w = (1.0 + (r.array() / c.array()).square()).inverse().matrix();
-    return Matrix6(Matrix6::Identity() + J.transpose() * w->asDiagonal() * J / (sigma * sigma));
-  };
-  for (int iteration = 0; iteration < kMaxIterations; ++iteration) {
-    // The Gauss-Newton system of the robust objective at fixed scales (IRLS weights w).
-    const Eigen::VectorXd c = kCauchyConstant * scales;
-    Eigen::VectorXd w;
-    const Matrix6 H = normal_matrix(c, &w);
-    const Eigen::LDLT<Matrix6> H_ldlt(H);
-    const Vector6 g = z + J.transpose() * (w.array() * r.array()).matrix() / (sigma * sigma);
-    Vector6 dz = -H_ldlt.solve(g);
-    // Backtracking: the objective is not quadratic (Sampson distances, Cauchy loss). The full step
-    // is nearly always taken, so the trial point is linearised at once.
-    const double cost = Cost(z, r, c, sigma);
-    bool improved = false;
-    for (int halving = 0; halving < 20 && !improved; ++halving, dz /= 2) {
-      z_new = z + dz;
-      Linearise(model, z_new, x1, x2, &r_new, &J_new);
-      improved = Cost(z_new, r_new, c, sigma) <= cost;
+  // 1. The graduated Cauchy fit from the prior (a start: it follows most of the matches).
+  int iterations = 0;
+  Fit best = Consensus(model, x1, x2, CauchyStart(model, x1, x2, sigma, &iterations), sigma, settings.gate_sigmas);
+  iterations += best.iterations;
+  // 2. Hypotheses from random samples of kSampleSize matches with the prior, each scored by the
+  //    truncated posterior and, when it beats the best score so far, refined by Consensus
+  //    (LO-RANSAC, Chum et al. 2003). The number of samples is the usual adaptive one for 99 %
+  //    confidence of drawing one sample of right matches, at the inlier share of the best fit.
+  std::mt19937 rng(kSamplingSeed);
+  const int n = result.matches;
+  std::vector<int> order(static_cast<size_t>(n));
+  std::vector<Eigen::Vector2d> sample1(kSampleSize), sample2(kSampleSize);
+  double best_sample_cost = std::numeric_limits<double>::infinity();
+  Eigen::VectorXd r;
+  // Only when the local fit fails a test of step 3 below (outside the prior's ellipsoid, or too
+  // few inliers): a fit that passes is accepted as it is (most pairs; this bounds the cost).
+  const double prior_gate = kChiSquare99[m - 1];
+  const bool search = best.z.squaredNorm() > prior_gate || best.inliers < settings.min_inliers;
+  for (int h = 0; search && h < RequiredSamples(best.inliers, n) && h < kMaxSamples; ++h) {
+    std::iota(order.begin(), order.end(), 0);
+    for (int k = 0; k < kSampleSize; ++k) {
+      std::swap(order[static_cast<size_t>(k)],
+                order[static_cast<size_t>(k + static_cast<int>(rng() % static_cast<unsigned>(n - k)))]);
+      sample1[static_cast<size_t>(k)] = x1[static_cast<size_t>(order[static_cast<size_t>(k)])];
+      sample2[static_cast<size_t>(k)] = x2[static_cast<size_t>(order[static_cast<size_t>(k)])];
     }
-    if (!improved) break;
-    z.swap(z_new);
-    r.swap(r_new);
-    J.swap(J_new);
-    ++result.iterations;
-    covariance = H_ldlt.solve(Matrix6::Identity());
-    const Eigen::VectorXd new_scales = ResidualSigmas(J, covariance, sigma);
-    const double scale_change = ((new_scales - scales).array() / scales.array()).abs().maxCoeff();
-    scales = new_scales;
-    // Converged when the step is below a hundredth of the posterior's standard deviation along it
-    // (dz^T H dz, the squared Newton decrement) and no residual's scale moved by 1 %.
-    if (dz.dot(H * dz) < 1e-4 && scale_change < 1e-2) break;
+    const Vector6 z = GaussNewton(model, sample1, sample2, Vector6::Zero(), sigma, kSampleIterations, &iterations);
+    Residuals(model, z, x1, x2, &r);
+    const double cost = TruncatedCost(z, r, sigma, settings.gate_sigmas);
+    if (!(cost < best_sample_cost)) continue;
+    best_sample_cost = cost;
+    const Fit fit = Consensus(model, x1, x2, z, sigma, settings.gate_sigmas);
+    iterations += fit.iterations;
+    if (fit.cost < best.cost) best = fit;
   }
-  // The posterior at the estimate.
-  {
-    Eigen::VectorXd w;
-    covariance = normal_matrix(kCauchyConstant * scales, &w).ldlt().solve(Matrix6::Identity());
-    scales = ResidualSigmas(J, covariance, sigma);
-  }
+  const Vector6& z = best.z;
+  Matrix6 covariance = best.covariance;
+  result.iterations = iterations;
+  Jacobian J;
+  Linearise(model, z, x1, x2, &r, &J);
+  const Eigen::VectorXd scales = ResidualSigmas(J, covariance, sigma);
 
   result.inlier.resize(x1.size());
   for (Eigen::Index i = 0; i < r.size(); ++i) {
@@ -231,6 +427,7 @@ PairRefinement RefinePairGeometry(const PairGeometry& prior, const std::vector<E
     result.inliers += result.inlier[static_cast<size_t>(i)] ? 1 : 0;
   }
   result.prior_distance_squared = z.squaredNorm();
+  result.estimate = model.PoseAt(z);
   result.prior_gate = kChiSquare99[m - 1];
   if (result.inliers < settings.min_inliers) {
     result.outcome = PairRefinement::Outcome::kTooFewInliers;

@@ -44,6 +44,9 @@ struct PairRefinement {
   bool Refined() const { return outcome == Outcome::kRefined; }
   // The refined pose and its posterior covariance when Refined(), else the prior unchanged.
   PairGeometry geometry;
+  // The estimate whatever the outcome (the prior's pose when none was made): for diagnosis of a
+  // fallback.
+  Pose3 estimate;
   int matches = 0;   // correspondences given
   int inliers = 0;   // within the gate at the estimate
   // Squared Mahalanobis distance of the estimate from the prior pose under the prior covariance,
@@ -54,6 +57,11 @@ struct PairRefinement {
   // For each correspondence: within the gate at the estimate (empty unless an estimate was made).
   std::vector<bool> inlier;
 };
+
+// Squared Mahalanobis distance of `pose` from prior.camera2_T_camera1 under prior.covariance (the
+// perturbation (omega, dt) of PairGeometry; pseudo-inverse over the directions with variance, as
+// RefinePairGeometry's prior_distance_squared) and, when rank is not null, the covariance's rank.
+double PriorDistanceSquared(const PairGeometry& prior, const Pose3& pose, int* rank = nullptr);
 
 // The MAP pose of camera2_T_camera1 given the prior (prior.camera2_T_camera1, prior.covariance)
 // and correspondences x1[i] <-> x2[i] (pixels, prior.K). x1 and x2 have equal sizes.
