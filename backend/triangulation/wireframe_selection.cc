@@ -125,12 +125,15 @@ Landmarks SelectWireframeLandmarks(const Eigen::Matrix3d& K, const std::vector<P
     int dof = 0;
     const double chi_square = LineChiSquare(K, views, line.point, line.direction, sigma_px, &dof);
     // Two views of a line always meet in one (their planes intersect): a track that pairs two
-    // different edges passes an empty test. Only landmarks whose consistency was tested are drawn.
-    if (dof < 1) {
+    // different edges passes an empty test. Only tested tracks are drawn: a two-view line only
+    // when its junction point was kept, i.e. the junction correspondence passed the point's test
+    // (1 degree of freedom, the epipolar constraint); the matcher pairs a junction's segments
+    // with its location (one shift for all of them).
+    if (dof < 1 && (line.point_landmark < 0 || new_index[line.point_landmark] < 0)) {
       ++counts.lines_untestable;
       continue;
     }
-    if (!PassesChiSquare(chi_square, dof, options.consistency_level)) {
+    if (dof >= 1 && !PassesChiSquare(chi_square, dof, options.consistency_level)) {
       ++counts.lines_inconsistent;
       continue;
     }

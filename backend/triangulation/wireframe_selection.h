@@ -18,7 +18,7 @@ struct WireframeSelectionReport {
   int points_untestable = 0;      // fewer than two views: no redundancy to test
   int points_inconsistent = 0;    // point residuals fail the chi-square test
   int points_uncertain = 0;       // point position sigma above the bound
-  int lines_untestable = 0;       // seen in two views only: no redundancy to test (a point in two views has 1 dof)
+  int lines_untestable = 0;       // two views (nothing to test) and no kept junction point
   int lines_inconsistent = 0;     // line residuals fail the chi-square test
   int lines_uncertain_end0 = 0;   // the junction end (the line's own, or a dropped point's) too uncertain
   int lines_uncertain_end1 = 0;   // the far end too uncertain
@@ -41,8 +41,9 @@ double EstimatePixelSigma(const Eigen::Matrix3d& K, const std::vector<Pose3>& wo
 
 // The subset of `landmarks` to draw, with the cameras world_T_camera[f] of every frame (the refined
 // poses when bundle adjustment ran). A point is kept when it passes the test and its
-// PointPositionSigma is within MaxVertexSigma of its smallest depth. A line is kept when it has
-// something to test (three views or more), passes its test, bounds a segment on these poses
+// PointPositionSigma is within MaxVertexSigma of its smallest depth. A line is kept when its track
+// was tested (three views or more and it passes its own test, or two views and its junction point
+// kept), bounds a segment on these poses
 // (BoundLine's rule: its stored ends were bounded on the triangulation's poses) and both its
 // vertices are within the bound (LinePositionSigma at end1, and at end0 unless end0 is a kept
 // point). A line whose point was dropped takes its own end0 (the median of its back-projected

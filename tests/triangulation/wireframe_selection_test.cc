@@ -234,20 +234,26 @@ TEST_F(WireframeSelectionTest, ALineWithNoExtentOnTheFinalPosesIsNotDrawn) {
 }
 
 // Two views of a line always meet in one: a two-view segment track on two different edges passes
-// an empty chi-square test. The same edge seen in views 0 and 4 only is not drawn (untestable);
-// seen in views 0, 2 and 4 (2 degrees of freedom) it is.
-TEST_F(WireframeSelectionTest, ATwoViewLineIsNotDrawn) {
+// an empty chi-square test. The same edge seen in views 0 and 4 only, without a junction point, is
+// not drawn (untestable); seen in views 0, 2 and 4 (2 degrees of freedom) it is, and in views 0 and
+// 4 from a kept corner point (whose test checked the junction correspondence) it is too.
+TEST_F(WireframeSelectionTest, ATwoViewLineIsDrawnOnlyFromAKeptPoint) {
   Landmarks landmarks;
+  landmarks.points.push_back(Point({0.5, 0.2, 3}));
   landmarks.lines.push_back(Line({0.5, 0.2, 3}, {0.5, -0.6, 3}, -1));
   landmarks.lines.push_back(landmarks.lines[0]);
-  std::vector<LineObservation>& two = landmarks.lines[0].observations;
-  two = {two[0], two[4]};
+  landmarks.lines.push_back(Line({0.5, 0.2, 3}, {0.5, -0.6, 3}, 0));
+  for (int i : {0, 2}) {
+    std::vector<LineObservation>& two = landmarks.lines[i].observations;
+    two = {two[0], two[4]};
+  }
   std::vector<LineObservation>& three = landmarks.lines[1].observations;
   three = {three[0], three[2], three[4]};
   WireframeSelectionReport report;
   const Landmarks kept = SelectWireframeLandmarks(K_, cameras_, landmarks, WireframeOptions(), &report);
-  ASSERT_EQ(kept.lines.size(), 1u);
+  ASSERT_EQ(kept.lines.size(), 2u);
   EXPECT_EQ(kept.lines[0].observations.size(), 3u);
+  EXPECT_EQ(kept.lines[1].point_landmark, 0);
   EXPECT_EQ(report.lines_untestable, 1);
 }
 
