@@ -506,16 +506,15 @@ class BundleAdjuster {
 
     for (size_t f = 0; f + 1 < poses_.size(); ++f) {
       const Pose3 motion = odometry_[f].Inverse() * odometry_[f + 1];
-      const double translation_sigma_m =
-          noise_.translation_sigma * std::max(motion.translation.norm(), options_.odometry_min_distance_m);
+      const OdometryStepSigmas sigmas = OdometryStepSigmasFor(motion.translation.norm(), noise_, options_);
       double* const pose_blocks[4] = {poses_[f].rotation.data(), poses_[f].translation.data(),
                                       poses_[f + 1].rotation.data(), poses_[f + 1].translation.data()};
       if (scale_free_) {
         problem.AddResidualBlock(
-            OdometryPriorWithScaleCost::Create(motion, noise_.rotation_sigma, translation_sigma_m), nullptr,
+            OdometryPriorWithScaleCost::Create(motion, noise_.rotation_sigma, sigmas.along_m, sigmas.across_m), nullptr,
             pose_blocks[0], pose_blocks[1], pose_blocks[2], pose_blocks[3], &odometry_scale_);
       } else {
-        problem.AddResidualBlock(OdometryPriorCost::Create(motion, noise_.rotation_sigma, translation_sigma_m),
+        problem.AddResidualBlock(OdometryPriorCost::Create(motion, noise_.rotation_sigma, sigmas.along_m, sigmas.across_m),
                                  nullptr, pose_blocks[0], pose_blocks[1], pose_blocks[2], pose_blocks[3]);
       }
     }

@@ -17,6 +17,12 @@ enum class RobustLoss { kHuber, kCauchy };
 // the plane's height).
 enum class FloorPriorMode { kOff, kAuto, kOn };
 
+// How the odometry prior weighs a step's translation error (docs/bundle_adjustment.md, "Odometry
+// prior"): along the step by the distance noise and across it by the heading noise times the
+// distance (kAlongAcross), or by the distance noise in every direction (kIsotropic, the model
+// before the distinction; kept to compare).
+enum class OdometryTranslationModel { kAlongAcross, kIsotropic };
+
 enum class BundleAdjustmentLinearSolver {
   kAuto,         // DENSE_SCHUR up to dense_schur_max_frames frames, SPARSE_SCHUR above
   kDenseSchur,   // ceres::DENSE_SCHUR
@@ -48,8 +54,10 @@ struct BundleAdjustmentOptions {
   int dense_schur_max_frames = 100;  // frames, kAuto's switch to SPARSE_SCHUR
   int num_threads = 1;               // Ceres threads
   // m, floor on the distance travelled between two frames when the odometry prior's translation
-  // sigma is set to translation_sigma * distance (a robot turning in place still slips).
+  // sigmas are set from the distance (a robot turning in place still slips); a step shorter than
+  // this is weighted the same in every direction (its measured direction is mostly slip).
   double odometry_min_distance_m = 0.05;
+  OdometryTranslationModel odometry_translation_model = OdometryTranslationModel::kAlongAcross;
   double min_point_triangulation_angle_deg = 1.0;  // deg, points with less are dropped before solving
   double min_line_triangulation_angle_deg = 2.0;   // deg, lines with less are dropped (unobservable)
   // m, a point less deep than this in a camera that observes it, or a line whose points seen at

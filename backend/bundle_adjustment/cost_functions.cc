@@ -1,5 +1,7 @@
 // The one translation unit that instantiates the automatic derivatives of the cost functors, and
 // the analytic derivatives of the line residual.
+#include <algorithm>
+
 #include <ceres/autodiff_cost_function.h>
 #include <glog/logging.h>
 
@@ -140,20 +142,47 @@ bool LineReprojectionCostFunction::Evaluate(double const* const* parameters, dou
   return true;
 }
 
-ceres::CostFunction* OdometryPriorCost::Create(const Pose3& base_i_T_base_j_odometry,
-                                               double rotation_sigma_rad, double translation_sigma_m) {
+namespace {
+
+void CheckOdometrySigmas(const Pose3& motion, double rotation_sigma_rad, double along_sigma_m,
+                         double across_sigma_m) {
   CHECK_GT(rotation_sigma_rad, 0);
-  CHECK_GT(translation_sigma_m, 0);
+  CHECK_GT(along_sigma_m, 0);
+  CHECK_GT(across_sigma_m, 0);
+  // A step of zero length has no direction to be across from.
+  if (!(motion.translation.norm() > 0)) CHECK_EQ(along_sigma_m, across_sigma_m);
+}
+
+}  // namespace
+
+OdometryStepSigmas OdometryStepSigmasFor(double distance_m, const OdometryNoise& noise,
+                                         const BundleAdjustmentOptions& options) {
+  const double d = std::max(distance_m, options.odometry_min_distance_m);
+  OdometryStepSigmas sigmas;
+  sigmas.along_m = noise.translation_sigma * d;
+  sigmas.across_m = options.odometry_translation_model == OdometryTranslationModel::kAlongAcross
+                        ? noise.rotation_sigma * d
+                        : sigmas.along_m;
+  // Below the floor the measured direction is mostly slip: no direction is known better.
+  if (distance_m < options.odometry_min_distance_m) {
+    sigmas.along_m = sigmas.across_m = std::max(sigmas.along_m, sigmas.across_m);
+  }
+  return sigmas;
+}
+
+ceres::CostFunction* OdometryPriorCost::Create(const Pose3& base_i_T_base_j_odometry, double rotation_sigma_rad,
+                                               double along_sigma_m, double across_sigma_m) {
+  CheckOdometrySigmas(base_i_T_base_j_odometry, rotation_sigma_rad, along_sigma_m, across_sigma_m);
   return new ceres::AutoDiffCostFunction<OdometryPriorCost, 6, 4, 3, 4, 3>(
-      new OdometryPriorCost(base_i_T_base_j_odometry, rotation_sigma_rad, translation_sigma_m));
+      new OdometryPriorCost(base_i_T_base_j_odometry, rotation_sigma_rad, along_sigma_m, across_sigma_m));
 }
 
 ceres::CostFunction* OdometryPriorWithScaleCost::Create(const Pose3& base_i_T_base_j_odometry,
-                                                       double rotation_sigma_rad, double translation_sigma_m) {
-  CHECK_GT(rotation_sigma_rad, 0);
-  CHECK_GT(translation_sigma_m, 0);
+                                                       double rotation_sigma_rad, double along_sigma_m,
+                                                       double across_sigma_m) {
+  CheckOdometrySigmas(base_i_T_base_j_odometry, rotation_sigma_rad, along_sigma_m, across_sigma_m);
   return new ceres::AutoDiffCostFunction<OdometryPriorWithScaleCost, 6, 4, 3, 4, 3, 1>(new OdometryPriorWithScaleCost(
-      OdometryPriorCost(base_i_T_base_j_odometry, rotation_sigma_rad, translation_sigma_m)));
+      OdometryPriorCost(base_i_T_base_j_odometry, rotation_sigma_rad, along_sigma_m, across_sigma_m)));
 }
 
 ceres::CostFunction* FloorPointCost::Create(double sigma_m) {

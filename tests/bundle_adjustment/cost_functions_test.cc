@@ -327,7 +327,8 @@ TEST(OdometryPriorCostTest, GradientCheck) {
         random.Vector(-0.3, 0.3));
     const Pose3 measured = est_i.Inverse() * est_j * perturbation;
     std::unique_ptr<ceres::CostFunction> cost(
-        OdometryPriorCost::Create(measured, random.Uniform(0.001, 0.1), random.Uniform(0.001, 0.1)));
+        OdometryPriorCost::Create(measured, random.Uniform(0.001, 0.1), random.Uniform(0.001, 0.1),
+                                  random.Uniform(0.0001, 0.1)));
     const PoseParameters i = PoseParameters::FromPose(est_i), j = PoseParameters::FromPose(est_j);
     const double* parameters[] = {i.rotation.data(), i.translation.data(), j.rotation.data(),
                                   j.translation.data()};
@@ -345,13 +346,81 @@ TEST(OdometryPriorCostTest, GradientCheckAtZeroError) {
   ceres::EigenQuaternionManifold quaternion;
   const std::vector<const ceres::Manifold*> manifolds = {&quaternion, nullptr, &quaternion, nullptr};
   const Pose3 est_i = random.Pose(), est_j = random.Pose();
-  std::unique_ptr<ceres::CostFunction> cost(OdometryPriorCost::Create(est_i.Inverse() * est_j, 0.01, 0.02));
+  std::unique_ptr<ceres::CostFunction> cost(OdometryPriorCost::Create(est_i.Inverse() * est_j, 0.01, 0.02, 0.001));
   const PoseParameters i = PoseParameters::FromPose(est_i), j = PoseParameters::FromPose(est_j);
   const double* parameters[] = {i.rotation.data(), i.translation.data(), j.rotation.data(),
                                 j.translation.data()};
   ceres::GradientChecker checker(cost.get(), &manifolds, RiddersOptions());
   ceres::GradientChecker::ProbeResults results;
   EXPECT_TRUE(checker.Probe(parameters, kGradientTolerance, &results)) << results.error_log;
+}
+
+// Along and across the step: a step one along-sigma too long, or one across-sigma to the side (in
+// either direction across, horizontal or vertical), gives a whitened translation residual of 1;
+// the rotation residuals are untouched. Tolerance 1e-9.
+TEST(OdometryPriorCostTest, AlongAndAcrossTheStep) {
+  const Pose3 odom_i(Eigen::Quaterniond(Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitZ())), Eigen::Vector3d(1, 2, 0));
+  // A step of 0.2 m, 30 deg left of base_i's x axis, turning 0.1 rad.
+  const Eigen::Vector3d direction(std::cos(0.5236), std::sin(0.5236), 0);
+  const Pose3 motion(Eigen::Quaterniond(Eigen::AngleAxisd(0.1, Eigen::Vector3d::UnitZ())), 0.2 * direction);
+  const double along_sigma = 0.004, across_sigma = 0.0005;
+  std::unique_ptr<ceres::CostFunction> cost(OdometryPriorCost::Create(motion, 0.002, along_sigma, across_sigma));
+  auto translation_residual = [&](const Eigen::Vector3d& offset_in_base_i) {
+    const Pose3 est_i = odom_i;
+    const Pose3 est_j = odom_i * Pose3(Eigen::Quaterniond::Identity(), offset_in_base_i) * motion;
+    const PoseParameters i = PoseParameters::FromPose(est_i), j = PoseParameters::FromPose(est_j);
+    const double* parameters[] = {i.rotation.data(), i.translation.data(), j.rotation.data(), j.translation.data()};
+    Eigen::Matrix<double, 6, 1> r;
+    EXPECT_TRUE(cost->Evaluate(parameters, r.data(), nullptr));
+    EXPECT_NEAR(r.head<3>().norm(), 0, 1e-12);
+    return r.tail<3>().norm();
+  };
+  EXPECT_NEAR(translation_residual(along_sigma * direction), 1, 1e-9);
+  EXPECT_NEAR(translation_residual(-along_sigma * direction), 1, 1e-9);
+  const Eigen::Vector3d sideways(-direction.y(), direction.x(), 0);
+  EXPECT_NEAR(translation_residual(across_sigma * sideways), 1, 1e-9);
+  EXPECT_NEAR(translation_residual(across_sigma * Eigen::Vector3d::UnitZ()), 1, 1e-9);
+  // Both at once: the squares add.
+  EXPECT_NEAR(translation_residual(along_sigma * direction + across_sigma * sideways), std::sqrt(2.0), 1e-9);
+  // Equal sigmas: the isotropic prior's numbers.
+  std::unique_ptr<ceres::CostFunction> isotropic(OdometryPriorCost::Create(motion, 0.002, along_sigma));
+  std::unique_ptr<ceres::CostFunction> equal(OdometryPriorCost::Create(motion, 0.002, along_sigma, along_sigma));
+  const PoseParameters i = PoseParameters::FromPose(odom_i);
+  const PoseParameters j = PoseParameters::FromPose(odom_i * Pose3(Eigen::Quaterniond::Identity(),
+                                                                   Eigen::Vector3d(0.003, -0.002, 0.001)) * motion);
+  const double* parameters[] = {i.rotation.data(), i.translation.data(), j.rotation.data(), j.translation.data()};
+  Eigen::Matrix<double, 6, 1> r_isotropic, r_equal;
+  ASSERT_TRUE(isotropic->Evaluate(parameters, r_isotropic.data(), nullptr));
+  ASSERT_TRUE(equal->Evaluate(parameters, r_equal.data(), nullptr));
+  EXPECT_LT((r_isotropic - r_equal).norm(), 1e-12);
+}
+
+// The rule of the sigmas (docs/bundle_adjustment.md, "Odometry prior"): along = translation_sigma
+// * d, across = rotation_sigma * d, d the distance floored at odometry_min_distance_m; a step
+// shorter than the floor gets the larger of the two in every direction; kIsotropic: along in every
+// direction. Exact to 1e-15.
+TEST(OdometryPriorCostTest, StepSigmas) {
+  OdometryNoise noise;
+  noise.translation_sigma = 0.0224;
+  noise.rotation_sigma = 0.00224;
+  BundleAdjustmentOptions options;  // odometry_min_distance_m 0.05
+  OdometryStepSigmas sigmas = OdometryStepSigmasFor(0.2, noise, options);
+  EXPECT_NEAR(sigmas.along_m, 0.0224 * 0.2, 1e-15);
+  EXPECT_NEAR(sigmas.across_m, 0.00224 * 0.2, 1e-15);
+  sigmas = OdometryStepSigmasFor(0.01, noise, options);  // below the floor: isotropic
+  EXPECT_NEAR(sigmas.along_m, 0.0224 * 0.05, 1e-15);
+  EXPECT_NEAR(sigmas.across_m, 0.0224 * 0.05, 1e-15);
+  sigmas = OdometryStepSigmasFor(0, noise, options);
+  EXPECT_EQ(sigmas.along_m, sigmas.across_m);
+  EXPECT_GT(sigmas.along_m, 0);
+  // Heading noise larger than the distance noise: across is the looser one.
+  noise.translation_sigma = 1e-4;
+  sigmas = OdometryStepSigmasFor(0.2, noise, options);
+  EXPECT_NEAR(sigmas.along_m, 1e-4 * 0.2, 1e-15);
+  EXPECT_NEAR(sigmas.across_m, 0.00224 * 0.2, 1e-15);
+  options.odometry_translation_model = OdometryTranslationModel::kIsotropic;
+  sigmas = OdometryStepSigmasFor(0.2, noise, options);
+  EXPECT_NEAR(sigmas.across_m, 1e-4 * 0.2, 1e-15);
 }
 
 // The odometry prior with the scale factor: at scale 1 the plain prior's numbers; at scale s the
@@ -393,7 +462,7 @@ TEST(OdometryPriorWithScaleCostTest, GradientCheck) {
         random.Vector(-0.3, 0.3));
     const Pose3 measured = est_i.Inverse() * est_j * perturbation;
     std::unique_ptr<ceres::CostFunction> cost(OdometryPriorWithScaleCost::Create(
-        measured, random.Uniform(0.001, 0.1), random.Uniform(0.001, 0.1)));
+        measured, random.Uniform(0.001, 0.1), random.Uniform(0.001, 0.1), random.Uniform(0.0001, 0.1)));
     const PoseParameters i = PoseParameters::FromPose(est_i), j = PoseParameters::FromPose(est_j);
     const double scale = random.Uniform(0.9, 1.1);
     const double* parameters[] = {i.rotation.data(), i.translation.data(), j.rotation.data(), j.translation.data(),
