@@ -143,9 +143,11 @@ void SelectWireframe(const Sequence& sequence, const PipelineOptions& options, P
                                                          options.triangulation.wireframe, &report);
   LOG(INFO) << "wireframe: " << report.points_kept << " of " << result->landmarks.points.size() << " points and "
             << report.lines_kept << " of " << result->landmarks.lines.size() << " lines drawn (pixel noise "
-            << report.pixel_sigma_px << " px; dropped: " << report.points_inconsistent << " + "
-            << report.lines_inconsistent << " inconsistent, " << report.points_uncertain << " + "
-            << report.lines_uncertain_end0 + report.lines_uncertain_end1 << " undetermined points + lines)";
+            << report.pixel_sigma_px << " px); not drawn: points " << report.points_untestable << " untestable, "
+            << report.points_inconsistent << " inconsistent, " << report.points_uncertain << " undetermined; lines "
+            << report.lines_untestable << " untestable, " << report.lines_inconsistent << " inconsistent, "
+            << report.lines_uncertain_end0 + report.lines_uncertain_end1 << " undetermined, " << report.lines_unbounded
+            << " unbounded";
 }
 
 }  // namespace

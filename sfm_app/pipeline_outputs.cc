@@ -96,10 +96,13 @@ std::string WireframeJson(const PipelineResult& result) {
   const WireframeSelectionReport& report = result.wireframe_selection;
   return "{\"points\": " + std::to_string(report.points_kept) + ", \"lines\": " + std::to_string(report.lines_kept) +
          ", \"pixel_sigma_px\": " + JsonNumber(report.pixel_sigma_px) +
+         ", \"points_untestable\": " + std::to_string(report.points_untestable) +
          ", \"points_inconsistent\": " + std::to_string(report.points_inconsistent) +
          ", \"points_undetermined\": " + std::to_string(report.points_uncertain) +
+         ", \"lines_untestable\": " + std::to_string(report.lines_untestable) +
          ", \"lines_inconsistent\": " + std::to_string(report.lines_inconsistent) +
-         ", \"lines_undetermined\": " + std::to_string(report.lines_uncertain_end0 + report.lines_uncertain_end1) + "}";
+         ", \"lines_undetermined\": " + std::to_string(report.lines_uncertain_end0 + report.lines_uncertain_end1) +
+         ", \"lines_unbounded\": " + std::to_string(report.lines_unbounded) + "}";
 }
 
 std::optional<double> Ate(const std::optional<DriftMetrics>& drift) {
