@@ -89,6 +89,9 @@ DEFINE_double(match_refine_gate, kMatchingDefaults.refine_gate_sigmas, "With --m
 DEFINE_int32(match_refine_min_inliers, kMatchingDefaults.refine_min_inliers,
              "With --match_refine: fewer supporting matches and the first pass is kept.");
 DEFINE_bool(match_topology, kMatchingDefaults.use_topology, "sigma (true) or rho (false) in rule (38).");
+DEFINE_bool(match_partial, kMatchingDefaults.match_partial,
+            "With --match_refine: in the guided pass, match junctions of k and k + 1 segments left unmatched through "
+            "their best common subset (partial correspondence).");
 
 namespace sfm {
 namespace {
@@ -657,12 +660,18 @@ Status WriteVerdictPicture(const std::string& path, const LoadedFrame& a, const 
                            const std::vector<JunctionMatch>& matches, const Eigen::Matrix3d& F_true,
                            const SameFeature& same) {
   std::vector<bool> correct;
+  // DrawMatchOverlay pairs segments by the shift of equal counts: partial matches are left out of
+  // the picture (they are counted in every table).
+  std::vector<JunctionMatch> full;
   for (const JunctionMatch& m : matches) {
+    if (!m.Partial()) full.push_back(m);
+  }
+  for (const JunctionMatch& m : full) {
     const MatchVerdicts v = JudgeMatches({{m.index_a, m.index_b}}, JunctionLocations(a.features.junctions),
                                          JunctionLocations(b.features.junctions), F_true, FLAGS_epipolar_tolerance, same);
     correct.push_back(v.correct == 1);
   }
-  return WritePng(path, DrawMatchOverlay(a.grey, a.features.junctions, b.grey, b.features.junctions, matches, 2, correct));
+  return WritePng(path, DrawMatchOverlay(a.grey, a.features.junctions, b.grey, b.features.junctions, full, 2, correct));
 }
 
 
@@ -759,6 +768,7 @@ int main(int argc, char** argv) {
   matching.refine_geometry = FLAGS_match_refine;
   matching.refine_gate_sigmas = FLAGS_match_refine_gate;
   matching.refine_min_inliers = FLAGS_match_refine_min_inliers;
+  matching.match_partial = FLAGS_match_partial;
   if (FLAGS_match_rho1 == "linear") {
     matching.rho1_kind = Rho1Kind::kLinear;
   } else if (FLAGS_match_rho1 == "exponential") {

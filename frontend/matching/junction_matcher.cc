@@ -1,5 +1,7 @@
 #include "frontend/matching/junction_matcher.h"
 
+#include <algorithm>
+#include <cstdlib>
 #include <optional>
 
 #include <glog/logging.h>
@@ -36,6 +38,51 @@ std::vector<JunctionMatch> Match(const Junctions& a, const TopologyGraph& graph_
   }
   // Step 2: the mutual test of (38).
   return SelectMatches(candidates, num_a, num_b, options.tau1, options.tau2);
+}
+
+// Partial correspondence among the junctions `full` left unmatched (docs/matching.md, "Partial
+// correspondence"): candidates are the leftover pairs with segment counts k and k + 1
+// (PartialRho) and, as their competitors, the leftover pairs with equal counts (Rho: each lost the
+// full pass's rule (38) or had no admissible shift, so it stays out of the result, but a junction
+// with an equal-count rival as close as its partial partner is ambiguous). Rule (38) both ways on
+// rho (topology's sigma needs equal counts at both ends of an edge). Returns the partial matches.
+std::vector<JunctionMatch> MatchPartial(const Junctions& a, const Junctions& b, const JunctionSimilarity& similarity,
+                                        const std::vector<JunctionMatch>& full, const MatchingOptions& options) {
+  std::vector<char> matched_a(a.size(), 0), matched_b(b.size(), 0);
+  for (const JunctionMatch& match : full) {
+    matched_a[match.index_a] = 1;
+    matched_b[match.index_b] = 1;
+  }
+  std::vector<int> left_a, left_b;
+  for (int i = 0; i < static_cast<int>(a.size()); ++i) {
+    if (!matched_a[i]) left_a.push_back(i);
+  }
+  for (int j = 0; j < static_cast<int>(b.size()); ++j) {
+    if (!matched_b[j]) left_b.push_back(j);
+  }
+  std::vector<JunctionMatch> candidates;
+  for (const int i : left_a) {
+    const int n_a = a[i].NumSegments();
+    for (const int j : left_b) {
+      const int n_b = b[j].NumSegments();
+      if (n_a == n_b) {
+        const PairSimilarity rho = similarity.Rho(i, j);
+        // missing_a = missing_b = -1 and the flag below: a competitor only.
+        if (rho.Matched() && rho.rho > options.tau1) candidates.push_back({i, j, rho.rho, -1, -1, -1});
+      } else if (std::abs(n_a - n_b) == 1) {
+        const PairSimilarity rho = similarity.PartialRho(i, j);
+        if (rho.Matched() && rho.rho > options.tau1) {
+          candidates.push_back({i, j, rho.rho, rho.shift, rho.missing_a, rho.missing_b});
+        }
+      }
+    }
+  }
+  std::vector<JunctionMatch> partial;
+  for (const JunctionMatch& match :
+       SelectMatches(candidates, static_cast<int>(a.size()), static_cast<int>(b.size()), options.tau1, options.tau2)) {
+    if (match.Partial()) partial.push_back(match);
+  }
+  return partial;
 }
 
 }  // namespace
@@ -84,7 +131,17 @@ std::vector<JunctionMatch> MatchJunctions(const Junctions& a, const TopologyGrap
   MatchingOptions guided = options;
   guided.use_pose_band = true;
   guided.band_sigmas = options.refine_gate_sigmas;
-  return Match(a, graph_a, b, graph_b, JunctionSimilarity(a, b, report.refinement.geometry, guided), guided);
+  const JunctionSimilarity similarity(a, b, report.refinement.geometry, guided);
+  std::vector<JunctionMatch> matches = Match(a, graph_a, b, graph_b, similarity, guided);
+  if (!options.match_partial) return matches;
+  // Only here: in the refined band (about 1.8 px) a partial pair has few rivals; in the odometry's
+  // band the weaker, k/(k+1)-scaled support would compete with many wrong full-count partners.
+  const std::vector<JunctionMatch> partial = MatchPartial(a, b, similarity, matches, guided);
+  report.partial_matches = static_cast<int>(partial.size());
+  matches.insert(matches.end(), partial.begin(), partial.end());
+  std::stable_sort(matches.begin(), matches.end(),
+                   [](const JunctionMatch& x, const JunctionMatch& y) { return x.index_a < y.index_a; });
+  return matches;
 }
 
 }  // namespace sfm

@@ -1,5 +1,6 @@
 #include "frontend/matching/junction_similarity.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -179,22 +180,28 @@ bool JunctionSimilarity::PassesCheirality(int index_a, int index_b) const {
   return !(backward.tested && (x1 - backward.v).dot(backward.direction) < -side_b_.parallax_tolerance[index_b]);
 }
 
+bool JunctionSimilarity::LocationsAgree(int index_a, int index_b, Bands* bands, double* d, double* d_prime) const {
+  // d' of p'0 from the line of p0, d of p0 from the line of p'0 (lines normalised): the cheap test
+  // that rejects nearly every pair.
+  *d_prime = std::abs(side_a_.location_line[index_a].dot(side_b_.location[index_b].homogeneous()));
+  if (has_geometry_ && options_.use_pose_band) {
+    // Cheap rejection first, with the band of the largest sigma_d' over b's locations.
+    if (!(*d_prime <= side_a_.deviation_bound[index_a])) return false;
+  }
+  *bands = BandsOf(index_a, index_b);
+  if (!(*d_prime <= bands->in_image2)) return false;
+  *d = std::abs(side_b_.location_line[index_b].dot(side_a_.location[index_a].homogeneous()));
+  if (!(*d <= bands->in_image1)) return false;
+  return PassesCheirality(index_a, index_b);
+}
+
 PairSimilarity JunctionSimilarity::Rho(int index_a, int index_b) const {
   PairSimilarity result;
   const int n = side_a_.count[index_a];
   if (n != side_b_.count[index_b] || n == 0) return result;
-  // d' of p'0 from the line of p0, d of p0 from the line of p'0 (lines normalised): the cheap test
-  // that rejects nearly every pair.
-  const double d_prime = std::abs(side_a_.location_line[index_a].dot(side_b_.location[index_b].homogeneous()));
-  if (has_geometry_ && options_.use_pose_band) {
-    // Cheap rejection first, with the band of the largest sigma_d' over b's locations.
-    if (!(d_prime <= side_a_.deviation_bound[index_a])) return result;
-  }
-  const Bands bands = BandsOf(index_a, index_b);
-  if (!(d_prime <= bands.in_image2)) return result;
-  const double d = std::abs(side_b_.location_line[index_b].dot(side_a_.location[index_a].homogeneous()));
-  if (!(d <= bands.in_image1)) return result;
-  if (!PassesCheirality(index_a, index_b)) return result;
+  Bands bands;
+  double d = 0, d_prime = 0;
+  if (!LocationsAgree(index_a, index_b, &bands, &d, &d_prime)) return result;
   double rho2 = 0;
   for (int shift = 0; shift < n; ++shift) {
     const std::optional<double> m = M(index_a, index_b, shift, bands);
@@ -208,6 +215,85 @@ PairSimilarity JunctionSimilarity::Rho(int index_a, int index_b) const {
   const double rho1 = has_geometry_ && options_.use_pose_band ? Rho1(d / bands.in_image1, d_prime / bands.in_image2, 1.0, options_.rho1_kind)
                                 : Rho1(d, d_prime, options_.max_epipolar_distance_px, options_.rho1_kind);
   result.rho = 0.5 * (rho1 + rho2);
+  return result;
+}
+
+std::optional<double> JunctionSimilarity::SubsetSupport(int index_a, int index_b, const int* segments_a,
+                                                        const int* segments_b, int n, int shift,
+                                                        const Bands& bands) const {
+  constexpr int kMax = 16;
+  CHECK_LE(n, kMax);
+  Eigen::Vector2d directions_a[kMax];
+  Eigen::Vector2d directions_b[kMax];
+  const int first_a = side_a_.first[index_a];
+  const int first_b = side_b_.first[index_b];
+  for (int i = 0; i < n; ++i) {
+    directions_a[i] = side_a_.directions[first_a + segments_a[i]];
+    directions_b[i] = side_b_.directions[first_b + segments_b[i]];
+  }
+  // (36) on the subsets: removing a segment from a clockwise junction leaves a clockwise junction,
+  // so the test applies to the k kept segments as to any junction of k.
+  if (!IsSmallRotation(directions_a, directions_b, n, shift) ||
+      !KeepsCyclicOrder(directions_a, directions_b, n, shift, min_sin_)) {
+    return std::nullopt;
+  }
+  double sum = 0;
+  for (int i = 0; i < n; ++i) {
+    const int ia = first_a + segments_a[i];
+    const int ib = first_b + segments_b[(i + shift) % n];
+    const OrientedSegment& segment = side_a_.segments[ia];
+    const OrientedSegment& partner = side_b_.segments[ib];
+    const std::optional<double> h = EndpointSupport(
+        TransferSegment(segment, side_a_.epipolar[ia], partner, options_.parallel_tolerance_px, bands.in_image2),
+        options_.endpoint_model);
+    if (!h) return std::nullopt;
+    const std::optional<double> h_prime = EndpointSupport(
+        TransferSegment(partner, side_b_.epipolar[ib], segment, options_.parallel_tolerance_px, bands.in_image1),
+        options_.endpoint_model);
+    if (!h_prime) return std::nullopt;
+    sum += *h * *h_prime;
+  }
+  return sum;
+}
+
+PairSimilarity JunctionSimilarity::PartialRho(int index_a, int index_b) const {
+  PairSimilarity result;
+  const int n_a = side_a_.count[index_a];
+  const int n_b = side_b_.count[index_b];
+  const int k = std::min(n_a, n_b);
+  // One segment of common support is no junction correspondence (its turn and (36) are gone).
+  if (std::abs(n_a - n_b) != 1 || k < 2 || k + 1 > 16) return result;
+  Bands bands;
+  double d = 0, d_prime = 0;
+  if (!LocationsAgree(index_a, index_b, &bands, &d, &d_prime)) return result;
+  int all[16];
+  int subset[16];
+  for (int i = 0; i < k + 1; ++i) all[i] = i;
+  const bool a_larger = n_a > n_b;
+  double best = 0;
+  for (int missing = 0; missing <= k; ++missing) {
+    // The larger junction's segments without `missing`, in their (clockwise) order.
+    for (int i = 0, j = 0; i <= k; ++i) {
+      if (i != missing) subset[j++] = i;
+    }
+    for (int shift = 0; shift < k; ++shift) {
+      const std::optional<double> sum = a_larger ? SubsetSupport(index_a, index_b, subset, all, k, shift, bands)
+                                                 : SubsetSupport(index_a, index_b, all, subset, k, shift, bands);
+      if (!sum) continue;
+      // The missing segment's H H' is 0: the mean over the k + 1 segments of the union.
+      const double m = *sum / (k + 1);
+      if (result.shift < 0 || m > best) {
+        best = m;
+        result.shift = shift;
+        result.missing_a = a_larger ? missing : -1;
+        result.missing_b = a_larger ? -1 : missing;
+      }
+    }
+  }
+  if (result.shift < 0) return result;
+  const double rho1 = has_geometry_ && options_.use_pose_band ? Rho1(d / bands.in_image1, d_prime / bands.in_image2, 1.0, options_.rho1_kind)
+                                : Rho1(d, d_prime, options_.max_epipolar_distance_px, options_.rho1_kind);
+  result.rho = 0.5 * (rho1 + best);
   return result;
 }
 

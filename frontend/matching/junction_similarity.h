@@ -22,9 +22,13 @@ double Rho1(double d, double d_prime, double R, Rho1Kind kind);
 // rho of a pair and the shift k that maximised M(k) in (33): segment i of J corresponds to segment
 // (i + shift) mod N of J'. shift = -1: the pair is unmatched (different segment counts, d or d' > R,
 // or no shift passes (17), (36) and (37)), and rho = 0.
+// For a partial pair (JunctionSimilarity::PartialRho), missing_a or missing_b is the larger
+// junction's segment left out and shift applies to the renumbered subset (JunctionMatch).
 struct PairSimilarity {
   double rho = 0;
   int shift = -1;
+  int missing_a = -1;
+  int missing_b = -1;
   bool Matched() const { return shift >= 0; }
 };
 
@@ -42,6 +46,15 @@ class JunctionSimilarity {
 
   // Eq. (34): rho = 0.5 (rho1 + rho2), rho2 = max_k M(k) (33) over the shifts allowed.
   PairSimilarity Rho(int index_a, int index_b) const;
+
+  // Partial correspondence (not in the paper; docs/matching.md, "Partial correspondence"): the
+  // junctions have k >= 2 and k + 1 segments (either way round). Over every segment m of the larger
+  // one left out and every shift k of the remaining segments (their cyclic order kept), (36), (37)
+  // and (17) as for Rho, and M = (1/(k+1)) sum over the k pairings of H H': the left-out segment's
+  // term is 0, so for equal per-segment support a partial M is k/(k+1) of a full one and never
+  // outranks it. rho = 0.5 (rho1 + max M), rho1 and the band / cheirality tests as in Rho.
+  // Unmatched (shift -1) for other segment counts.
+  PairSimilarity PartialRho(int index_a, int index_b) const;
 
   // The junctions of b that Rho(index_a, .) does not reject by its first, cheap tests (same segment
   // count, p'0 within R or the largest band of index_a from the epipolar line of p0), appended to
@@ -64,6 +77,12 @@ class JunctionSimilarity {
 
  private:
   std::optional<double> M(int index_a, int index_b, int shift, const Bands& bands) const;
+  // d, d' within the bands and the cheirality test, as Rho starts; the bands and d, d' out.
+  bool LocationsAgree(int index_a, int index_b, Bands* bands, double* d, double* d_prime) const;
+  // Sum of H H' over the pairings of a's segments segments_a[i] with b's segments_b[(i + shift) % n]
+  // (indices within each junction), after (36) and (37); nullopt when a test fails.
+  std::optional<double> SubsetSupport(int index_a, int index_b, const int* segments_a, const int* segments_b, int n,
+                                      int shift, const Bands& bands) const;
 
   // One image's junctions: segments of junction j at [first[j], first[j] + count[j]).
   struct Side {

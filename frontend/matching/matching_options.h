@@ -62,6 +62,12 @@ struct MatchingOptions {
   double refine_gate_sigmas = 2.576;
   // Three matches per degree of freedom of an epipolar geometry (5).
   int refine_min_inliers = 15;
+  // Partial junction correspondence in the guided pass only (not in the paper; docs/matching.md,
+  // "Partial correspondence"): a junction of k >= 2 segments left unmatched may match one of k + 1
+  // (a segment missed in one frame) through its best common subset, rho2 counting the missing
+  // segment's term as 0, by rule (38) among the junctions the full pass left unmatched. Off by
+  // default: frontend/tracks and the match overlay expect equal segment counts.
+  bool match_partial = false;
 
   Status Check() const {
     auto bad = [](const std::string& what) { return Status::Error("MatchingOptions: " + what); };

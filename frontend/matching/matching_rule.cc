@@ -29,6 +29,18 @@ struct Ranking {
 
 }  // namespace
 
+int PartnerSegment(const JunctionMatch& match, int segment_a, int num_a, int num_b) {
+  CHECK(segment_a >= 0 && segment_a < num_a);
+  if (segment_a == match.missing_a) return -1;
+  // Index among a's segments without missing_a, then the shift, then back into b's numbering
+  // skipping missing_b.
+  const int reduced_a = match.missing_a >= 0 && segment_a > match.missing_a ? segment_a - 1 : segment_a;
+  const int k = match.missing_a >= 0 ? num_a - 1 : num_a;
+  CHECK_EQ(k, match.missing_b >= 0 ? num_b - 1 : num_b) << "segment counts do not fit the match";
+  const int reduced_b = (reduced_a + match.shift) % k;
+  return match.missing_b >= 0 && reduced_b >= match.missing_b ? reduced_b + 1 : reduced_b;
+}
+
 std::vector<JunctionMatch> SelectMatches(const std::vector<JunctionMatch>& candidates, int num_a, int num_b,
                                          double tau1, double tau2) {
   std::vector<Ranking> rank_a(num_a);

@@ -303,5 +303,116 @@ TEST(JunctionMatcherTest, FallsBackToTheOdometryWithTooFewMatches) {
   EXPECT_EQ(Evaluate(scene, with).correct, 10);
 }
 
+// Partial correspondence in the guided pass (docs/matching.md, "Partial correspondence"). 15
+// rectangles (60 L junctions, which the full passes match and the refinement needs) and one 3D Y
+// junction whose arm 2 is missed in image 1 (an L there, a Y in image 2). Without match_partial the
+// L stays unmatched; with it the L matches the Y, its two segments paired with the Y's segments of
+// the same arms, and the 60 full matches are unchanged. Then a second Y in image 2 at the same
+// place, sharing the L's two segments but with its third arm elsewhere (on the bisector of the
+// other two's outer angle): the L fits both equally (the same two segments, the same rho), so rule
+// (38) refuses it (a tie has margin 0 <= tau2).
+struct PartialScene {
+  Scene scene;
+  int l = -1;                 // index in a of the L
+  int y = -1;                 // index in b of the true Y
+  std::vector<int> arms_of_l;  // 3D arm of each of the L's segments
+};
+
+PartialScene MakePartialScene(std::mt19937* rng) {
+  const TwoViews views = testing::MakeTwoViews();
+  std::vector<Junction3d> junctions3d;
+  for (int r = 0; r < 15; ++r) {
+    for (const Junction3d& corner : RandomRectangle(views, rng)) junctions3d.push_back(corner);
+  }
+  junctions3d.push_back(testing::RandomJunction3d(views, 3, rng));
+  PartialScene partial;
+  partial.scene = MakeScene(views, junctions3d, 15, rng);
+  partial.l = 60;
+  partial.y = partial.scene.b_of_a[60];
+  const ProjectedJunction& y_a = partial.scene.projected_a[60];
+  Junction& l = partial.scene.a[60];
+  l.segments.clear();
+  for (int s = 0; s < 3; ++s) {
+    if (y_a.arm_of_segment[s] == 2) continue;
+    l.segments.push_back(y_a.junction.segments[s]);
+    partial.arms_of_l.push_back(y_a.arm_of_segment[s]);
+  }
+  return partial;
+}
+
+TEST(JunctionMatcherTest, PartialMatchPairsAnLWithItsY) {
+  std::mt19937 rng(31);
+  const PartialScene partial = MakePartialScene(&rng);
+  const Scene& scene = partial.scene;
+  const PairGeometry odometry = OdometryGeometry(scene.views);
+  MatchingDiagnostics diagnostics;
+  const std::vector<JunctionMatch> full =
+      MatchJunctions(scene.a, scene.graph_a, scene.b, scene.graph_b, odometry, MatchingOptions(), &diagnostics);
+  ASSERT_TRUE(diagnostics.refinement.Refined());
+  EXPECT_EQ(diagnostics.partial_matches, 0);
+  for (const JunctionMatch& m : full) EXPECT_NE(m.index_a, partial.l) << "counts differ: no full match";
+  MatchingOptions options;
+  options.match_partial = true;
+  const std::vector<JunctionMatch> with =
+      MatchJunctions(scene.a, scene.graph_a, scene.b, scene.graph_b, odometry, options, &diagnostics);
+  EXPECT_EQ(diagnostics.partial_matches, 1);
+  ASSERT_EQ(with.size(), full.size() + 1);
+  int partial_found = 0;
+  for (const JunctionMatch& m : with) {
+    if (!m.Partial()) {
+      EXPECT_EQ(m.index_b, scene.b_of_a[m.index_a]);
+      continue;
+    }
+    ++partial_found;
+    ASSERT_EQ(m.index_a, partial.l);
+    ASSERT_EQ(m.index_b, partial.y);
+    // Rho of a perturbed pair: below the exact images' 0.5 (1 + 2/3) and above 0.5 (the support of
+    // the two common segments is well above 0).
+    EXPECT_GT(m.similarity, 0.5);
+    EXPECT_LE(m.similarity, 0.5 * (1 + 2.0 / 3) + 1e-9);
+    const ProjectedJunction& y_b = scene.projected_b[60];
+    EXPECT_EQ(m.missing_a, -1);
+    EXPECT_EQ(y_b.arm_of_segment[m.missing_b], 2);
+    for (int i = 0; i < 2; ++i) {
+      EXPECT_EQ(y_b.arm_of_segment[PartnerSegment(m, i, 2, 3)], partial.arms_of_l[i]) << i;
+    }
+  }
+  EXPECT_EQ(partial_found, 1);
+}
+
+TEST(JunctionMatcherTest, PartialMatchRefusesAnLThatFitsTwoYsEqually) {
+  std::mt19937 rng(31);
+  PartialScene partial = MakePartialScene(&rng);
+  Scene& scene = partial.scene;
+  // The decoy: the true Y with its arm-2 segment moved onto the bisector of the outer angle of the
+  // other two, clockwise order restored.
+  const ProjectedJunction& y_b = scene.projected_b[60];
+  Junction decoy = scene.b[partial.y];
+  Eigen::Vector2d sum = Eigen::Vector2d::Zero();
+  for (int s = 0; s < 3; ++s) {
+    if (y_b.arm_of_segment[s] != 2) sum += decoy.SegmentDirection(s);
+  }
+  const int moved = SegmentOfArm(y_b, 2);
+  const double length = (decoy.segments[moved].end - decoy.location).norm();
+  decoy.segments[moved].end = decoy.location - length * sum.normalized();
+  std::sort(decoy.segments.begin(), decoy.segments.end(), [&](const JunctionSegment& x, const JunctionSegment& y) {
+    return std::atan2(x.end.y() - decoy.location.y(), x.end.x() - decoy.location.x()) <
+           std::atan2(y.end.y() - decoy.location.y(), y.end.x() - decoy.location.x());
+  });
+  scene.b.push_back(decoy);
+  scene.graph_b.edges_of_junction.emplace_back();
+  const PairGeometry odometry = OdometryGeometry(scene.views);
+  MatchingOptions options;
+  options.match_partial = true;
+  MatchingDiagnostics diagnostics;
+  const std::vector<JunctionMatch> with =
+      MatchJunctions(scene.a, scene.graph_a, scene.b, scene.graph_b, odometry, options, &diagnostics);
+  ASSERT_TRUE(diagnostics.refinement.Refined());
+  EXPECT_EQ(diagnostics.partial_matches, 0);
+  for (const JunctionMatch& m : with) {
+    EXPECT_NE(m.index_a, partial.l) << "matched to " << m.index_b << " (true Y " << partial.y << ")";
+  }
+}
+
 }  // namespace
 }  // namespace sfm

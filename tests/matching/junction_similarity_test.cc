@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include "frontend/matching/matching_rule.h"
 #include "frontend/matching/physical_constraints.h"
 #include "tests/matching/synthetic_views.h"
 
@@ -155,6 +156,71 @@ TEST(JunctionSimilarityTest, MirroredOrFarOrDifferentJunctionsAreUnmatched) {
     const PairSimilarity rho = similarity.Rho(0, j);
     EXPECT_FALSE(rho.Matched()) << j;
     EXPECT_EQ(rho.rho, 0) << j;
+  }
+}
+
+// Partial correspondence (docs/matching.md, "Partial correspondence"): exact images of one 3D Y
+// junction, arm 2 missed in one image (an L). The best common subset pairs the L's two segments
+// with the Y's segments of the same arms and leaves out the Y's arm-2 segment; with exact images
+// every H H' is 1 (as for full pairs), so rho2 = 2/3 (the missing term counted as 0 over 3
+// segments), rho1 = 1 (d = d' = 0) and rho = 0.5 (1 + 2/3) = 0.8333, below the full Y-Y rho of 1.
+// Tolerance 1e-9 (rounding). Both ways round (L in image 1 or in image 2).
+TEST(JunctionSimilarityTest, PartialRhoPairsAnLWithTheRightTwoSegmentsOfAY) {
+  std::mt19937 rng(21);
+  const TwoViews views = testing::MakeTwoViews();
+  for (int trial = 0; trial < 20; ++trial) {
+    const Junction3d y3d = testing::RandomJunction3d(views, 3, &rng);
+    const ProjectedJunction y_a = testing::ProjectJunction(views, 0, y3d);
+    const ProjectedJunction y_b = testing::ProjectJunction(views, 1, y3d);
+    const int dropped_arm = trial % 3;
+    auto without_arm = [&](const ProjectedJunction& y, std::vector<int>* arms) {
+      Junction l = y.junction;
+      arms->clear();
+      l.segments.clear();
+      for (int s = 0; s < 3; ++s) {
+        if (y.arm_of_segment[s] == dropped_arm) continue;
+        l.segments.push_back(y.junction.segments[s]);
+        arms->push_back(y.arm_of_segment[s]);
+      }
+      return l;
+    };
+    auto segment_of_arm = [](const ProjectedJunction& y, int arm) {
+      return static_cast<int>(std::find(y.arm_of_segment.begin(), y.arm_of_segment.end(), arm) -
+                              y.arm_of_segment.begin());
+    };
+    std::vector<int> arms_of_l;
+    for (int l_in_a = 0; l_in_a < 2; ++l_in_a) {
+      const Junction l = without_arm(l_in_a ? y_a : y_b, &arms_of_l);
+      const Junctions a = {l_in_a ? l : y_a.junction};
+      const Junctions b = {l_in_a ? y_b.junction : l};
+      const JunctionSimilarity similarity(a, b, views.F(), MatchingOptions());
+      EXPECT_FALSE(similarity.Rho(0, 0).Matched()) << "different counts: no full pair";
+      const PairSimilarity partial = similarity.PartialRho(0, 0);
+      ASSERT_TRUE(partial.Matched()) << trial;
+      EXPECT_NEAR(partial.rho, 0.5 * (1 + 2.0 / 3), 1e-9) << trial;
+      JunctionMatch match{0, 0, partial.rho, partial.shift, partial.missing_a, partial.missing_b};
+      if (l_in_a) {
+        EXPECT_EQ(partial.missing_a, -1);
+        EXPECT_EQ(partial.missing_b, segment_of_arm(y_b, dropped_arm)) << trial;
+        for (int i = 0; i < 2; ++i) {
+          EXPECT_EQ(PartnerSegment(match, i, 2, 3), segment_of_arm(y_b, arms_of_l[i])) << trial;
+        }
+      } else {
+        EXPECT_EQ(partial.missing_b, -1);
+        EXPECT_EQ(partial.missing_a, segment_of_arm(y_a, dropped_arm)) << trial;
+        for (int s = 0; s < 3; ++s) {
+          const int arm = y_a.arm_of_segment[s];
+          const int expected = arm == dropped_arm ? -1
+                                                  : static_cast<int>(std::find(arms_of_l.begin(), arms_of_l.end(), arm) -
+                                                                     arms_of_l.begin());
+          EXPECT_EQ(PartnerSegment(match, s, 3, 2), expected) << trial;
+        }
+      }
+    }
+    // The full pair of the same vertex outranks the partial one.
+    const JunctionSimilarity full({y_a.junction}, {y_b.junction}, views.F(), MatchingOptions());
+    EXPECT_NEAR(full.Rho(0, 0).rho, 1, 1e-9);
+    EXPECT_FALSE(full.PartialRho(0, 0).Matched()) << "equal counts are not partial";
   }
 }
 
