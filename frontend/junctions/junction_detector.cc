@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <functional>
 #include <set>
 #include <utility>
@@ -150,29 +151,46 @@ Junction MakeJunction(const Group& group, const std::vector<SegmentLine>& lines,
 std::vector<int> ChooseJunctions(const std::vector<Group>& candidates, size_t num_hits, int num_nodes) {
   constexpr int kMaxExact = 20;
   const int m = static_cast<int>(candidates.size());
-  // Candidates touching each end-point node and each hit.
-  std::vector<std::vector<int>> by_node(num_nodes), by_hit(num_hits);
+  // Conflicting candidate pairs: candidates listed by end-point node and by hit (one flat list of
+  // (key, candidate), sorted), every two with the same key linked. Flat arrays, not a vector per
+  // node: the allocations otherwise cost more than the search.
+  std::vector<std::pair<int64_t, int>> keyed;
   for (int c = 0; c < m; ++c) {
     for (int node : candidates[c].nodes) {
-      if (ContactOf(node) != Contact::kThrough) by_node[node].push_back(c);
+      if (ContactOf(node) != Contact::kThrough) keyed.emplace_back(node, c);
     }
-    for (int h : candidates[c].hits) by_hit[h].push_back(c);
+    for (int h : candidates[c].hits) keyed.emplace_back(static_cast<int64_t>(num_nodes) + h, c);
   }
-  std::vector<std::vector<int>> conflicts(m);
-  auto link = [&](const std::vector<int>& list) {
-    for (size_t i = 0; i < list.size(); ++i) {
-      for (size_t j = i + 1; j < list.size(); ++j) {
-        conflicts[list[i]].push_back(list[j]);
-        conflicts[list[j]].push_back(list[i]);
+  std::sort(keyed.begin(), keyed.end());
+  std::vector<std::pair<int, int>> edges;
+  for (size_t i = 0; i < keyed.size();) {
+    size_t j = i;
+    while (j < keyed.size() && keyed[j].first == keyed[i].first) ++j;
+    for (size_t x = i; x < j; ++x) {
+      for (size_t y = x + 1; y < j; ++y) {
+        edges.emplace_back(keyed[x].second, keyed[y].second);
+        edges.emplace_back(keyed[y].second, keyed[x].second);
       }
     }
-  };
-  for (const auto& list : by_node) link(list);
-  for (const auto& list : by_hit) link(list);
-  for (auto& list : conflicts) {
-    std::sort(list.begin(), list.end());
-    list.erase(std::unique(list.begin(), list.end()), list.end());
+    i = j;
   }
+  std::sort(edges.begin(), edges.end());
+  edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+  // conflicts of c: conflict_list[conflict_begin[c] .. conflict_begin[c + 1]).
+  std::vector<int> conflict_begin(m + 1, 0), conflict_list(edges.size());
+  for (const auto& [from, to] : edges) ++conflict_begin[from + 1];
+  for (int c = 0; c < m; ++c) conflict_begin[c + 1] += conflict_begin[c];
+  for (size_t e = 0; e < edges.size(); ++e) conflict_list[e] = edges[e].second;
+  struct Range {
+    const int* b;
+    const int* e;
+    const int* begin() const { return b; }
+    const int* end() const { return e; }
+    bool empty() const { return b == e; }
+  };
+  auto conflicts = [&](int c) {
+    return Range{conflict_list.data() + conflict_begin[c], conflict_list.data() + conflict_begin[c + 1]};
+  };
 
   std::vector<int> component(m, -1);
   std::vector<bool> keep(m, false);
@@ -180,10 +198,14 @@ std::vector<int> ChooseJunctions(const std::vector<Group>& candidates, size_t nu
   for (int root = 0; root < m; ++root) {
     if (component[root] >= 0) continue;
     // The connected group of conflicting candidates around root, strongest first.
-    std::vector<int> members = {root};
     component[root] = root;
+    if (conflicts(root).empty()) {
+      keep[root] = true;
+      continue;
+    }
+    std::vector<int> members = {root};
     for (size_t k = 0; k < members.size(); ++k) {
-      for (int other : conflicts[members[k]]) {
+      for (int other : conflicts(members[k])) {
         if (component[other] < 0) {
           component[other] = root;
           members.push_back(other);
@@ -194,7 +216,7 @@ std::vector<int> ChooseJunctions(const std::vector<Group>& candidates, size_t nu
       return candidates[a].score > candidates[b].score || (candidates[a].score == candidates[b].score && a < b);
     });
     auto block = [&](int c, int delta) {
-      for (int other : conflicts[c]) blocked[other] += delta;
+      for (int other : conflicts(c)) blocked[other] += delta;
     };
     if (static_cast<int>(members.size()) > kMaxExact) {
       for (int c : members) {
@@ -268,29 +290,32 @@ Junctions DetectJunctions(const LineSegments& segments, const JunctionDetectorOp
   // Candidate junctions: from every accepted pair, the group grown greedily as if no other junction
   // existed, and the pair alone (which the choice below needs when the grown group conflicts where
   // the pair does not). Collinear pieces alone are one broken line, not a junction.
+  // A pair's node set is its own (one hit per pair of segments), so only grown groups can repeat.
   std::vector<Group> candidates;
-  std::set<std::vector<int>> seen;
-  auto add_candidate = [&](const Group& group) {
-    if (!group.Located()) return;
-    std::vector<int> key = group.nodes;
-    std::sort(key.begin(), key.end());
-    if (seen.insert(key).second) candidates.push_back(group);
-  };
+  std::set<std::vector<int>> seen_grown;
   std::vector<int> joiner_hits;
   for (int seed : order) {
     const PairHit& hit = graph.hit(seed);
-    Group group;
-    group.nodes = {NodeA(hit), NodeB(hit)};
-    group.Add(hit, seed);
-    const Group pair = group;
-    while (true) {
-      const int joiner = BestJoiner(graph, group, options.max_gap_px, &joiner_hits);
-      if (joiner < 0) break;
-      group.nodes.push_back(joiner);
-      for (int h : joiner_hits) group.Add(graph.hit(h), h);
+    Group pair;
+    pair.nodes = {NodeA(hit), NodeB(hit)};
+    pair.Add(hit, seed);
+    if (!pair.Located()) continue;
+    // A joiner needs a pair with each member, so both nodes must have another pair.
+    if (graph.degree(NodeA(hit)) > 1 && graph.degree(NodeB(hit)) > 1) {
+      Group group = pair;
+      while (true) {
+        const int joiner = BestJoiner(graph, group, options.max_gap_px, &joiner_hits);
+        if (joiner < 0) break;
+        group.nodes.push_back(joiner);
+        for (int h : joiner_hits) group.Add(graph.hit(h), h);
+      }
+      if (group.nodes.size() > 2) {
+        std::vector<int> key = group.nodes;
+        std::sort(key.begin(), key.end());
+        if (seen_grown.insert(std::move(key)).second) candidates.push_back(std::move(group));
+      }
     }
-    add_candidate(group);
-    add_candidate(pair);
+    candidates.push_back(std::move(pair));
   }
 
   const std::vector<int> chosen = ChooseJunctions(candidates, graph.hits().size(), 3 * n);
