@@ -137,6 +137,22 @@ std::optional<double> JunctionSimilarity::M(int index_a, int index_b, int shift)
   return M(index_a, index_b, shift, BandsOf(index_a, index_b));
 }
 
+// H(s) H'(s) of one segment pair of eq. (32): H from image 1 to image 2 (F), H' back (F^T, the
+// roles swapped); nullopt where (17) rejects the pair.
+std::optional<double> JunctionSimilarity::SegmentPairSupport(int ia, int ib, const Bands& bands) const {
+  const OrientedSegment& segment = side_a_.segments[ia];
+  const OrientedSegment& partner = side_b_.segments[ib];
+  const std::optional<double> h = EndpointSupport(
+      TransferSegment(segment, side_a_.epipolar[ia], partner, options_.parallel_tolerance_px, bands.in_image2),
+      options_.endpoint_model);
+  if (!h) return std::nullopt;
+  const std::optional<double> h_prime = EndpointSupport(
+      TransferSegment(partner, side_b_.epipolar[ib], segment, options_.parallel_tolerance_px, bands.in_image1),
+      options_.endpoint_model);
+  if (!h_prime) return std::nullopt;
+  return *h * *h_prime;
+}
+
 std::optional<double> JunctionSimilarity::M(int index_a, int index_b, int shift, const Bands& bands) const {
   const int n = side_a_.count[index_a];
   CHECK_EQ(n, side_b_.count[index_b]);
@@ -153,18 +169,9 @@ std::optional<double> JunctionSimilarity::M(int index_a, int index_b, int shift,
   for (int i = 0; i < n; ++i) {
     const int ia = first_a + i;
     const int ib = first_b + (i + shift) % n;
-    const OrientedSegment& segment = side_a_.segments[ia];
-    const OrientedSegment& partner = side_b_.segments[ib];
-    const std::optional<double> h = EndpointSupport(
-        TransferSegment(segment, side_a_.epipolar[ia], partner, options_.parallel_tolerance_px, bands.in_image2),
-        options_.endpoint_model);
-    if (!h) return std::nullopt;
-    // H': from image 2 to image 1, F^T, the roles swapped.
-    const std::optional<double> h_prime = EndpointSupport(
-        TransferSegment(partner, side_b_.epipolar[ib], segment, options_.parallel_tolerance_px, bands.in_image1),
-        options_.endpoint_model);
-    if (!h_prime) return std::nullopt;
-    sum += *h * *h_prime;
+    const std::optional<double> support = SegmentPairSupport(ia, ib, bands);
+    if (!support) return std::nullopt;
+    sum += *support;
   }
   return sum / n;
 }
@@ -241,17 +248,9 @@ std::optional<double> JunctionSimilarity::SubsetSupport(int index_a, int index_b
   for (int i = 0; i < n; ++i) {
     const int ia = first_a + segments_a[i];
     const int ib = first_b + segments_b[(i + shift) % n];
-    const OrientedSegment& segment = side_a_.segments[ia];
-    const OrientedSegment& partner = side_b_.segments[ib];
-    const std::optional<double> h = EndpointSupport(
-        TransferSegment(segment, side_a_.epipolar[ia], partner, options_.parallel_tolerance_px, bands.in_image2),
-        options_.endpoint_model);
-    if (!h) return std::nullopt;
-    const std::optional<double> h_prime = EndpointSupport(
-        TransferSegment(partner, side_b_.epipolar[ib], segment, options_.parallel_tolerance_px, bands.in_image1),
-        options_.endpoint_model);
-    if (!h_prime) return std::nullopt;
-    sum += *h * *h_prime;
+    const std::optional<double> support = SegmentPairSupport(ia, ib, bands);
+    if (!support) return std::nullopt;
+    sum += *support;
   }
   return sum;
 }

@@ -77,6 +77,8 @@ class JunctionSimilarity {
 
  private:
   std::optional<double> M(int index_a, int index_b, int shift, const Bands& bands) const;
+  // H H' of segment ia of image 1 with segment ib of image 2 (indices into the sides' segments).
+  std::optional<double> SegmentPairSupport(int ia, int ib, const Bands& bands) const;
   // d, d' within the bands and the cheirality test, as Rho starts; the bands and d, d' out.
   bool LocationsAgree(int index_a, int index_b, Bands* bands, double* d, double* d_prime) const;
   // Sum of H H' over the pairings of a's segments segments_a[i] with b's segments_b[(i + shift) % n]
