@@ -3,6 +3,8 @@
 #include <glog/logging.h>
 
 #include <Eigen/Eigenvalues>
+#include <Eigen/LU>
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -18,6 +20,28 @@ Eigen::Matrix<double, 2, 3> PixelJacobian(const Eigen::Matrix3d& K, const Eigen:
   Eigen::Matrix<double, 2, 3> d_normalised;
   d_normalised << 1 / p.z(), 0, -p.x() / (p.z() * p.z()), 0, 1 / p.z(), -p.y() / (p.z() * p.z());
   return K.topLeftCorner<2, 2>() * d_normalised * camera_R_world;
+}
+
+// d pixel / d camera rotation at `p` (camera frame): a small rotation dtheta of the camera moves
+// the point to p - dtheta x p in the camera frame (the sign is immaterial for a covariance).
+Eigen::Matrix<double, 2, 3> PixelByRotation(const Eigen::Matrix3d& K, const Eigen::Vector3d& p) {
+  Eigen::Matrix<double, 2, 3> d_normalised;
+  d_normalised << 1 / p.z(), 0, -p.x() / (p.z() * p.z()), 0, 1 / p.z(), -p.y() / (p.z() * p.z());
+  Eigen::Matrix3d p_cross;
+  p_cross << 0, -p.z(), p.y(), p.z(), 0, -p.x(), -p.y(), p.x(), 0;
+  return K.topLeftCorner<2, 2>() * d_normalised * p_cross;
+}
+
+// rotation_step^2 min(f_i - f0, f_j - f0): the covariance of two views' rotations relative to the
+// first frame f0 under PoseDrift's random walk.
+double DriftCovariance(const PoseDrift& drift, int frame_i, int frame_j, int first_frame) {
+  return drift.rotation_step_rad * drift.rotation_step_rad * std::min(frame_i - first_frame, frame_j - first_frame);
+}
+
+// The largest eigenvalue's square root of a symmetric matrix.
+template <int N>
+double WorstSigma(const Eigen::Matrix<double, N, N>& covariance) {
+  return std::sqrt(std::max(0.0, Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, N, N>>(covariance).eigenvalues().maxCoeff()));
 }
 
 // The standard normal p-quantile (Acklam's rational approximation, relative error < 1.2e-9).
@@ -60,9 +84,42 @@ double PointPositionSigma(const Eigen::Matrix3d& K, const std::vector<Pose3>& wo
   return sigma_px / std::sqrt(smallest);
 }
 
-double LinePositionSigma(const Eigen::Matrix3d& K, const std::vector<LineSegmentView>& views,
-                         const Eigen::Vector3d& x, const Eigen::Vector3d& direction, double sigma_px) {
+double PointPositionSigma(const Eigen::Matrix3d& K, const std::vector<Pose3>& world_T_camera,
+                          const std::vector<int>& frames, const Eigen::Vector3d& point, double sigma_px,
+                          const PoseDrift& drift) {
+  CHECK_EQ(world_T_camera.size(), frames.size());
+  const double pixel_only = PointPositionSigma(K, world_T_camera, point, sigma_px);
+  if (!std::isfinite(pixel_only) || drift.rotation_step_rad == 0) return pixel_only;
+  const size_t n = world_T_camera.size();
   Eigen::Matrix3d information = Eigen::Matrix3d::Zero();
+  std::vector<Eigen::Matrix<double, 2, 3>> J(n), B(n);
+  for (size_t i = 0; i < n; ++i) {
+    const Pose3 camera_T_world = world_T_camera[i].Inverse();
+    const Eigen::Vector3d p = camera_T_world * point;  // z > 0: pixel_only is finite
+    J[i] = PixelJacobian(K, camera_T_world.RotationMatrix(), p);
+    B[i] = PixelByRotation(K, p);
+    information += J[i].transpose() * J[i];
+  }
+  const Eigen::Matrix3d inverse = information.inverse();
+  const int first_frame = *std::min_element(frames.begin(), frames.end());
+  std::vector<Eigen::Matrix3d> gain(n);
+  for (size_t i = 0; i < n; ++i) gain[i] = inverse * J[i].transpose() * B[i];
+  Eigen::Matrix3d covariance = sigma_px * sigma_px * inverse;
+  for (size_t i = 0; i < n; ++i) {
+    for (size_t j = 0; j < n; ++j) {
+      covariance += DriftCovariance(drift, frames[i], frames[j], first_frame) * gain[i] * gain[j].transpose();
+    }
+  }
+  return WorstSigma<3>(covariance);
+}
+
+double LinePositionSigma(const Eigen::Matrix3d& K, const std::vector<LineSegmentView>& views,
+                         const Eigen::Vector3d& x, const Eigen::Vector3d& direction, double sigma_px,
+                         const PoseDrift& drift) {
+  Eigen::Matrix3d information = Eigen::Matrix3d::Zero();
+  // Per view: g_i / var_i (the weighted gain's direction) and m_i^T B_i (the rotation's shift).
+  std::vector<Eigen::Vector3d> weighted_gradient;
+  std::vector<Eigen::RowVector3d> line_by_rotation;
   for (const LineSegmentView& view : views) {
     const Pose3 camera_T_world = view.world_T_camera.Inverse();
     const Eigen::Vector3d p = camera_T_world * x;
@@ -73,15 +130,34 @@ double LinePositionSigma(const Eigen::Matrix3d& K, const std::vector<LineSegment
     const double t = (pixel - view.p0).dot(along) / along.squaredNorm();
     const Eigen::Vector2d normal = Eigen::Vector2d(-along.y(), along.x()).normalized();
     const Eigen::Vector3d g = PixelJacobian(K, camera_T_world.RotationMatrix(), p).transpose() * normal;
-    information += g * g.transpose() / ((1 - t) * (1 - t) + t * t);
+    const double variance = (1 - t) * (1 - t) + t * t;
+    information += g * g.transpose() / variance;
+    weighted_gradient.push_back(g / variance);
+    line_by_rotation.push_back(normal.transpose() * PixelByRotation(K, p));
   }
   const Eigen::Vector3d u = direction.normalized();
   const Eigen::Vector3d a = u.unitOrthogonal(), b = u.cross(a);
-  Eigen::Matrix2d across;
-  across << a.dot(information * a), a.dot(information * b), b.dot(information * a), b.dot(information * b);
+  Eigen::Matrix<double, 3, 2> plane;
+  plane << a, b;
+  const Eigen::Matrix2d across = plane.transpose() * information * plane;
   const double smallest = Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(across).eigenvalues().minCoeff();
   if (!(smallest > 1e-12 * across.trace())) return kInfinity;
-  return sigma_px / std::sqrt(smallest);
+  if (drift.rotation_step_rad == 0) return sigma_px / std::sqrt(smallest);
+  const Eigen::Matrix2d inverse = across.inverse();
+  int first_frame = views.front().frame;
+  for (const LineSegmentView& view : views) first_frame = std::min(first_frame, view.frame);
+  // x's shift across the line from view i's rotation: inverse P^T (g_i / var_i) (m_i^T B_i) dtheta_i.
+  std::vector<Eigen::Matrix<double, 2, 3>> gain;
+  for (size_t i = 0; i < views.size(); ++i) {
+    gain.push_back(inverse * plane.transpose() * weighted_gradient[i] * line_by_rotation[i]);
+  }
+  Eigen::Matrix2d covariance = sigma_px * sigma_px * inverse;
+  for (size_t i = 0; i < views.size(); ++i) {
+    for (size_t j = 0; j < views.size(); ++j) {
+      covariance += DriftCovariance(drift, views[i].frame, views[j].frame, first_frame) * gain[i] * gain[j].transpose();
+    }
+  }
+  return WorstSigma<2>(covariance);
 }
 
 double PointChiSquare(const Eigen::Matrix3d& K, const std::vector<Pose3>& world_T_camera,

@@ -17,6 +17,20 @@ struct LineSegmentView {
   Pose3 world_T_camera;
   Eigen::Vector2d p0 = Eigen::Vector2d::Zero();
   Eigen::Vector2d p1 = Eigen::Vector2d::Zero();
+  int frame = 0;  // the frame index: the pose error model's path coordinate (PoseDrift)
+};
+
+// The error the final poses still carry, as the determination test sees it. Each camera's rotation
+// error is a random walk along the frame index with `rotation_step_rad` per frame (standard
+// deviation per axis of one step), so the rotation of view i relative to the first frame f0 that
+// sees a landmark has covariance rotation_step_rad^2 min(f_i - f0, f_j - f0) I3 with view j: the
+// error is correlated along the path and does not average down over the views as pixel noise does.
+// The part common to all views (the rotation at f0) turns the whole landmark rigidly about nearby
+// centres, a shift of about depth x angle (millimetres: the trajectory's absolute drift), not the
+// landmark's own conditioning; it is left out. Rotation only: docs/tracks_and_triangulation.md,
+// "Pose error in the determination test". 0: pixel noise only.
+struct PoseDrift {
+  double rotation_step_rad = 0;
 };
 
 // Standard deviation, metres, of `point` along its worst-determined direction: the square root of
@@ -26,6 +40,15 @@ struct LineSegmentView {
 // or every ray parallel) or the point is not in front of every camera.
 double PointPositionSigma(const Eigen::Matrix3d& K, const std::vector<Pose3>& world_T_camera,
                           const Eigen::Vector3d& point, double sigma_px);
+
+// The same with the poses' error added: the least-squares triangulation weighs the views by the
+// pixel noise alone, so the rotations' errors reach the point through its gain
+// G_i = (sum J^T J)^-1 J_i^T B_i (B_i the 2x3 derivative of view i's pixel by its camera's
+// rotation), Cov = sigma_px^2 (sum J^T J)^-1 + sum_ij G_i C_ij G_j^T, C_ij from `drift` with
+// frames[i] the frame of view i (same size as world_T_camera).
+double PointPositionSigma(const Eigen::Matrix3d& K, const std::vector<Pose3>& world_T_camera,
+                          const std::vector<int>& frames, const Eigen::Vector3d& point, double sigma_px,
+                          const PoseDrift& drift);
 
 // Standard deviation, metres, across the line (the worst of the two directions normal to
 // `direction`) of the 3D line's position at its point `x`. Each view's image line is fixed by its
@@ -37,7 +60,11 @@ double PointPositionSigma(const Eigen::Matrix3d& K, const std::vector<Pose3>& wo
 // planes do not fix both directions (fewer than two views, or all planes one: a line parallel to
 // the motion) or x is not in front of every camera.
 double LinePositionSigma(const Eigen::Matrix3d& K, const std::vector<LineSegmentView>& views,
-                         const Eigen::Vector3d& x, const Eigen::Vector3d& direction, double sigma_px);
+                         const Eigen::Vector3d& x, const Eigen::Vector3d& direction, double sigma_px,
+                         const PoseDrift& drift = PoseDrift());
+// With `drift`: a camera rotation moves view i's image line across itself, at x's projection, by
+// m_i^T B_i dtheta_i; that reaches x through the same weighted least squares as the pixel noise
+// (weights 1 / var_i), and the views' rotations are correlated by `drift` (views[i].frame).
 
 // The chi-square statistic of a point's residuals, sum_i |pixel_i - project_i(point)|^2 / sigma_px^2
 // (2 per view), and its degrees of freedom 2n - 3. +infinity when the point is behind a camera.

@@ -91,6 +91,15 @@ struct WireframeOptions {
   // depth / tan(angle), sigma the first-order standard deviation of its position across the
   // worst direction, depth its smallest in a view that sees it, f = fx. Degrees, in (0, 90).
   double min_equivalent_parallax_deg = 1.5;
+  // The final poses' rotation error as the determination test models it (PoseDrift,
+  // landmark_uncertainty.h): a random walk along the frame index with this standard deviation per
+  // axis and per frame. A vertex's sigma is then its pixel-noise sigma plus the rotations' error
+  // carried through its geometry, held to the same MaxVertexSigma. Radians, >= 0 (0: pixel noise
+  // only). 0.0002: the refined trajectories' rotation RPE on the generated sequences,
+  // 0.00032-0.00038 rad per frame (docs/backend_results.md, an angle: sqrt(3) x the per-axis
+  // sigma), i.e. what bundle adjustment leaves of the odometry's 0.002 rad per frame. Not a
+  // measure of the wireframe. A pipeline that knows its poses better or worse sets it.
+  double pose_rotation_step_rad = 0.0002;
 
   Status Check() const {
     auto bad = [](const std::string& what) { return Status::Error("WireframeOptions: " + what); };
@@ -98,6 +107,9 @@ struct WireframeOptions {
     if (!(consistency_level > 0 && consistency_level < 1)) return bad("consistency_level must be in (0, 1)");
     if (!(min_equivalent_parallax_deg > 0 && min_equivalent_parallax_deg < 90)) {
       return bad("min_equivalent_parallax_deg must be in (0, 90)");
+    }
+    if (!(pose_rotation_step_rad >= 0 && std::isfinite(pose_rotation_step_rad))) {
+      return bad("pose_rotation_step_rad must be finite and >= 0");
     }
     return Status::Ok();
   }

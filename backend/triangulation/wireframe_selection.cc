@@ -85,6 +85,7 @@ Landmarks SelectWireframeLandmarks(const Eigen::Matrix3d& K, const std::vector<P
   auto determined = [&](double sigma, double depth) {
     return depth > 0 && sigma <= MaxVertexSigma(options, fx, depth);
   };
+  const PoseDrift drift{options.pose_rotation_step_rad};
   WireframeSelectionReport counts;
   Landmarks selected;
   std::vector<int> new_index(landmarks.points.size(), -1);
@@ -92,8 +93,10 @@ Landmarks SelectWireframeLandmarks(const Eigen::Matrix3d& K, const std::vector<P
     const PointLandmark& point = landmarks.points[i];
     std::vector<Pose3> cameras;
     std::vector<Eigen::Vector2d> pixels;
+    std::vector<int> frames;
     for (const PointObservation& observation : point.observations) {
       cameras.push_back(camera(observation.frame));
+      frames.push_back(observation.frame);
       pixels.push_back(observation.pixel);
     }
     int dof = 0;
@@ -106,7 +109,8 @@ Landmarks SelectWireframeLandmarks(const Eigen::Matrix3d& K, const std::vector<P
       ++counts.points_inconsistent;
       continue;
     }
-    if (!determined(PointPositionSigma(K, cameras, point.position, sigma_px), SmallestDepth(cameras, point.position))) {
+    if (!determined(PointPositionSigma(K, cameras, frames, point.position, sigma_px, drift),
+                    SmallestDepth(cameras, point.position))) {
       ++counts.points_uncertain;
       continue;
     }
@@ -118,7 +122,7 @@ Landmarks SelectWireframeLandmarks(const Eigen::Matrix3d& K, const std::vector<P
     std::vector<LineView> line_views;
     std::vector<Pose3> cameras;
     for (const LineObservation& observation : line.observations) {
-      views.push_back({camera(observation.frame), observation.p0, observation.p1});
+      views.push_back({camera(observation.frame), observation.p0, observation.p1, observation.frame});
       line_views.push_back({camera(observation.frame), observation.p0, observation.p1});
       cameras.push_back(camera(observation.frame));
     }
@@ -151,12 +155,12 @@ Landmarks SelectWireframeLandmarks(const Eigen::Matrix3d& K, const std::vector<P
     kept.direction = (segment.end1 - segment.end0).normalized();
     kept.end0 = kept.point_landmark >= 0 ? line.end0 : segment.end0;
     kept.end1 = segment.end1;
-    if (kept.point_landmark < 0 && !determined(LinePositionSigma(K, views, kept.end0, kept.direction, sigma_px),
+    if (kept.point_landmark < 0 && !determined(LinePositionSigma(K, views, kept.end0, kept.direction, sigma_px, drift),
                                                SmallestDepth(cameras, kept.end0))) {
       ++counts.lines_uncertain_end0;
       continue;
     }
-    if (!determined(LinePositionSigma(K, views, kept.end1, kept.direction, sigma_px),
+    if (!determined(LinePositionSigma(K, views, kept.end1, kept.direction, sigma_px, drift),
                     SmallestDepth(cameras, kept.end1))) {
       ++counts.lines_uncertain_end1;
       continue;

@@ -66,6 +66,44 @@ TEST(LandmarkUncertaintyTest, LineParallelToTheMotionIsUndetermined) {
   EXPECT_TRUE(std::isinf(LinePositionSigma(K, views, {0, 0.3, 4}, Eigen::Vector3d::UnitX(), 0.3)));
 }
 
+// Pose drift (PoseDrift): the same stereo pair, the second view k = 25 frames after the first, the
+// rotations a random walk of 0.0002 rad per axis per frame. The second camera's yaw relative to the
+// first is off by 0.0002 sqrt(25) = 0.001 rad, which moves its x by f x 0.001 = 0.45 px (the point
+// projects 11 px off the centre: the (1 + x^2 / f^2) factor is 1.0006) and so the disparity: sigma_Z
+// = Z^2 / (f B) sqrt(2 sigma^2 + f^2 step^2 k) = 0.110 m, 1.46 times the pixel-only 0.0754 m.
+// The first view's own rotation is the common part, left out: frames 100 and 125 give the same.
+// A model that let the error average down (independent per view) or took it from frame 0 fails.
+TEST(LandmarkUncertaintyTest, PointSigmaAddsTheRelativeRotationDrift) {
+  const double f = 450, B = 0.2, Z = 4, sigma = 0.3, step = 0.0002;
+  const int k = 25;
+  const std::vector<Pose3> cameras = {Forward({-B / 2, 0, 0}), Forward({B / 2, 0, 0})};
+  const double expected = Z * Z / (f * B) * std::sqrt(2 * sigma * sigma + f * f * step * step * k);
+  const PoseDrift drift{step};
+  EXPECT_NEAR(PointPositionSigma(TestK(), cameras, {0, 2}, {0, 0, Z}, sigma, PoseDrift()),
+              PointPositionSigma(TestK(), cameras, {0, 0, Z}, sigma), 1e-12);
+  EXPECT_NEAR(PointPositionSigma(TestK(), cameras, {0, k}, {0, 0, Z}, sigma, drift), expected, 0.02 * expected);
+  EXPECT_NEAR(PointPositionSigma(TestK(), cameras, {100, 100 + k}, {0, 0, Z}, sigma, drift), expected,
+              0.02 * expected);
+}
+
+// The line of LineSigmaIsTheStereoDepthErrorOfItsImageLines with the same drift: at t = 1/2 each
+// image line is off by sigma / sqrt(2) from the pixels, and the second view's yaw moves its image
+// line across by f x 0.001 = 0.45 px: sigma_Z = Z^2 / (f B) sqrt(sigma^2 + f^2 step^2 k) = 0.0962 m
+// (pixel only 0.0533 m). To 2 %.
+TEST(LandmarkUncertaintyTest, LineSigmaAddsTheRelativeRotationDrift) {
+  const double f = 450, B = 0.2, Z = 4, sigma = 0.3, step = 0.0002;
+  const int k = 25;
+  const Eigen::Matrix3d K = TestK();
+  std::vector<LineSegmentView> views;
+  for (const double x : {-B / 2, B / 2}) {
+    const Pose3 camera = Forward({x, 0, 0});
+    views.push_back({camera, Project(K, camera, {0, -0.5, Z}), Project(K, camera, {0, 0.5, Z}), x < 0 ? 7 : 7 + k});
+  }
+  const double expected = Z * Z / (f * B) * std::sqrt(sigma * sigma + f * f * step * step * k);
+  EXPECT_NEAR(LinePositionSigma(K, views, {0, 0, Z}, Eigen::Vector3d::UnitY(), sigma, PoseDrift{step}), expected,
+              0.02 * expected);
+}
+
 // Reference values of the chi-square quantile (any statistics table). Wilson-Hilferty at p = 0.999
 // is 3.0 % high for k = 1, 1.7 % for k = 3, 0.6 % for k = 10 (the test is then slightly lenient).
 TEST(LandmarkUncertaintyTest, ChiSquareQuantileMatchesTables) {
@@ -284,6 +322,31 @@ TEST_F(WireframeSelectionTest, PixelNoiseIsEstimatedFromThePointResiduals) {
   EXPECT_LE(fixed.points_kept, 10);
 }
 
+// The selection with drift: a corner 30 m ahead seen by the five cameras (1 m of path) as frames
+// 0, 10, 20, 30, 40 (a 60-frame sequence's views of one corner are spread so). Its pixel-only
+// sigma (0.76 m) passes the bound at 30 m (1.08 m); with 0.0002 rad per axis per frame of rotation
+// drift its last view's rotation relative to the first is off by 0.0013 rad (0.57 px, about twice
+// the pixel noise, and correlated, so it does not average down over the views): sigma 1.39 m, not
+// drawn. Without drift (pose_rotation_step_rad 0) it is.
+TEST_F(WireframeSelectionTest, RotationDriftAlongThePathMakesAVertexUndetermined) {
+  Landmarks landmarks;
+  const Eigen::Vector3d corner(0.5, 0.2, 30);
+  landmarks.points.push_back(Point(corner));
+  for (PointObservation& observation : landmarks.points[0].observations) observation.frame *= 10;
+  std::vector<Pose3> cameras(41, cameras_[0]);
+  for (int f = 0; f < 5; ++f) cameras[10 * f] = cameras_[f];
+  WireframeOptions pixel_only;
+  pixel_only.pose_rotation_step_rad = 0;
+  const double bound = MaxVertexSigma(pixel_only, 450, 30);
+  EXPECT_NEAR(bound, 1.08, 0.01);
+  EXPECT_NEAR(PointPositionSigma(K_, cameras_, corner, 0.3), 0.76, 0.01);
+  EXPECT_NEAR(PointPositionSigma(K_, cameras_, {0, 10, 20, 30, 40}, corner, 0.3, PoseDrift{0.0002}), 1.39, 0.01);
+  WireframeSelectionReport with_drift, without;
+  EXPECT_TRUE(SelectWireframeLandmarks(K_, cameras, landmarks, WireframeOptions(), &with_drift).points.empty());
+  EXPECT_EQ(with_drift.points_uncertain, 1);
+  EXPECT_EQ(SelectWireframeLandmarks(K_, cameras, landmarks, pixel_only, &without).points.size(), 1u);
+}
+
 TEST(WireframeOptionsTest, BadOptionsAreRejected) {
   WireframeOptions options;
   EXPECT_TRUE(options.Check().ok());
@@ -294,6 +357,9 @@ TEST(WireframeOptionsTest, BadOptionsAreRejected) {
   EXPECT_FALSE(options.Check().ok());
   options = WireframeOptions();
   options.min_equivalent_parallax_deg = 0;
+  EXPECT_FALSE(options.Check().ok());
+  options = WireframeOptions();
+  options.pose_rotation_step_rad = -1e-4;
   EXPECT_FALSE(options.Check().ok());
 }
 
