@@ -81,9 +81,13 @@ Landmarks SelectWireframeLandmarks(const Eigen::Matrix3d& K, const std::vector<P
     CHECK(frame >= 0 && frame < static_cast<int>(world_T_camera.size())) << "frame " << frame;
     return world_T_camera[frame];
   };
-  // A vertex is determined when its sigma is within the bound at its smallest depth (> 0).
+  // A vertex is determined when its sigma is within the bound at its smallest depth (> 0). The
+  // bound takes the same pixel noise as the sigma, so that the pixel part of the test does not
+  // depend on the noise level (only the pose drift's share does).
+  WireframeOptions bound_options = options;
+  bound_options.pixel_sigma_px = sigma_px;
   auto determined = [&](double sigma, double depth) {
-    return depth > 0 && sigma <= MaxVertexSigma(options, fx, depth);
+    return depth > 0 && sigma <= MaxVertexSigma(bound_options, fx, depth);
   };
   const PoseDrift drift{options.pose_rotation_step_rad};
   WireframeSelectionReport counts;

@@ -328,6 +328,31 @@ TEST_F(WireframeSelectionTest, PixelNoiseIsEstimatedFromThePointResiduals) {
 // drift its last view's rotation relative to the first is off by 0.0013 rad (0.57 px, about twice
 // the pixel noise, and correlated, so it does not average down over the views): sigma 1.39 m, not
 // drawn. Without drift (pose_rotation_step_rad 0) it is.
+// The determination test holds the vertex sigma and its bound to the same pixel noise: with 1 px
+// estimated from 40 noisy corners, a noise-free corner 30 m ahead over the 1 m path (sigma / bound
+// = 3.0 / 2.16 x 30 / 60 = 0.69 at any noise, drift off) is still drawn. With the bound left at the
+// 0.3 px floor it would read 0.69 x 1 / 0.3 = 2.3 and be dropped.
+TEST_F(WireframeSelectionTest, DeterminationDoesNotDependOnTheEstimatedNoise) {
+  std::mt19937 random(7);
+  std::normal_distribution<double> noise(0.0, 1.0);
+  Landmarks landmarks;
+  for (int i = 0; i < 40; ++i) {
+    landmarks.points.push_back(Point({-1.0 + 0.05 * i, 0.3 - 0.01 * i, 3.0 + 0.05 * i}));
+    for (PointObservation& observation : landmarks.points.back().observations) {
+      observation.pixel += Eigen::Vector2d(noise(random), noise(random));
+    }
+  }
+  landmarks.points.push_back(Point({0.5, 0.2, 30}));
+  WireframeOptions options;
+  options.pose_rotation_step_rad = 0;
+  WireframeSelectionReport report;
+  const Landmarks kept = SelectWireframeLandmarks(K_, cameras_, landmarks, options, &report);
+  EXPECT_NEAR(report.pixel_sigma_px, 1.0, 0.1);
+  EXPECT_EQ(report.points_uncertain, 0);
+  ASSERT_FALSE(kept.points.empty());
+  EXPECT_EQ(kept.points.back().position, Eigen::Vector3d(0.5, 0.2, 30));
+}
+
 TEST_F(WireframeSelectionTest, RotationDriftAlongThePathMakesAVertexUndetermined) {
   Landmarks landmarks;
   const Eigen::Vector3d corner(0.5, 0.2, 30);
