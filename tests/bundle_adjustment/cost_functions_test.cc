@@ -179,8 +179,10 @@ TEST(LineReprojectionCostTest, LineThroughTheCameraCentreIsRejected) {
   EXPECT_FALSE(cost->Evaluate(parameters, r.data(), nullptr));
 }
 
-// Create's cost function: the analytic Jacobians (LineReprojectionCostFunction).
-TEST(LineReprojectionCostTest, GradientCheck) {
+// GradientChecker on random configurations: poses, a line through two random points in front of
+// the camera, two random observed end-points; `create` makes the cost function under test.
+template <typename Create>
+void ExpectLineCostPassesGradientCheck(Create create) {
   Random random;
   const CameraModel camera = RigCamera();
   const Pose3 base_T_camera = testing::RobotCalibration().base_T_camera;
@@ -196,7 +198,7 @@ TEST(LineReprojectionCostTest, GradientCheck) {
         OrthonormalLineFromPointDirection(world_T_camera * a, world_T_camera * b - world_T_camera * a);
     const Eigen::Vector2d p0(random.Uniform(0, 640), random.Uniform(0, 480));
     const Eigen::Vector2d p1(random.Uniform(0, 640), random.Uniform(0, 480));
-    std::unique_ptr<ceres::CostFunction> cost(LineReprojectionCost::Create(camera, p0, p1));
+    std::unique_ptr<ceres::CostFunction> cost(create(camera, p0, p1));
     const PoseParameters pose = PoseParameters::FromPose(world_T_base);
     const double* parameters[] = {pose.rotation.data(), pose.translation.data(), line.data()};
     ceres::GradientChecker checker(cost.get(), &manifolds, RiddersOptions());
@@ -204,6 +206,14 @@ TEST(LineReprojectionCostTest, GradientCheck) {
     EXPECT_TRUE(checker.Probe(parameters, kGradientTolerance, &results))
         << "trial " << trial << ": " << results.error_log;
   }
+}
+
+// Create's cost function: the analytic Jacobians (LineReprojectionCostFunction).
+TEST(LineReprojectionCostTest, GradientCheck) {
+  ExpectLineCostPassesGradientCheck(
+      [](const CameraModel& c, const Eigen::Vector2d& p0, const Eigen::Vector2d& p1) {
+        return LineReprojectionCost::Create(c, p0, p1);
+      });
 }
 
 // The analytic Jacobians (LineReprojectionCostFunction, what Create returns) against the automatic
@@ -255,29 +265,10 @@ TEST(LineReprojectionCostTest, AnalyticJacobiansMatchTheAutomaticOnes) {
 
 // The automatic reference itself through GradientChecker, as the analytic one above.
 TEST(LineReprojectionCostTest, GradientCheckOfTheAutomaticReference) {
-  Random random;
-  const CameraModel camera = RigCamera();
-  const Pose3 base_T_camera = testing::RobotCalibration().base_T_camera;
-  ceres::EigenQuaternionManifold quaternion;
-  OrthonormalLineManifold line_manifold;
-  const std::vector<const ceres::Manifold*> manifolds = {&quaternion, nullptr, &line_manifold};
-  for (int trial = 0; trial < kRandomTrials; ++trial) {
-    const Pose3 world_T_base = random.Pose();
-    const Pose3 world_T_camera = world_T_base * base_T_camera;
-    const Eigen::Vector3d a(random.Uniform(-2, 2), random.Uniform(-1.5, 1.5), random.Uniform(1, 8));
-    const Eigen::Vector3d b(random.Uniform(-2, 2), random.Uniform(-1.5, 1.5), random.Uniform(1, 8));
-    const OrthonormalLine line =
-        OrthonormalLineFromPointDirection(world_T_camera * a, world_T_camera * b - world_T_camera * a);
-    const Eigen::Vector2d p0(random.Uniform(0, 640), random.Uniform(0, 480));
-    const Eigen::Vector2d p1(random.Uniform(0, 640), random.Uniform(0, 480));
-    std::unique_ptr<ceres::CostFunction> cost(LineReprojectionCost::CreateAutoDiff(camera, p0, p1));
-    const PoseParameters pose = PoseParameters::FromPose(world_T_base);
-    const double* parameters[] = {pose.rotation.data(), pose.translation.data(), line.data()};
-    ceres::GradientChecker checker(cost.get(), &manifolds, RiddersOptions());
-    ceres::GradientChecker::ProbeResults results;
-    EXPECT_TRUE(checker.Probe(parameters, kGradientTolerance, &results))
-        << "trial " << trial << ": " << results.error_log;
-  }
+  ExpectLineCostPassesGradientCheck(
+      [](const CameraModel& c, const Eigen::Vector2d& p0, const Eigen::Vector2d& p1) {
+        return LineReprojectionCost::CreateAutoDiff(c, p0, p1);
+      });
 }
 
 TEST(OdometryPriorCostTest, HandBuiltValues) {
