@@ -2,9 +2,10 @@
 //
 // A camera P_i = K_i [R_i | t_i] and a camera K [R_i | t_i] at the same centre see the same rays,
 // so their images differ by the homography H_i = K K_i^-1 (Hartley and Zisserman, "Multiple View
-// Geometry", 2nd ed., section 8.4: cameras with a common centre map by x' = K' R K^-1 x, here R = I). With K_i and K upper triangular H_i is affine. Warping image i by H_i makes it an image of
-// K [R_i | t_i] exactly: the pose of each P's own decomposition then is the true pose for the shared
-// K, with no refit. The warped images are cropped to the largest axis-aligned rectangle that every
+// Geometry", 2nd ed., section 8.4: cameras with a common centre map by x' = K' R K^-1 x, here
+// R = I). With K_i and K upper triangular H_i is affine. Warping image i by H_i makes it an image
+// of K [R_i | t_i] exactly: the pose of each P's own decomposition then is the true pose for the
+// shared K, with no refit. The warped images are cropped to the largest axis-aligned rectangle that every
 // warped image covers completely, so that no frame has a border of fill (which would be edges).
 #pragma once
 
