@@ -32,7 +32,8 @@ struct ImportedFrame {
 
 struct ImportedSequence {
   Camera camera;  // of the source images (after their warps, when frames have one), before any scaling
-  int source_width = 0, source_height = 0;  // of the data set's images when frames are warped (0: the camera's)
+  // Of the data set's images when frames are warped (0: the camera's size).
+  int source_width = 0, source_height = 0;
   std::vector<ImportedFrame> frames;
   // Lines for the sequence's import_notes.txt: where K, the poses and the world frame come from.
   std::vector<std::string> notes;

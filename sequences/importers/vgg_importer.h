@@ -32,7 +32,8 @@ struct VggImportSummary {
   // the scene is in front of the cameras): the sequence's world is then the point reflection of the
   // files' frame, X_world = -X_file. VggFileToWorld applies it.
   bool world_mirrored = false;
-  Eigen::Matrix3d K = Eigen::Matrix3d::Identity();  // the sequence's K (median of the frames', skew 0; cropped when warped)
+  // The sequence's K (median of the frames', skew 0; its principal point moved by the crop when warped).
+  Eigen::Matrix3d K = Eigen::Matrix3d::Identity();
   std::vector<double> refit_rms_px;  // per frame: RMS distance, shared K and pose vs P, over the 3D points used
   // With warp_to_shared_k, per frame: sequence pixel = A (source pixel; 1), before any scaling.
   std::vector<Eigen::Matrix<double, 2, 3>> source_to_image;
