@@ -44,6 +44,10 @@ DEFINE_double(odometry_rotation_bias, kDefaults.odometry.rotation_bias,
 DEFINE_bool(vgg_refit_poses, sfm::VggImportOptions().refit_poses,
             "vgg: re-estimate each pose for the sequence's one K (median of the frames' K); false keeps R, C "
             "of each P's own decomposition, which reproject worse with the shared K.");
+DEFINE_bool(vgg_warp_to_shared_k, sfm::VggImportOptions().warp_to_shared_k,
+            "vgg: resample each image to the sequence's one K (H_i = K K_i^-1, cropped to the rectangle all frames "
+            "cover) and keep each P's own pose, exact for the warped images; writes image_warps.txt. "
+            "--vgg_refit_poses is then not used.");
 DEFINE_string(tum_camera, "fr1", "tum: which Kinect's published calibration to use: fr1, fr2 or fr3.");
 DEFINE_int32(tum_stride, sfm::TumImportOptions().stride, "tum: keep every N-th image that has ground truth.");
 DEFINE_double(tum_max_groundtruth_gap, sfm::TumImportOptions().max_groundtruth_gap,
@@ -55,6 +59,7 @@ sfm::Status ReadDataSet(sfm::ImportedSequence* sequence) {
   if (FLAGS_format == "vgg") {
     sfm::VggImportOptions options;
     options.refit_poses = FLAGS_vgg_refit_poses;
+    options.warp_to_shared_k = FLAGS_vgg_warp_to_shared_k;
     sfm::VggImportSummary summary;
     return sfm::ReadVggSequence(FLAGS_input, options, sequence, &summary);
   }

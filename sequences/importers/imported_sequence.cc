@@ -8,6 +8,7 @@
 #include <utility>
 
 #include <glog/logging.h>
+#include <opencv2/core/eigen.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
@@ -41,15 +42,35 @@ class TemporaryDirectory {
 
 std::string SizeText(int width, int height) { return std::to_string(width) + "x" + std::to_string(height); }
 
-// Decodes, checks and scales one image, and writes it as PNG.
-Status WriteFrameImage(const std::string& source, const Camera& source_camera, const cv::Size& size,
+// The data set's image size of the frames (that of the camera unless the frames are warped).
+cv::Size SourceSize(const ImportedSequence& sequence) {
+  return sequence.source_width > 0 ? cv::Size(sequence.source_width, sequence.source_height)
+                                   : cv::Size(sequence.camera.width, sequence.camera.height);
+}
+
+// Decodes, checks, warps (when the frame says so) and scales one image, and writes it as PNG.
+Status WriteFrameImage(const ImportedFrame& frame, const ImportedSequence& sequence, const cv::Size& size,
                        const fs::path& target) {
+  const std::string& source = frame.source_image;
   cv::Mat image;
   // 8-bit grey or colour, whatever the file holds (the pipeline converts to grey itself).
   SFM_RETURN_IF_ERROR(DecodeImage(source, cv::IMREAD_ANYCOLOR, &image));
-  if (image.cols != source_camera.width || image.rows != source_camera.height) {
+  const cv::Size source_size = SourceSize(sequence);
+  if (image.size() != source_size) {
     return Status::Error(source + ": image is " + SizeText(image.cols, image.rows) + ", expected " +
-                         SizeText(source_camera.width, source_camera.height));
+                         SizeText(source_size.width, source_size.height));
+  }
+  if (frame.source_to_image) {
+    // Bicubic: less smoothing than bilinear at the fractional shifts of a warp, so the junctions'
+    // gradients stay as sharp in every frame. warpAffine maps destination pixel centres through the
+    // inverse of A, the same convention as A. The replicated border is never read inside the crop
+    // (shared_intrinsics_warp.h keeps a margin for the bicubic support).
+    cv::Mat A;
+    cv::eigen2cv(Eigen::Matrix<double, 2, 3>(*frame.source_to_image), A);
+    cv::Mat warped;
+    cv::warpAffine(image, warped, A, cv::Size(sequence.camera.width, sequence.camera.height), cv::INTER_CUBIC,
+                   cv::BORDER_REPLICATE);
+    image = warped;
   }
   // INTER_AREA averages whole source pixels: no aliasing when shrinking, and it keeps the
   // pixel-centre mapping that ScaleCamera assumes.
@@ -72,6 +93,35 @@ std::string NotesText(const ImportedSequence& sequence, const SequenceWriteOptio
           ShortestNumberText(noise.scale_error) + ", distance_sigma " + ShortestNumberText(noise.distance_sigma) +
           ", rotation_sigma " + ShortestNumberText(noise.rotation_sigma) + " rad, rotation_bias " +
           ShortestNumberText(noise.rotation_bias) + " rad (camera y axis)\n";
+  return text;
+}
+
+// image_warps.txt: per frame, the affine map from the data set's pixels to the written image's,
+// the frame's warp followed by the scaling (x' = s (x + 0.5) - 0.5, image_scaling.h). Empty when no
+// frame is warped.
+std::string WarpsText(const ImportedSequence& sequence, const Camera& scaled) {
+  bool any = false;
+  for (const ImportedFrame& frame : sequence.frames) any = any || frame.source_to_image.has_value();
+  if (!any) return "";
+  const double sx = static_cast<double>(scaled.width) / sequence.camera.width;
+  const double sy = static_cast<double>(scaled.height) / sequence.camera.height;
+  Eigen::Matrix3d scaling;
+  scaling << sx, 0, 0.5 * sx - 0.5, 0, sy, 0.5 * sy - 0.5, 0, 0, 1;
+  std::string text =
+      "# image a11 a12 a13 a21 a22 a23: pixel of the image = [a11 a12 a13; a21 a22 a23] (pixel of the data set's "
+      "image; 1), OpenCV pixel-centre convention (import_sequence; docs/importers.md)\n";
+  for (size_t i = 0; i < sequence.frames.size(); ++i) {
+    Eigen::Matrix3d A = Eigen::Matrix3d::Identity();
+    if (sequence.frames[i].source_to_image) A.topRows<2>() = *sequence.frames[i].source_to_image;
+    const Eigen::Matrix3d total = scaling * A;
+    char name[32];
+    std::snprintf(name, sizeof(name), "images/%06zu.png", i);
+    text += name;
+    for (int r = 0; r < 2; ++r) {
+      for (int c = 0; c < 3; ++c) text += " " + ShortestNumberText(total(r, c));
+    }
+    text += "\n";
+  }
   return text;
 }
 
@@ -148,7 +198,7 @@ Status WriteImportedSequence(const ImportedSequence& sequence, const SequenceWri
     const ImportedFrame& frame = sequence.frames[i];
     char name[32];
     std::snprintf(name, sizeof(name), "images/%06zu.png", i);
-    SFM_RETURN_IF_ERROR(WriteFrameImage(frame.source_image, sequence.camera, size, temporary.path() / name));
+    SFM_RETURN_IF_ERROR(WriteFrameImage(frame, sequence, size, temporary.path() / name));
     image_list += ShortestNumberText(frame.timestamp) + " " + name + "\n";
     groundtruth_poses.push_back({frame.timestamp, truth[i]});
     odometry_poses.push_back({frame.timestamp, odometry[i]});
@@ -158,6 +208,8 @@ Status WriteImportedSequence(const ImportedSequence& sequence, const SequenceWri
   SFM_RETURN_IF_ERROR(WriteTumTrajectory((root / "groundtruth.txt").string(), groundtruth_poses));
   SFM_RETURN_IF_ERROR(WriteTumTrajectory((root / "odometry.txt").string(), odometry_poses));
   SFM_RETURN_IF_ERROR(WriteCalibration((root / "sequence.yaml").string(), calibration));
+  const std::string warps = WarpsText(sequence, calibration.camera);
+  if (!warps.empty()) SFM_RETURN_IF_ERROR(WriteFileAtomically((root / "image_warps.txt").string(), warps));
   SFM_RETURN_IF_ERROR(WriteFileAtomically((root / "import_notes.txt").string(),
                                           NotesText(sequence, options, calibration.camera)));
   SFM_RETURN_IF_ERROR(MoveIntoPlace(&temporary, target));

@@ -126,7 +126,7 @@ Status ReadTumSequence(const std::string& input_dir, const TumImportOptions& opt
       return Status::Error(list_path + ":" + std::to_string(image.line) + ": image file " + image.path +
                            " does not exist");
     }
-    imported.frames.push_back({image.timestamp, image.path, world_T_camera});
+    imported.frames.push_back({image.timestamp, image.path, world_T_camera, std::nullopt});
   }
   LOG(INFO) << "TUM: " << images.size() << " images in rgb.txt, " << outside << " outside the ground truth's time span, "
             << in_gap << " in ground-truth gaps over " << options.max_groundtruth_gap << " s; kept "

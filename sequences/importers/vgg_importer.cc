@@ -15,6 +15,7 @@
 #include "sequences/importers/projection_decomposition.h"
 #include "frontend/util/number_text.h"
 #include "sequences/importers/input_files.h"
+#include "sequences/importers/shared_intrinsics_warp.h"
 
 namespace sfm {
 namespace {
@@ -216,6 +217,29 @@ Status ReadVggSequence(const std::string& input_dir, const VggImportOptions& opt
   ImportedSequence imported;
   imported.camera.width = size.width;
   imported.camera.height = size.height;
+  std::string pose_note;
+  if (options.warp_to_shared_k) {
+    std::vector<Eigen::Matrix3d> frame_K;
+    for (const View& view : views) frame_K.push_back(view.decomposition.K);
+    SharedIntrinsicsWarp warp;
+    const Status status = WarpToSharedIntrinsics(frame_K, size.width, size.height, result.K, &warp);
+    if (!status.ok()) return Status::Error(input_dir + ": " + status.message());
+    imported.source_width = size.width;
+    imported.source_height = size.height;
+    imported.camera.width = warp.width;
+    imported.camera.height = warp.height;
+    result.K = warp.K;
+    result.source_to_image = warp.source_to_image;
+    pose_note = "poses: R, C of each P's RQ decomposition, exact for the warped images; images resampled (bicubic) "
+                "by H_i = K K_i^-1 to that K and cropped to the " + std::to_string(warp.width) + "x" +
+                std::to_string(warp.height) + " rectangle every warped frame covers (cx, cy moved by the crop to " +
+                ShortestNumberText(warp.K(0, 2)) + ", " + ShortestNumberText(warp.K(1, 2)) +
+                "); image_warps.txt maps the data set's pixels to the sequence's";
+    LOG(INFO) << "VGG: " << pose_note;
+  } else {
+    pose_note = options.refit_poses ? "poses: re-estimated for that K (PnP on " + name + ".p3d as each P projects it)"
+                                    : "poses: R, C of each P's RQ decomposition (with its own K, not the shared one)";
+  }
   imported.camera.fx = result.K(0, 0);
   imported.camera.fy = result.K(1, 1);
   imported.camera.cx = result.K(0, 2);
@@ -224,20 +248,20 @@ Status ReadVggSequence(const std::string& input_dir, const VggImportOptions& opt
     const View& view = views[i];
     Pose3 camera_T_world = view.decomposition.camera_T_world;
     double rms_px = 0;
-    if (options.refit_poses) {
+    if (options.refit_poses && !options.warp_to_shared_k) {
       SFM_RETURN_IF_ERROR(RefitPose(view, points, size, result.K, &camera_T_world, &rms_px));
       LOG(INFO) << "VGG: " << view.stem << ": pose refitted for the shared K, RMS " << rms_px << " px against P";
     }
     result.refit_rms_px.push_back(rms_px);
-    imported.frames.push_back({static_cast<double>(i) * kFrameInterval, view.image_path, camera_T_world.Inverse()});
+    ImportedFrame frame{static_cast<double>(i) * kFrameInterval, view.image_path, camera_T_world.Inverse(), std::nullopt};
+    if (options.warp_to_shared_k) frame.source_to_image = result.source_to_image[i];
+    imported.frames.push_back(frame);
   }
+  if (options.refit_poses && !options.warp_to_shared_k) pose_note += "; RMS " + RangeText(result.refit_rms_px) + " px";
   imported.notes.push_back("format: VGG multi-view, " + input_dir + ", " + std::to_string(views.size()) +
                            " frames " + views.front().stem + " .. " + views.back().stem);
   imported.notes.push_back(k_note);
-  imported.notes.push_back(options.refit_poses
-                               ? "poses: re-estimated for that K (PnP on " + name +
-                                     ".p3d as each P projects it; RMS " + RangeText(result.refit_rms_px) + " px)"
-                               : "poses: R, C of each P's RQ decomposition (with its own K, not the shared one)");
+  imported.notes.push_back(pose_note);
   imported.notes.push_back(result.world_mirrored
                                ? "world: X_world = -X_file, the point reflection of the files' left-handed frame"
                                : "world: the files' frame");

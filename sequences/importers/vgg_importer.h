@@ -19,6 +19,12 @@ struct VggImportOptions {
   // that K and pose together reproduce the images as well as one K can. false: each pose is R, C
   // of its own P's decomposition, which reproject with the shared K far worse (docs/importers.md).
   bool refit_poses = true;
+  // true: each image is resampled to the shared K instead (H_i = K K_i^-1, shared_intrinsics_warp.h)
+  // and cropped to the rectangle every warped frame covers; the poses are those of each P's own
+  // decomposition, exactly right for the warped images, and refit_poses is not used. The data set's
+  // own image measurements (bt.NNN.corners, .lines) then map to the sequence's pixels by the
+  // per-frame affine maps of image_warps.txt.
+  bool warp_to_shared_k = false;
 };
 
 struct VggImportSummary {
@@ -26,8 +32,11 @@ struct VggImportSummary {
   // the scene is in front of the cameras): the sequence's world is then the point reflection of the
   // files' frame, X_world = -X_file. VggFileToWorld applies it.
   bool world_mirrored = false;
-  Eigen::Matrix3d K = Eigen::Matrix3d::Identity();  // the sequence's K (median of the frames', skew 0)
+  // The sequence's K (median of the frames', skew 0; its principal point moved by the crop when warped).
+  Eigen::Matrix3d K = Eigen::Matrix3d::Identity();
   std::vector<double> refit_rms_px;  // per frame: RMS distance, shared K and pose vs P, over the 3D points used
+  // With warp_to_shared_k, per frame: sequence pixel = A (source pixel; 1), before any scaling.
+  std::vector<Eigen::Matrix<double, 2, 3>> source_to_image;
 };
 
 // Reads the VGG folder: every <name>.NNN.P with its <name>.NNN.pgm, in NNN order, and <name>.p3d.

@@ -124,5 +124,57 @@ TEST(ImportSequenceAppTest, ImportsAndRefusesToOverwriteUnlessAsked) {
   }
 }
 
+// image_warps.txt as a map per image: images/NNNNNN.png -> [a11 a12 a13; a21 a22 a23].
+std::vector<Eigen::Matrix<double, 2, 3>> ReadImageWarps(const fs::path& path) {
+  std::vector<Eigen::Matrix<double, 2, 3>> warps;
+  std::ifstream in(path);
+  std::string line;
+  while (std::getline(in, line)) {
+    if (line.empty() || line[0] == '#') continue;
+    std::istringstream fields(line);
+    std::string image;
+    Eigen::Matrix<double, 2, 3> A;
+    fields >> image >> A(0, 0) >> A(0, 1) >> A(0, 2) >> A(1, 0) >> A(1, 1) >> A(1, 2);
+    if (fields) warps.push_back(A);
+  }
+  return warps;
+}
+
+// --vgg_warp_to_shared_k through the app, with --scale: image_warps.txt must map the data set's
+// pixels to the written (scaled) image's, i.e. the warp followed by the pixel-centre scaling
+// x' = s (x + 0.5) - 0.5 of sequence.yaml's K (to 1e-9 px); without the flag no such file.
+TEST(ImportSequenceAppTest, VggWarpFileComposesTheScaling) {
+  const std::string data = testing::SharedDataDir("vgg-corridor");
+  if (data.empty()) GTEST_SKIP() << "../shared/data/vgg-corridor is absent";
+  const fs::path scratch = testing::MakeScratchDir("import_app_vgg_warp");
+  const std::string base = "--format vgg --input " + data + " --vgg_warp_to_shared_k --output ";
+  AppRun run = RunImport(scratch, base + (scratch / "full").string());
+  ASSERT_EQ(run.exit_status, 0) << run.stderr_text;
+  run = RunImport(scratch, base + (scratch / "half").string() + " --scale 0.5");
+  ASSERT_EQ(run.exit_status, 0) << run.stderr_text;
+  Sequence full, half;
+  ASSERT_TRUE(ReadSequence((scratch / "full").string(), &full).ok());
+  ASSERT_TRUE(ReadSequence((scratch / "half").string(), &half).ok());
+  const std::vector<Eigen::Matrix<double, 2, 3>> full_warps = ReadImageWarps(scratch / "full" / "image_warps.txt");
+  const std::vector<Eigen::Matrix<double, 2, 3>> half_warps = ReadImageWarps(scratch / "half" / "image_warps.txt");
+  ASSERT_EQ(full_warps.size(), 11u);
+  ASSERT_EQ(half_warps.size(), 11u);
+  const Camera& a = full.calibration.camera;
+  const Camera& b = half.calibration.camera;
+  const double sx = static_cast<double>(b.width) / a.width, sy = static_cast<double>(b.height) / a.height;
+  EXPECT_NEAR(b.cx, sx * (a.cx + 0.5) - 0.5, 1e-9);
+  for (size_t i = 0; i < 11; ++i) {
+    for (const Eigen::Vector3d& source :
+         {Eigen::Vector3d(0, 0, 1), Eigen::Vector3d(511, 17, 1), Eigen::Vector3d(100, 400, 1)}) {
+      const Eigen::Vector2d x = full_warps[i] * source;
+      const Eigen::Vector2d expected(sx * (x.x() + 0.5) - 0.5, sy * (x.y() + 0.5) - 0.5);
+      EXPECT_LT((half_warps[i] * source - expected).norm(), 1e-9) << "image " << i;
+    }
+  }
+  run = RunImport(scratch, "--format vgg --input " + data + " --output " + (scratch / "plain").string());
+  ASSERT_EQ(run.exit_status, 0) << run.stderr_text;
+  EXPECT_FALSE(fs::exists(scratch / "plain" / "image_warps.txt"));
+}
+
 }  // namespace
 }  // namespace sfm
