@@ -63,6 +63,9 @@ DEFINE_int32(match_refine_min_inliers, kDefaults.matching.refine_min_inliers,
              "Fewest supporting first-pass matches for the refined pose; fewer: keep the first pass.");
 DEFINE_bool(match_topology, kDefaults.matching.use_topology,
             "Match on sigma (junction topology, section 4.2) rather than on plain rho (34).");
+DEFINE_bool(match_partial, kDefaults.matching.match_partial,
+            "With --match_refine: in the guided pass, match junctions of k and k + 1 segments left unmatched through "
+            "their best common subset (partial correspondence, docs/matching.md).");
 
 DEFINE_bool(bundle_adjustment, kDefaults.bundle_adjustment,
             "Refine poses, points and lines with the Ceres bundle adjustment (false: outputs use the odometry).");
@@ -105,6 +108,7 @@ bool OptionsFromFlags(sfm::PipelineOptions* options, std::string* error) {
   options->matching.refine_geometry = FLAGS_match_refine;
   options->matching.refine_gate_sigmas = FLAGS_match_refine_gate;
   options->matching.refine_min_inliers = FLAGS_match_refine_min_inliers;
+  options->matching.match_partial = FLAGS_match_partial;
   options->bundle_adjustment = FLAGS_bundle_adjustment;
   options->bundle_adjustment_options.outlier_threshold_px = FLAGS_ba_outlier_threshold;
   options->bundle_adjustment_options.robust_loss_scale_px = FLAGS_ba_loss_scale;

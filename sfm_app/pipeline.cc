@@ -157,9 +157,6 @@ Status PipelineOptions::Check() const {
   SFM_RETURN_IF_ERROR(segments.Check());
   SFM_RETURN_IF_ERROR(junctions.Check());
   SFM_RETURN_IF_ERROR(matching.Check());
-  // Partial matches pair junctions of different segment counts; tracks (CheckMatch) and the report's
-  // match pictures still assume equal counts, so the pipeline refuses them until those follow.
-  if (matching.match_partial) return Status::Error("matching.match_partial is not supported by the pipeline yet");
   SFM_RETURN_IF_ERROR(triangulation.Check());
   return bundle_adjustment_options.Check();
 }

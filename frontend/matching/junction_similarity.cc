@@ -15,6 +15,25 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
+// True when segments a and b of one junction (its unit directions and detected line segments) are
+// one line through it, as junction detection reads a T's bar (docs/junctions.md, "Type"): both
+// from one detected line segment, or pointing opposite ways within the angle whose sine is min_sin.
+bool OneLine(const Eigen::Vector2d* directions, const int* line_segments, int a, int b, double min_sin) {
+  if (line_segments[a] >= 0 && line_segments[a] == line_segments[b]) return true;
+  const double cross = directions[a].x() * directions[b].y() - directions[a].y() * directions[b].x();
+  return directions[a].dot(directions[b]) < 0 && std::abs(cross) < min_sin;
+}
+
+// The pairs among segments indices[0..n) of a junction that are OneLine.
+int LinesThrough(const Eigen::Vector2d* directions, const int* line_segments, const int* indices, int n,
+                 double min_sin) {
+  int lines = 0;
+  for (int i = 0; i < n; ++i) {
+    for (int j = i + 1; j < n; ++j) lines += OneLine(directions, line_segments, indices[i], indices[j], min_sin);
+  }
+  return lines;
+}
+
 }  // namespace
 
 double Rho1(double d, double d_prime, double R, Rho1Kind kind) {
@@ -47,6 +66,7 @@ JunctionSimilarity::Side JunctionSimilarity::MakeSide(const Junctions& junctions
     for (const JunctionSegment& segment : junction.segments) {
       side.segments.push_back(OrientedSegment::FromPoints(junction.location, segment.end));
       side.directions.push_back(side.segments.back().direction);
+      side.line_segments.push_back(segment.line_segment);
       side.epipolar.push_back(MakeEndpointEpipolar(F, side.segments.back()));
     }
   }
@@ -269,12 +289,35 @@ PairSimilarity JunctionSimilarity::PartialRho(int index_a, int index_b) const {
   int subset[16];
   for (int i = 0; i < k + 1; ++i) all[i] = i;
   const bool a_larger = n_a > n_b;
+  const Side& larger = a_larger ? side_a_ : side_b_;
+  const int first_larger = larger.first[a_larger ? index_a : index_b];
+  const Eigen::Vector2d* larger_directions = larger.directions.data() + first_larger;
+  const int* larger_lines = larger.line_segments.data() + first_larger;
+  const Side& smaller = a_larger ? side_b_ : side_a_;
+  const int first_smaller = smaller.first[a_larger ? index_b : index_a];
+  const int smaller_lines_through =
+      LinesThrough(smaller.directions.data() + first_smaller, smaller.line_segments.data() + first_smaller, all, k,
+                   min_sin_);
   double best = 0;
   for (int missing = 0; missing <= k; ++missing) {
+    // Partial correspondence stands for a junction segment that detection missed in one frame.
+    // (a) A segment that continues another one straight through the location (half of a T's bar,
+    // of an X's line) is not missed alone: its line was detected; where the line stops at the
+    // junction in the other frame, the junction has moved along it, which is what an occluding
+    // edge does (the two image junctions are then not one 3D point).
+    bool continues_another = false;
+    for (int i = 0; i <= k; ++i) {
+      continues_another = continues_another || (i != missing && OneLine(larger_directions, larger_lines, missing, i, min_sin_));
+    }
+    if (continues_another) continue;
     // The larger junction's segments without `missing`, in their (clockwise) order.
     for (int i = 0, j = 0; i <= k; ++i) {
       if (i != missing) subset[j++] = i;
     }
+    // (b) Without its missed segment the larger junction is what detection reads in the other
+    // frame, so the kept segments must have the smaller junction's lines through the location: a
+    // T without its stem is a straight line, not an L (and an X without a half-line a T, not a Y).
+    if (LinesThrough(larger_directions, larger_lines, subset, k, min_sin_) != smaller_lines_through) continue;
     for (int shift = 0; shift < k; ++shift) {
       const std::optional<double> sum = a_larger ? SubsetSupport(index_a, index_b, subset, all, k, shift, bands)
                                                  : SubsetSupport(index_a, index_b, all, subset, k, shift, bands);

@@ -53,7 +53,11 @@ class JunctionSimilarity {
   // and (17) as for Rho, and M = (1/(k+1)) sum over the k pairings of H H': the left-out segment's
   // term is 0, so for equal per-segment support a partial M is k/(k+1) of a full one and never
   // outranks it. rho = 0.5 (rho1 + max M), rho1 and the band / cheirality tests as in Rho.
-  // Unmatched (shift -1) for other segment counts.
+  // The left-out segment must be one detection can miss alone: (a) not half of a line through the
+  // location (a T's bar, an X's lines: from one detected line segment, or opposite within
+  // cyclic_order_min_angle_deg), and (b) the kept segments have as many such lines as the smaller
+  // junction (a T without its stem is a straight line, not an L).
+  // Unmatched (shift -1) for other segment counts or when no segment may be left out.
   PairSimilarity PartialRho(int index_a, int index_b) const;
 
   // The junctions of b that Rho(index_a, .) does not reject by its first, cheap tests (same segment
@@ -99,6 +103,7 @@ class JunctionSimilarity {
     std::vector<double> deviation_bound;  // image 1 only: the band of the largest sigma_d' over image 2's locations
     std::vector<OrientedSegment> segments;
     std::vector<Eigen::Vector2d> directions;      // segments[k].direction, contiguous for (36)-(37)
+    std::vector<int> line_segments;               // JunctionSegment::line_segment of each
     std::vector<EndpointEpipolar> epipolar;       // of each end-point, into the other image
   };
   static Side MakeSide(const Junctions& junctions, const Eigen::Matrix3d& F);

@@ -49,9 +49,21 @@ void CheckMatch(const std::vector<Junctions>& frames, const FrameMatch& m) {
         m.match.index_b < static_cast<int>(b.size()))
       << "match (" << m.match.index_a << ", " << m.match.index_b << ") outside frames " << m.frame_a << " ("
       << a.size() << " junctions) and " << m.frame_b << " (" << b.size() << ")";
-  const int n = a[m.match.index_a].NumSegments();
-  CHECK_EQ(n, b[m.match.index_b].NumSegments()) << "matched junctions with different segment counts";
-  CHECK(m.match.shift >= 0 && m.match.shift < n) << "shift " << m.match.shift << " for " << n << " segments";
+  const int n_a = a[m.match.index_a].NumSegments();
+  const int n_b = b[m.match.index_b].NumSegments();
+  if (!m.match.Partial()) {
+    CHECK_EQ(n_a, n_b) << "full match between junctions with different segment counts";
+  } else {
+    // Partial: exactly one side names its left-out segment, and that side has one segment more.
+    CHECK((m.match.missing_a >= 0) != (m.match.missing_b >= 0)) << "partial match with two missing segments";
+    const int n_larger = m.match.missing_a >= 0 ? n_a : n_b;
+    const int missing = m.match.missing_a >= 0 ? m.match.missing_a : m.match.missing_b;
+    CHECK_EQ(n_larger, (m.match.missing_a >= 0 ? n_b : n_a) + 1)
+        << "partial match between junctions of " << n_a << " and " << n_b << " segments";
+    CHECK(missing < n_larger) << "missing segment " << missing << " of " << n_larger;
+  }
+  const int k = std::min(n_a, n_b);
+  CHECK(m.match.shift >= 0 && m.match.shift < k) << "shift " << m.match.shift << " for " << k << " segments";
 }
 
 }  // namespace
@@ -91,20 +103,27 @@ std::vector<JunctionTrack> BuildTracks(const std::vector<Junctions>& frames,
       ++counts.rejected_junction_conflict;
       continue;
     }
-    // Segment components never span two junction components, so each pairing can be tested alone.
-    const int n = frames[m.frame_a][m.match.index_a].NumSegments();
+    // The match's segment pairs (first_a + i, first_b + partner). Segment components never span
+    // two junction components, and a match's pairs join distinct components on each side, so each
+    // pair can be tested alone.
+    const int n_a = frames[m.frame_a][m.match.index_a].NumSegments();
+    const int n_b = frames[m.frame_b][m.match.index_b].NumSegments();
     const int first_a = nodes.segment_node[m.frame_a][m.match.index_a];
     const int first_b = nodes.segment_node[m.frame_b][m.match.index_b];
-    bool segments_agree = true;
-    for (int i = 0; i < n && segments_agree; ++i) {
-      segments_agree = segment_sets.CanUnion(first_a + i, first_b + (i + m.match.shift) % n);
+    std::vector<std::pair<int, int>> segment_pairs;
+    for (int i = 0; i < n_a; ++i) {
+      const int partner = PartnerSegment(m.match, i, n_a, n_b);
+      if (partner >= 0) segment_pairs.emplace_back(first_a + i, first_b + partner);
     }
+    const bool segments_agree =
+        std::all_of(segment_pairs.begin(), segment_pairs.end(),
+                    [&](const std::pair<int, int>& p) { return segment_sets.CanUnion(p.first, p.second); });
     if (!segments_agree) {
       ++counts.rejected_segment_conflict;
       continue;
     }
     junction_sets.Union(node_a, node_b);
-    for (int i = 0; i < n; ++i) segment_sets.Union(first_a + i, first_b + (i + m.match.shift) % n);
+    for (const auto& [segment_a, segment_b] : segment_pairs) segment_sets.Union(segment_a, segment_b);
     ++counts.accepted;
   }
 
@@ -126,23 +145,35 @@ std::vector<JunctionTrack> BuildTracks(const std::vector<Junctions>& frames,
     if (members.size() < 2) continue;
     JunctionTrack track;
     track.id = static_cast<int>(tracks.size());
-    // The track's segment s is the segment component of view 0's segment s.
-    const auto [frame0, junction0] = members.front();
-    const int n = frames[frame0][junction0].NumSegments();
-    std::map<int, int> track_segment_of_root;
-    for (int s = 0; s < n; ++s) {
-      track_segment_of_root[segment_sets.Find(nodes.segment_node[frame0][junction0] + s)] = s;
+    // The segment tracks: the components of the members' segments that reach two views, numbered in
+    // order of their first (view, segment); with full matches only, view 0's segment s is track
+    // segment s.
+    std::map<int, int> views_of_root;
+    for (const auto& [frame, junction] : members) {
+      for (int i = 0; i < frames[frame][junction].NumSegments(); ++i) {
+        ++views_of_root[segment_sets.Find(nodes.segment_node[frame][junction] + i)];
+      }
     }
+    std::map<int, int> track_segment_of_root;
+    for (const auto& [frame, junction] : members) {
+      for (int i = 0; i < frames[frame][junction].NumSegments(); ++i) {
+        const int root = segment_sets.Find(nodes.segment_node[frame][junction] + i);
+        if (views_of_root[root] >= 2 && !track_segment_of_root.count(root)) {
+          const int s = static_cast<int>(track_segment_of_root.size());
+          track_segment_of_root[root] = s;
+        }
+      }
+    }
+    const int num_segments = static_cast<int>(track_segment_of_root.size());
     for (const auto& [frame, junction] : members) {
       TrackView view;
       view.frame = frame;
       view.junction = junction;
-      view.segments.assign(n, -1);
-      for (int i = 0; i < n; ++i) {
+      view.segments.assign(num_segments, -1);
+      for (int i = 0; i < frames[frame][junction].NumSegments(); ++i) {
         const auto it =
             track_segment_of_root.find(segment_sets.Find(nodes.segment_node[frame][junction] + i));
-        CHECK(it != track_segment_of_root.end()) << "segment outside the track's segment tracks";
-        view.segments[it->second] = i;
+        if (it != track_segment_of_root.end()) view.segments[it->second] = i;
       }
       track.views.push_back(std::move(view));
     }

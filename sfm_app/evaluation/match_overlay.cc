@@ -84,11 +84,21 @@ cv::Mat DrawMatchOverlay(const cv::Mat& image_a, const Junctions& a, const cv::M
     const JunctionMatch& m = matches[k];
     const Junction& ja = a[m.index_a];
     const Junction& jb = b[m.index_b];
-    const int n = ja.NumSegments();
-    CHECK_EQ(n, jb.NumSegments());
-    for (int i = 0; i < n; ++i) {
+    const int n_a = ja.NumSegments();
+    const int n_b = jb.NumSegments();
+    // A partial match's left-out segment (missing_a or missing_b) has no partner: drawn like an
+    // unmatched junction's segments, thin and grey.
+    if (m.missing_a >= 0) {
+      cv::line(canvas, At(ja.location, scale, 0), At(ja.segments.at(m.missing_a).end, scale, 0), grey, 1, cv::LINE_AA, kShift);
+    }
+    if (m.missing_b >= 0) {
+      cv::line(canvas, At(jb.location, scale, offset_b), At(jb.segments.at(m.missing_b).end, scale, offset_b), grey, 1,
+               cv::LINE_AA, kShift);
+    }
+    for (int i = 0; i < n_a; ++i) {
+      const int j = PartnerSegment(m, i, n_a, n_b);
+      if (j < 0) continue;
       const cv::Scalar colour = kPalette[(i + 3 * static_cast<int>(k)) % kNumColours];
-      const int j = ((i + m.shift) % n + n) % n;
       cv::line(canvas, At(ja.location, scale, 0), At(ja.segments[i].end, scale, 0), colour, thickness, cv::LINE_AA, kShift);
       cv::line(canvas, At(jb.location, scale, offset_b), At(jb.segments[j].end, scale, offset_b), colour, thickness,
                cv::LINE_AA, kShift);

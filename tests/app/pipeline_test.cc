@@ -114,5 +114,46 @@ TEST_F(PipelineOnGeneratedRoom, BundleAdjustmentHalvesRotationDriftAndLowersAte)
   RecordProperty("ate_refined_m", std::to_string(result_.drift_refined->ate_m));
 }
 
+// Partial junction matches (MatchingOptions::match_partial: an L in one frame against a Y in the
+// other) go through the whole run: tracks join them through their common segments (the missing one
+// is -1 in that view), lines are triangulated from the views that have the segment, and the report's
+// match pictures draw them. Before, the pipeline refused the option.
+TEST(PipelineWithPartialMatches, CarriesThemIntoTracksLinesAndTheReport) {
+  const fs::path scratch = testing::MakeScratchDir("pipeline_partial");
+  GeneratorOptions generator;
+  generator.scene.type = SceneType::kRoom;
+  generator.trajectory.type = TrajectoryType::kLoop;
+  generator.trajectory.num_frames = 12;
+  generator.seed = 7;
+  ASSERT_TRUE(GenerateSequence(generator, (scratch / "sequence").string(), /*overwrite=*/true).ok());
+  PipelineOptions options;
+  options.sequence_dir = (scratch / "sequence").string();
+  options.output_dir = (scratch / "output").string();
+  options.show_progress = false;
+  options.matching.match_partial = true;
+  PipelineResult result;
+  const Status status = RunPipeline(options, &result);
+  ASSERT_TRUE(status.ok()) << status.message();
+
+  int partial_matches = 0;
+  for (const FramePairMatches& pair : result.pairs) {
+    for (const JunctionMatch& match : pair.matches) partial_matches += match.Partial();
+  }
+  EXPECT_GT(partial_matches, 0);
+  int views_without_a_segment = 0;
+  for (const JunctionTrack& track : result.tracks) {
+    for (const TrackView& view : track.views) {
+      ASSERT_EQ(static_cast<int>(view.segments.size()), track.NumSegments());
+      views_without_a_segment += std::count(view.segments.begin(), view.segments.end(), -1) > 0;
+    }
+  }
+  EXPECT_GT(views_without_a_segment, 0);
+  EXPECT_FALSE(result.landmarks.lines.empty());
+  for (const LineLandmark& line : result.landmarks.lines) {
+    for (const LineObservation& observation : line.observations) EXPECT_GE(observation.segment, 0);
+  }
+  EXPECT_TRUE(fs::exists(fs::path(options.output_dir) / "report.html"));
+}
+
 }  // namespace
 }  // namespace sfm

@@ -168,11 +168,16 @@ TEST(JunctionSimilarityTest, MirroredOrFarOrDifferentJunctionsAreUnmatched) {
 TEST(JunctionSimilarityTest, PartialRhoPairsAnLWithTheRightTwoSegmentsOfAY) {
   std::mt19937 rng(21);
   const TwoViews views = testing::MakeTwoViews();
+  int trials_run = 0;
   for (int trial = 0; trial < 20; ++trial) {
     const Junction3d y3d = testing::RandomJunction3d(views, 3, &rng);
     const ProjectedJunction y_a = testing::ProjectJunction(views, 0, y3d);
     const ProjectedJunction y_b = testing::ProjectJunction(views, 1, y3d);
     const int dropped_arm = trial % 3;
+    // A Y with two arms opposite within 5 degrees in an image reads as a T there (its bar); the
+    // partial rules for those are tested in partial_correspondence_test.cc (trial 9: 184.3 deg).
+    if (testing::HasLineThrough(y_a.junction, 5) || testing::HasLineThrough(y_b.junction, 5)) continue;
+    ++trials_run;
     auto without_arm = [&](const ProjectedJunction& y, std::vector<int>* arms) {
       Junction l = y.junction;
       arms->clear();
@@ -222,6 +227,7 @@ TEST(JunctionSimilarityTest, PartialRhoPairsAnLWithTheRightTwoSegmentsOfAY) {
     EXPECT_NEAR(full.Rho(0, 0).rho, 1, 1e-9);
     EXPECT_FALSE(full.PartialRho(0, 0).Matched()) << "equal counts are not partial";
   }
+  EXPECT_GE(trials_run, 15);
 }
 
 }  // namespace

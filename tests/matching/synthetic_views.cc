@@ -104,4 +104,16 @@ int TrueShift(const ProjectedJunction& a, const ProjectedJunction& b) {
   return -1;
 }
 
+bool HasLineThrough(const Junction& junction, double max_deg) {
+  const double max_sin = std::sin(max_deg * 3.14159265358979323846 / 180);
+  for (size_t i = 0; i < junction.segments.size(); ++i) {
+    for (size_t j = i + 1; j < junction.segments.size(); ++j) {
+      const Eigen::Vector2d u = (junction.segments[i].end - junction.location).normalized();
+      const Eigen::Vector2d v = (junction.segments[j].end - junction.location).normalized();
+      if (u.dot(v) < 0 && std::abs(u.x() * v.y() - u.y() * v.x()) < max_sin) return true;
+    }
+  }
+  return false;
+}
+
 }  // namespace sfm::testing

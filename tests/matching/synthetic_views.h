@@ -56,6 +56,10 @@ void Perturb(Junction* junction, double min_px, double max_px, double location_s
 // cameras are well shaped (20 px, 25 degrees).
 Junction3d RandomJunction3d(const TwoViews& views, int num_arms, std::mt19937* rng);
 
+// True when two segments of the junction point opposite ways within max_deg: a line through its
+// location, as junction detection reads a T's bar.
+bool HasLineThrough(const Junction& junction, double max_deg);
+
 // Segment correspondence between two images of one 3D junction as the shift of eq. (32): segment i
 // of a is segment (i + shift) mod N of b; -1 if they are not a cyclic shift of each other.
 int TrueShift(const ProjectedJunction& a, const ProjectedJunction& b);

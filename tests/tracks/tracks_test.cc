@@ -153,10 +153,91 @@ TEST(BuildTracksTest, UnmatchedJunctionsMakeNoTrack) {
   EXPECT_EQ(tracks[0].views[1].segments, (std::vector<int>{1, 0}));
 }
 
+// One junction per frame with counts[f] segments (ids as MakeFrames).
+std::vector<Junctions> MakeOneJunctionFrames(const std::vector<int>& counts) {
+  std::vector<Junctions> frames;
+  for (size_t f = 0; f < counts.size(); ++f) frames.push_back(MakeFrames({1}, counts[f])[0]);
+  return frames;
+}
+
+// A partial match: a junction of k segments against one of k + 1 (JunctionMatch::missing_a/_b).
+JunctionMatch Partial(double similarity, int shift, int missing_a, int missing_b) {
+  JunctionMatch match{0, 0, similarity, shift};
+  match.missing_a = missing_a;
+  match.missing_b = missing_b;
+  return match;
+}
+
+TEST(BuildTracksTest, APartialMatchJoinsItsCommonSegmentsAndLeavesTheMissingOneOut) {
+  // A Y with arms A, B, C. Frame 0: A, B, C = segments 0, 1, 2; frame 1: 1, 2, 0 (shift 1); frame
+  // 2 misses B and sees an L with A = 1, C = 0; frame 3: 0, 1, 2 again. The matches 1 -> 2
+  // (missing_a = 2, B of frame 1; frame 1 without it is C, A = 0, 1, onto the L's 0, 1: shift 0)
+  // and 2 -> 3 (missing_b = 1, B; frame 3 without it is A, C = 0, 1; the L's C (0) is 1: shift 1)
+  // are partial; 0 -> 1 (shift 1) and the two-back 1 -> 3 (shift 2) full.
+  const std::vector<Junctions> frames = MakeOneJunctionFrames({3, 3, 2, 3});
+  std::vector<FramePairMatches> pairs = {Pair(0, 1, {{0, 0, 0.9, 1}}), Pair(1, 2, {Partial(0.8, 0, 2, -1)}),
+                                         Pair(1, 3, {{0, 0, 0.6, 2}}), Pair(2, 3, {Partial(0.7, 1, -1, 1)})};
+  TrackBuildReport report;
+  std::vector<JunctionTrack> tracks = BuildTracks(frames, pairs, &report);
+  ASSERT_EQ(tracks.size(), 1u);
+  EXPECT_EQ(report.accepted, 4);
+  EXPECT_EQ(FrameJunctions(tracks[0]), (Views{{0, 0}, {1, 0}, {2, 0}, {3, 0}}));
+  // Segment tracks A, B, C in the order of frame 0's segments; frame 2 has no B.
+  ASSERT_EQ(tracks[0].NumSegments(), 3);
+  EXPECT_EQ(tracks[0].views[0].segments, (std::vector<int>{0, 1, 2}));
+  EXPECT_EQ(tracks[0].views[1].segments, (std::vector<int>{1, 2, 0}));
+  EXPECT_EQ(tracks[0].views[2].segments, (std::vector<int>{1, -1, 0}));
+  EXPECT_EQ(tracks[0].views[3].segments, (std::vector<int>{0, 1, 2}));
+
+  // Without the two-back match, B of frame 3 is paired with nothing: it is in no segment track
+  // (a segment track needs two views), while A and C still run through the L of frame 2.
+  pairs.erase(pairs.begin() + 2);
+  tracks = BuildTracks(frames, pairs, &report);
+  ASSERT_EQ(tracks.size(), 1u);
+  EXPECT_EQ(report.accepted, 3);
+  ASSERT_EQ(tracks[0].NumSegments(), 3);
+  EXPECT_EQ(tracks[0].views[2].segments, (std::vector<int>{1, -1, 0}));
+  EXPECT_EQ(tracks[0].views[3].segments, (std::vector<int>{0, -1, 2}));
+}
+
+TEST(BuildTracksTest, AnLMatchedOnlyToAYMakesTwoSegmentTracks) {
+  // Frame 0: an L (A, C = 0, 1); frame 1: a Y (A, B, C = 0, 1, 2), B missing. The Y's B is in no
+  // segment track, and the track's segment s is the L's segment s.
+  const std::vector<Junctions> frames = MakeOneJunctionFrames({2, 3});
+  const std::vector<JunctionTrack> tracks = BuildTracks(frames, {Pair(0, 1, {Partial(0.8, 0, -1, 1)})});
+  ASSERT_EQ(tracks.size(), 1u);
+  ASSERT_EQ(tracks[0].NumSegments(), 2);
+  EXPECT_EQ(tracks[0].views[0].segments, (std::vector<int>{0, 1}));
+  EXPECT_EQ(tracks[0].views[1].segments, (std::vector<int>{0, 2}));
+}
+
+TEST(BuildTracksTest, APartialMatchThatDisagreesWithTheTrackIsRejected) {
+  // Frames 0 and 1: a Y (A, B, C = 0, 1, 2); frame 2: an L (A, C = 0, 1). 0 -> 1 full (shift 0) and
+  // 0 -> 2 partial (missing_a = 1, shift 0: A -> A, C -> C) agree; a weaker 1 -> 2 with shift 1
+  // (A -> C, C -> A) would put both L segments into one segment track with A.
+  const std::vector<Junctions> frames = MakeOneJunctionFrames({3, 3, 2});
+  TrackBuildReport report;
+  const std::vector<JunctionTrack> tracks = BuildTracks(
+      frames, {Pair(0, 1, {{0, 0, 0.9, 0}}), Pair(0, 2, {Partial(0.8, 0, 1, -1)}), Pair(1, 2, {Partial(0.7, 1, 1, -1)})},
+      &report);
+  ASSERT_EQ(tracks.size(), 1u);
+  EXPECT_EQ(report.accepted, 2);
+  EXPECT_EQ(report.rejected_segment_conflict, 1);
+  EXPECT_EQ(tracks[0].views[2].segments, (std::vector<int>{0, -1, 1}));
+}
+
 TEST(BuildTracksDeathTest, AMatchOutsideTheFramesIsAProgrammerError) {
   const std::vector<Junctions> frames = MakeFrames({1, 1}, 2);
   EXPECT_DEATH(BuildTracks(frames, {Pair(0, 1, {{0, 1, 0.9, 0}})}), "outside frames");
   EXPECT_DEATH(BuildTracks(frames, {Pair(0, 1, {{0, 0, 0.9, 2}})}), "shift 2 for 2 segments");
+  // Partial matches: the larger junction must have one segment more, and the shift is over k.
+  const std::vector<Junctions> l_and_y = MakeOneJunctionFrames({2, 3});
+  EXPECT_DEATH(BuildTracks(frames, {Pair(0, 1, {Partial(0.9, 0, -1, 1)})}), "partial match between junctions");
+  EXPECT_DEATH(BuildTracks(l_and_y, {Pair(0, 1, {Partial(0.9, 0, 1, -1)})}), "partial match between junctions");
+  EXPECT_DEATH(BuildTracks(l_and_y, {Pair(0, 1, {Partial(0.9, 0, 0, 1)})}), "two missing segments");
+  EXPECT_DEATH(BuildTracks(l_and_y, {Pair(0, 1, {Partial(0.9, 0, -1, 3)})}), "missing segment 3 of 3");
+  EXPECT_DEATH(BuildTracks(l_and_y, {Pair(0, 1, {Partial(0.9, 2, -1, 1)})}), "shift 2 for 2 segments");
+  EXPECT_DEATH(BuildTracks(l_and_y, {Pair(0, 1, {{0, 0, 0.9, 0}})}), "full match between junctions");
 }
 
 }  // namespace

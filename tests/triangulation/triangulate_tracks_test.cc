@@ -114,6 +114,29 @@ TEST(TriangulateTracksTest, MakesPointsAndBoundedLinesAndCountsTheFailures) {
   }
 }
 
+// A view without the segment (-1 in TrackView::segments: a partial match, an L in frame 2 where the
+// other frames see the corner's three arms) is left out of that segment track's line; the line
+// comes from the other four views, as exactly as from all five (1e-9 m).
+TEST(TriangulateTracksTest, AViewWithoutTheSegmentIsLeftOutOfItsLine) {
+  const Eigen::Vector3d corner(5, 1.5, 1.8);
+  const std::vector<Eigen::Vector3d> ends = {corner + Eigen::Vector3d(1.5, 0, 0),
+                                             corner + Eigen::Vector3d(0, 0, -1.2),
+                                             corner + Eigen::Vector3d(0, -0.8, 0)};
+  const Eigen::Vector3d far_corner(80, -2, 2);
+  Scene scene = MakeScene(corner, ends, far_corner,
+                          {far_corner + Eigen::Vector3d(0, 0, -1), far_corner + Eigen::Vector3d(0, 1, 0)});
+  ASSERT_EQ(scene.tracks[0].NumSegments(), 3);
+  scene.tracks[0].views[2].segments[2] = -1;
+  const Landmarks landmarks =
+      TriangulateTracks(TestK(), scene.cameras, scene.frames, scene.tracks, TriangulationOptions());
+  ASSERT_EQ(landmarks.lines.size(), 2u);
+  EXPECT_EQ(landmarks.lines[0].observations.size(), 5u);
+  const LineLandmark& line = landmarks.lines[1];
+  EXPECT_LT((line.end1 - ends[2]).norm(), 1e-9);
+  ASSERT_EQ(line.observations.size(), 4u);
+  for (const LineObservation& observation : line.observations) EXPECT_NE(observation.frame, 2);
+}
+
 TEST(TriangulateTracksTest, NoTrackNoLandmark) {
   TriangulationReport report;
   const Landmarks landmarks =
