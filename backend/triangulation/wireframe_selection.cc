@@ -89,7 +89,7 @@ Landmarks SelectWireframeLandmarks(const Eigen::Matrix3d& K, const std::vector<P
   auto determined = [&](double sigma, double depth) {
     return depth > 0 && sigma <= MaxVertexSigma(bound_options, fx, depth);
   };
-  const PoseDrift drift{options.pose_rotation_step_rad};
+  const PoseDrift drift{options.pose_rotation_step_rad, options.pose_translation_step_m};
   WireframeSelectionReport counts;
   Landmarks selected;
   std::vector<int> new_index(landmarks.points.size(), -1);

@@ -5,6 +5,7 @@
 #include <random>
 
 #include "backend/triangulation/landmark_uncertainty.h"
+#include "backend/triangulation/triangulation_options.h"
 #include "tests/triangulation/synthetic_cameras.h"
 
 namespace sfm {
@@ -66,6 +67,14 @@ TEST(PoseDriftTest, LineSigmaAddsTheRelativeTranslationDrift) {
   drift.rotation_step_rad = rotation_step;
   const double both = std::sqrt(translation * translation + rotation * rotation - pixels * pixels);
   EXPECT_NEAR(LinePositionSigma(K, views, {0, 0, Z}, Eigen::Vector3d::UnitY(), sigma, drift), both, 0.02 * both);
+}
+
+TEST(PoseDriftTest, BadTranslationStepIsRejected) {
+  WireframeOptions options;
+  options.pose_translation_step_m = -1e-4;
+  EXPECT_FALSE(options.Check().ok());
+  options.pose_translation_step_m = std::nan("");
+  EXPECT_FALSE(options.Check().ok());
 }
 
 }  // namespace
