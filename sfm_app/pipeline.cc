@@ -140,10 +140,11 @@ void SelectWireframe(const Sequence& sequence, const PipelineOptions& options, P
       result->world_T_camera_refined.empty() ? result->world_T_camera_odometry : result->world_T_camera_refined;
   WireframeSelectionReport& report = result->wireframe_selection;
   result->wireframe_landmarks = SelectWireframeLandmarks(sequence.calibration.camera.K(), poses, result->landmarks,
-                                                         options.triangulation.wireframe, &report);
+                                                         result->junctions, options.triangulation.wireframe, &report);
   LOG(INFO) << "wireframe: " << report.points_kept << " of " << result->landmarks.points.size() << " points and "
             << report.lines_kept << " of " << result->landmarks.lines.size() << " lines drawn (pixel noise "
-            << report.pixel_sigma_px << " px); not drawn: points " << report.points_untestable << " untestable, "
+            << report.pixel_sigma_px << " px); not drawn: points " << report.points_untestable << " untestable, " << report.points_occlusion_untested
+            << " occlusion candidates with too few views, "
             << report.points_inconsistent << " inconsistent, " << report.points_uncertain << " undetermined; lines "
             << report.lines_untestable << " untestable, " << report.lines_inconsistent << " inconsistent, "
             << report.lines_uncertain_end0 + report.lines_uncertain_end1 << " undetermined, " << report.lines_unbounded

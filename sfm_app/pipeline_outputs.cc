@@ -97,6 +97,7 @@ std::string WireframeJson(const PipelineResult& result) {
   return "{\"points\": " + std::to_string(report.points_kept) + ", \"lines\": " + std::to_string(report.lines_kept) +
          ", \"pixel_sigma_px\": " + JsonNumber(report.pixel_sigma_px) +
          ", \"points_untestable\": " + std::to_string(report.points_untestable) +
+         ", \"points_occlusion_untested\": " + std::to_string(report.points_occlusion_untested) +
          ", \"points_inconsistent\": " + std::to_string(report.points_inconsistent) +
          ", \"points_undetermined\": " + std::to_string(report.points_uncertain) +
          ", \"lines_untestable\": " + std::to_string(report.lines_untestable) +

@@ -32,11 +32,30 @@ Eigen::Matrix<double, 2, 3> PixelByRotation(const Eigen::Matrix3d& K, const Eige
   return K.topLeftCorner<2, 2>() * d_normalised * p_cross;
 }
 
-// rotation_step^2 min(f_i - f0, f_j - f0): the covariance of two views' rotations relative to the
-// first frame f0 under PoseDrift's random walk.
-double DriftCovariance(const PoseDrift& drift, int frame_i, int frame_j, int first_frame) {
-  return drift.rotation_step_rad * drift.rotation_step_rad * std::min(frame_i - first_frame, frame_j - first_frame);
+// d pixel / d (camera rotation, camera centre) at `p` (camera frame), 2 x 6: PixelByRotation, and
+// -J for the centre (moving the camera by dc moves the point by -dc relative to it).
+Eigen::Matrix<double, 2, 6> PixelByPose(const Eigen::Matrix3d& K, const Eigen::Matrix<double, 2, 3>& J,
+                                        const Eigen::Vector3d& p) {
+  Eigen::Matrix<double, 2, 6> B;
+  B << PixelByRotation(K, p), -J;
+  return B;
 }
+
+// The covariance of one step of PoseDrift's random walk, (rotation, centre) per axis: 6 x 6 diagonal.
+Eigen::Matrix<double, 6, 6> StepCovariance(const PoseDrift& drift) {
+  Eigen::Matrix<double, 6, 1> diagonal;
+  diagonal << Eigen::Vector3d::Constant(drift.rotation_step_rad * drift.rotation_step_rad),
+      Eigen::Vector3d::Constant(drift.translation_step_m * drift.translation_step_m);
+  return diagonal.asDiagonal();
+}
+
+// min(f_i - f0, f_j - f0): the number of random-walk steps two views' poses relative to the first
+// frame f0 share, so their covariance is that times StepCovariance.
+double SharedSteps(int frame_i, int frame_j, int first_frame) {
+  return std::min(frame_i - first_frame, frame_j - first_frame);
+}
+
+bool HasDrift(const PoseDrift& drift) { return drift.rotation_step_rad != 0 || drift.translation_step_m != 0; }
 
 // The largest eigenvalue's square root of a symmetric matrix.
 template <int N>
@@ -89,25 +108,27 @@ double PointPositionSigma(const Eigen::Matrix3d& K, const std::vector<Pose3>& wo
                           const PoseDrift& drift) {
   CHECK_EQ(world_T_camera.size(), frames.size());
   const double pixel_only = PointPositionSigma(K, world_T_camera, point, sigma_px);
-  if (!std::isfinite(pixel_only) || drift.rotation_step_rad == 0) return pixel_only;
+  if (!std::isfinite(pixel_only) || !HasDrift(drift)) return pixel_only;
   const size_t n = world_T_camera.size();
   Eigen::Matrix3d information = Eigen::Matrix3d::Zero();
-  std::vector<Eigen::Matrix<double, 2, 3>> J(n), B(n);
+  std::vector<Eigen::Matrix<double, 2, 3>> J(n);
+  std::vector<Eigen::Matrix<double, 2, 6>> B(n);
   for (size_t i = 0; i < n; ++i) {
     const Pose3 camera_T_world = world_T_camera[i].Inverse();
     const Eigen::Vector3d p = camera_T_world * point;  // z > 0: pixel_only is finite
     J[i] = PixelJacobian(K, camera_T_world.RotationMatrix(), p);
-    B[i] = PixelByRotation(K, p);
+    B[i] = PixelByPose(K, J[i], p);
     information += J[i].transpose() * J[i];
   }
   const Eigen::Matrix3d inverse = information.inverse();
   const int first_frame = *std::min_element(frames.begin(), frames.end());
-  std::vector<Eigen::Matrix3d> gain(n);
+  const Eigen::Matrix<double, 6, 6> step = StepCovariance(drift);
+  std::vector<Eigen::Matrix<double, 3, 6>> gain(n);
   for (size_t i = 0; i < n; ++i) gain[i] = inverse * J[i].transpose() * B[i];
   Eigen::Matrix3d covariance = sigma_px * sigma_px * inverse;
   for (size_t i = 0; i < n; ++i) {
     for (size_t j = 0; j < n; ++j) {
-      covariance += DriftCovariance(drift, frames[i], frames[j], first_frame) * gain[i] * gain[j].transpose();
+      covariance += SharedSteps(frames[i], frames[j], first_frame) * gain[i] * step * gain[j].transpose();
     }
   }
   return WorstSigma<3>(covariance);
@@ -117,9 +138,10 @@ double LinePositionSigma(const Eigen::Matrix3d& K, const std::vector<LineSegment
                          const Eigen::Vector3d& x, const Eigen::Vector3d& direction, double sigma_px,
                          const PoseDrift& drift) {
   Eigen::Matrix3d information = Eigen::Matrix3d::Zero();
-  // Per view: g_i / var_i (the weighted gain's direction) and m_i^T B_i (the rotation's shift).
+  // Per view: g_i / var_i (the weighted gain's direction) and m_i^T B_i (the pose's shift of the
+  // image line across itself at x's projection).
   std::vector<Eigen::Vector3d> weighted_gradient;
-  std::vector<Eigen::RowVector3d> line_by_rotation;
+  std::vector<Eigen::Matrix<double, 1, 6>> line_by_pose;
   for (const LineSegmentView& view : views) {
     const Pose3 camera_T_world = view.world_T_camera.Inverse();
     const Eigen::Vector3d p = camera_T_world * x;
@@ -129,11 +151,12 @@ double LinePositionSigma(const Eigen::Matrix3d& K, const std::vector<LineSegment
     CHECK_GT(along.squaredNorm(), 0) << "a line view needs p0 != p1";
     const double t = (pixel - view.p0).dot(along) / along.squaredNorm();
     const Eigen::Vector2d normal = Eigen::Vector2d(-along.y(), along.x()).normalized();
-    const Eigen::Vector3d g = PixelJacobian(K, camera_T_world.RotationMatrix(), p).transpose() * normal;
+    const Eigen::Matrix<double, 2, 3> J = PixelJacobian(K, camera_T_world.RotationMatrix(), p);
+    const Eigen::Vector3d g = J.transpose() * normal;
     const double variance = (1 - t) * (1 - t) + t * t;
     information += g * g.transpose() / variance;
     weighted_gradient.push_back(g / variance);
-    line_by_rotation.push_back(normal.transpose() * PixelByRotation(K, p));
+    line_by_pose.push_back(normal.transpose() * PixelByPose(K, J, p));
   }
   const Eigen::Vector3d u = direction.normalized();
   const Eigen::Vector3d a = u.unitOrthogonal(), b = u.cross(a);
@@ -142,19 +165,21 @@ double LinePositionSigma(const Eigen::Matrix3d& K, const std::vector<LineSegment
   const Eigen::Matrix2d across = plane.transpose() * information * plane;
   const double smallest = Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(across).eigenvalues().minCoeff();
   if (!(smallest > 1e-12 * across.trace())) return kInfinity;
-  if (drift.rotation_step_rad == 0) return sigma_px / std::sqrt(smallest);
+  if (!HasDrift(drift)) return sigma_px / std::sqrt(smallest);
   const Eigen::Matrix2d inverse = across.inverse();
   int first_frame = views.front().frame;
   for (const LineSegmentView& view : views) first_frame = std::min(first_frame, view.frame);
-  // x's shift across the line from view i's rotation: inverse P^T (g_i / var_i) (m_i^T B_i) dtheta_i.
-  std::vector<Eigen::Matrix<double, 2, 3>> gain;
+  // x's shift across the line from view i's pose error d_i (rotation, centre):
+  // inverse P^T (g_i / var_i) (m_i^T B_i) d_i.
+  const Eigen::Matrix<double, 6, 6> step = StepCovariance(drift);
+  std::vector<Eigen::Matrix<double, 2, 6>> gain;
   for (size_t i = 0; i < views.size(); ++i) {
-    gain.push_back(inverse * plane.transpose() * weighted_gradient[i] * line_by_rotation[i]);
+    gain.push_back(inverse * plane.transpose() * weighted_gradient[i] * line_by_pose[i]);
   }
   Eigen::Matrix2d covariance = sigma_px * sigma_px * inverse;
   for (size_t i = 0; i < views.size(); ++i) {
     for (size_t j = 0; j < views.size(); ++j) {
-      covariance += DriftCovariance(drift, views[i].frame, views[j].frame, first_frame) * gain[i] * gain[j].transpose();
+      covariance += SharedSteps(views[i].frame, views[j].frame, first_frame) * gain[i] * step * gain[j].transpose();
     }
   }
   return WorstSigma<2>(covariance);

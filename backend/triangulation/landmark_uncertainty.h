@@ -27,10 +27,15 @@ struct LineSegmentView {
 // error is correlated along the path and does not average down over the views as pixel noise does.
 // The part common to all views (the rotation at f0) turns the whole landmark rigidly about nearby
 // centres, a shift of about depth x angle (millimetres: the trajectory's absolute drift), not the
-// landmark's own conditioning; it is left out. Rotation only: docs/tracks_and_triangulation.md,
-// "Pose error in the determination test". 0: pixel noise only.
+// landmark's own conditioning; it is left out. The camera centres' error likewise
+// (translation_step_m): docs/tracks_and_triangulation.md, "Pose error in the determination test"
+// and "Translation drift". Both 0: pixel noise only.
 struct PoseDrift {
   double rotation_step_rad = 0;
+  // The camera centres' error as the same kind of random walk, metres per axis per frame, relative
+  // to f0 likewise (and independent of the rotations'). A view's centre off by dc moves its pixel
+  // as the point moving by -dc would.
+  double translation_step_m = 0;
 };
 
 // Standard deviation, metres, of `point` along its worst-determined direction: the square root of
@@ -42,10 +47,10 @@ double PointPositionSigma(const Eigen::Matrix3d& K, const std::vector<Pose3>& wo
                           const Eigen::Vector3d& point, double sigma_px);
 
 // The same with the poses' error added: the least-squares triangulation weighs the views by the
-// pixel noise alone, so the rotations' errors reach the point through its gain
-// G_i = (sum J^T J)^-1 J_i^T B_i (B_i the 2x3 derivative of view i's pixel by its camera's
-// rotation), Cov = sigma_px^2 (sum J^T J)^-1 + sum_ij G_i C_ij G_j^T, C_ij from `drift` with
-// frames[i] the frame of view i (same size as world_T_camera).
+// pixel noise alone, so the poses' errors reach the point through its gain
+// G_i = (sum J^T J)^-1 J_i^T B_i (B_i the 2x6 derivative of view i's pixel by its camera's
+// rotation and centre; -J_i for the centre), Cov = sigma_px^2 (sum J^T J)^-1 + sum_ij G_i C_ij
+// G_j^T, C_ij from `drift` with frames[i] the frame of view i (same size as world_T_camera).
 double PointPositionSigma(const Eigen::Matrix3d& K, const std::vector<Pose3>& world_T_camera,
                           const std::vector<int>& frames, const Eigen::Vector3d& point, double sigma_px,
                           const PoseDrift& drift);
@@ -62,9 +67,10 @@ double PointPositionSigma(const Eigen::Matrix3d& K, const std::vector<Pose3>& wo
 double LinePositionSigma(const Eigen::Matrix3d& K, const std::vector<LineSegmentView>& views,
                          const Eigen::Vector3d& x, const Eigen::Vector3d& direction, double sigma_px,
                          const PoseDrift& drift = PoseDrift());
-// With `drift`: a camera rotation moves view i's image line across itself, at x's projection, by
-// m_i^T B_i dtheta_i; that reaches x through the same weighted least squares as the pixel noise
-// (weights 1 / var_i), and the views' rotations are correlated by `drift` (views[i].frame).
+// With `drift`: a camera's pose error d_i (rotation, centre) moves view i's image line across
+// itself, at x's projection, by m_i^T B_i d_i; that reaches x through the same weighted least
+// squares as the pixel noise (weights 1 / var_i), and the views' poses are correlated by `drift`
+// (views[i].frame).
 
 // The chi-square statistic of a point's residuals, sum_i |pixel_i - project_i(point)|^2 / sigma_px^2
 // (2 per view), and its degrees of freedom 2n - 3. +infinity when the point is behind a camera.

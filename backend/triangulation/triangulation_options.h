@@ -100,9 +100,26 @@ struct WireframeOptions {
   // sigma), i.e. what bundle adjustment leaves of the odometry's 0.002 rad per frame. Not a
   // measure of the wireframe. A pipeline that knows its poses better or worse sets it.
   double pose_rotation_step_rad = 0.0002;
+  // The final poses' camera-centre error, the same kind of random walk: metres per axis per frame,
+  // >= 0 (0: none). 0.0006: the refined trajectories' translation RPE on the generated sequences
+  // with the default odometry noise, 0.0008-0.0013 m per frame (an RMS length: sqrt(3) x the
+  // per-axis sigma, 0.00046-0.00073). Like the rotation's, a property of the refinement.
+  double pose_translation_step_m = 0.0006;
+  // A point whose junction is a T or an X in some view is an occlusion candidate: its location may
+  // be where a nearer edge crosses a farther one in the image, which slides along the edges as the
+  // camera moves and is no 3D point. With two views the point's test has one degree of freedom
+  // (the epipolar constraint), blind to a slide along the epipolar line, which moves the point
+  // along its viewing ray; and it is no test of the junction correspondence either (a right match
+  // need not pass, a wrong one can). So such a point, and with it its two-view lines (rule 0), is
+  // drawn only with at least this many views: three are the fewest in which a point's position
+  // along one view's epipolar line is predicted by the others. The types are known only when
+  // SelectWireframeLandmarks is given the junctions. >= 2 (2: no extra rule).
+  // docs/tracks_and_triangulation.md, "Occlusion candidates".
+  int occlusion_candidate_min_views = 3;
 
   Status Check() const {
     auto bad = [](const std::string& what) { return Status::Error("WireframeOptions: " + what); };
+    if (occlusion_candidate_min_views < 2) return bad("occlusion_candidate_min_views must be >= 2");
     if (!(pixel_sigma_px > 0 && std::isfinite(pixel_sigma_px))) return bad("pixel_sigma_px must be finite and > 0");
     if (!(consistency_level > 0 && consistency_level < 1)) return bad("consistency_level must be in (0, 1)");
     if (!(min_equivalent_parallax_deg > 0 && min_equivalent_parallax_deg < 90)) {
@@ -110,6 +127,9 @@ struct WireframeOptions {
     }
     if (!(pose_rotation_step_rad >= 0 && std::isfinite(pose_rotation_step_rad))) {
       return bad("pose_rotation_step_rad must be finite and >= 0");
+    }
+    if (!(pose_translation_step_m >= 0 && std::isfinite(pose_translation_step_m))) {
+      return bad("pose_translation_step_m must be finite and >= 0");
     }
     return Status::Ok();
   }

@@ -40,6 +40,19 @@ bool BoundOnFinalPoses(const Eigen::Matrix3d& K, const std::vector<LineView>& vi
   return BoundLine(K, views, Line3{line.point, line.direction}, junction_point, options, segment) == LineStatus::kOk;
 }
 
+// A T (a nearer edge cutting a farther one) or an X (two edges crossing) may be an occlusion, not
+// a 3D vertex, in any view that sees it so.
+bool IsOcclusionCandidate(const std::vector<Junctions>& junctions, const PointLandmark& point) {
+  for (const PointObservation& observation : point.observations) {
+    CHECK(observation.frame >= 0 && observation.frame < static_cast<int>(junctions.size())) << observation.frame;
+    const Junctions& frame = junctions[observation.frame];
+    CHECK(observation.junction >= 0 && observation.junction < static_cast<int>(frame.size())) << observation.junction;
+    const JunctionType type = frame[observation.junction].type;
+    if (type == JunctionType::kT || type == JunctionType::kX) return true;
+  }
+  return false;
+}
+
 }  // namespace
 
 double MaxVertexSigma(const WireframeOptions& options, double fx, double depth) {
@@ -71,6 +84,12 @@ double EstimatePixelSigma(const Eigen::Matrix3d& K, const std::vector<Pose3>& wo
 Landmarks SelectWireframeLandmarks(const Eigen::Matrix3d& K, const std::vector<Pose3>& world_T_camera,
                                    const Landmarks& landmarks, const WireframeOptions& options,
                                    WireframeSelectionReport* report) {
+  return SelectWireframeLandmarks(K, world_T_camera, landmarks, std::vector<Junctions>(), options, report);
+}
+
+Landmarks SelectWireframeLandmarks(const Eigen::Matrix3d& K, const std::vector<Pose3>& world_T_camera,
+                                   const Landmarks& landmarks, const std::vector<Junctions>& junctions,
+                                   const WireframeOptions& options, WireframeSelectionReport* report) {
   CHECK(options.Check().ok()) << options.Check().message();
   const double sigma_px =
       options.estimate_pixel_sigma
@@ -89,7 +108,7 @@ Landmarks SelectWireframeLandmarks(const Eigen::Matrix3d& K, const std::vector<P
   auto determined = [&](double sigma, double depth) {
     return depth > 0 && sigma <= MaxVertexSigma(bound_options, fx, depth);
   };
-  const PoseDrift drift{options.pose_rotation_step_rad};
+  const PoseDrift drift{options.pose_rotation_step_rad, options.pose_translation_step_m};
   WireframeSelectionReport counts;
   Landmarks selected;
   std::vector<int> new_index(landmarks.points.size(), -1);
@@ -111,6 +130,11 @@ Landmarks SelectWireframeLandmarks(const Eigen::Matrix3d& K, const std::vector<P
     }
     if (!PassesChiSquare(chi_square, dof, options.consistency_level)) {
       ++counts.points_inconsistent;
+      continue;
+    }
+    if (!junctions.empty() && IsOcclusionCandidate(junctions, point) &&
+        static_cast<int>(point.observations.size()) < options.occlusion_candidate_min_views) {
+      ++counts.points_occlusion_untested;
       continue;
     }
     if (!determined(PointPositionSigma(K, cameras, frames, point.position, sigma_px, drift),
@@ -136,7 +160,8 @@ Landmarks SelectWireframeLandmarks(const Eigen::Matrix3d& K, const std::vector<P
     // different edges passes an empty test. Only tested tracks are drawn: a two-view line only
     // when its junction point was kept, i.e. the junction correspondence passed the point's test
     // (1 degree of freedom, the epipolar constraint); the matcher pairs a junction's segments
-    // with its location (one shift for all of them).
+    // with its location (one shift for all of them). A two-view T or X is not kept: its location
+    // need not be one 3D point even when matched right, so its test checks no correspondence.
     if (dof < 1 && (line.point_landmark < 0 || new_index[line.point_landmark] < 0)) {
       ++counts.lines_untestable;
       continue;

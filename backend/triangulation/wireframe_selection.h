@@ -11,11 +11,13 @@
 #include "backend/triangulation/landmarks.h"
 #include "backend/triangulation/triangulation_options.h"
 #include "frontend/geometry/pose.h"
+#include "frontend/junctions/junction.h"
 
 namespace sfm {
 
 struct WireframeSelectionReport {
   int points_untestable = 0;      // fewer than two views: no redundancy to test
+  int points_occlusion_untested = 0;  // a T or X (occlusion candidate) with too few views to test it
   int points_inconsistent = 0;    // point residuals fail the chi-square test
   int points_uncertain = 0;       // point position sigma above the bound
   int lines_untestable = 0;       // two views (nothing to test) and no kept junction point
@@ -52,5 +54,13 @@ double EstimatePixelSigma(const Eigen::Matrix3d& K, const std::vector<Pose3>& wo
 Landmarks SelectWireframeLandmarks(const Eigen::Matrix3d& K, const std::vector<Pose3>& world_T_camera,
                                    const Landmarks& landmarks, const WireframeOptions& options,
                                    WireframeSelectionReport* report = nullptr);
+
+// The same, knowing the junctions the observations index (junctions[frame][observation.junction],
+// CHECKed): a point whose junction is a T or an X in any of its views (an occlusion candidate) is
+// drawn only with options.occlusion_candidate_min_views views or more. Without them (the overload
+// above) the junction types are unknown and that rule is not applied.
+Landmarks SelectWireframeLandmarks(const Eigen::Matrix3d& K, const std::vector<Pose3>& world_T_camera,
+                                   const Landmarks& landmarks, const std::vector<Junctions>& junctions,
+                                   const WireframeOptions& options, WireframeSelectionReport* report = nullptr);
 
 }  // namespace sfm
