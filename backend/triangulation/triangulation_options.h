@@ -100,11 +100,14 @@ struct WireframeOptions {
   // sigma), i.e. what bundle adjustment leaves of the odometry's 0.002 rad per frame. Not a
   // measure of the wireframe. A pipeline that knows its poses better or worse sets it.
   double pose_rotation_step_rad = 0.0002;
-  // The final poses' camera-centre error, the same kind of random walk: metres per axis per frame,
-  // >= 0 (0: none). 0.0006: the refined trajectories' translation RPE on the generated sequences
-  // with the default odometry noise, 0.0008-0.0013 m per frame (an RMS length: sqrt(3) x the
-  // per-axis sigma, 0.00046-0.00073). Like the rotation's, a property of the refinement.
-  double pose_translation_step_m = 0.0006;
+  // The final poses' camera-centre error, the same kind of random walk, per axis per frame, as a
+  // fraction of the median distance between consecutive camera centres (so that it is in the
+  // scene's own units and scales with the robot's speed: a sequence in millimetres, or one taken
+  // twice as fast, gets the same rule), >= 0 (0: none). 0.003: the refined trajectories' translation
+  // RPE on the generated sequences with the default odometry noise, 0.0008-0.0013 m per frame on
+  // steps of 0.1-0.2 m (an RMS length: sqrt(3) x the per-axis sigma, so 0.0023-0.0038 of the 0.2 m
+  // corridor steps). Like the rotation's, a property of the refinement.
+  double pose_translation_step_fraction = 0.003;
   // A point whose junction is a T or an X in some view is an occlusion candidate: its location may
   // be where a nearer edge crosses a farther one in the image, which slides along the edges as the
   // camera moves and is no 3D point. With two views the point's test has one degree of freedom
@@ -128,8 +131,8 @@ struct WireframeOptions {
     if (!(pose_rotation_step_rad >= 0 && std::isfinite(pose_rotation_step_rad))) {
       return bad("pose_rotation_step_rad must be finite and >= 0");
     }
-    if (!(pose_translation_step_m >= 0 && std::isfinite(pose_translation_step_m))) {
-      return bad("pose_translation_step_m must be finite and >= 0");
+    if (!(pose_translation_step_fraction >= 0 && std::isfinite(pose_translation_step_fraction))) {
+      return bad("pose_translation_step_fraction must be finite and >= 0");
     }
     return Status::Ok();
   }

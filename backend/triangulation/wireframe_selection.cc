@@ -60,6 +60,19 @@ double MaxVertexSigma(const WireframeOptions& options, double fx, double depth) 
          std::tan(options.min_equivalent_parallax_deg * kPi / 180);
 }
 
+PoseDrift WireframePoseDrift(const WireframeOptions& options, const std::vector<Pose3>& world_T_camera) {
+  std::vector<double> steps;
+  for (size_t f = 1; f < world_T_camera.size(); ++f) {
+    steps.push_back((world_T_camera[f].translation - world_T_camera[f - 1].translation).norm());
+  }
+  double median_step = 0;
+  if (!steps.empty()) {
+    std::nth_element(steps.begin(), steps.begin() + steps.size() / 2, steps.end());
+    median_step = steps[steps.size() / 2];
+  }
+  return PoseDrift{options.pose_rotation_step_rad, options.pose_translation_step_fraction * median_step};
+}
+
 double EstimatePixelSigma(const Eigen::Matrix3d& K, const std::vector<Pose3>& world_T_camera,
                           const Landmarks& landmarks) {
   std::vector<double> components;
@@ -108,7 +121,7 @@ Landmarks SelectWireframeLandmarks(const Eigen::Matrix3d& K, const std::vector<P
   auto determined = [&](double sigma, double depth) {
     return depth > 0 && sigma <= MaxVertexSigma(bound_options, fx, depth);
   };
-  const PoseDrift drift{options.pose_rotation_step_rad, options.pose_translation_step_m};
+  const PoseDrift drift = WireframePoseDrift(options, world_T_camera);
   WireframeSelectionReport counts;
   Landmarks selected;
   std::vector<int> new_index(landmarks.points.size(), -1);

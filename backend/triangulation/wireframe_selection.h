@@ -8,6 +8,7 @@
 #include <Eigen/Core>
 #include <vector>
 
+#include "backend/triangulation/landmark_uncertainty.h"
 #include "backend/triangulation/landmarks.h"
 #include "backend/triangulation/triangulation_options.h"
 #include "frontend/geometry/pose.h"
@@ -40,6 +41,11 @@ double MaxVertexSigma(const WireframeOptions& options, double fx, double depth);
 // their cameras.
 double EstimatePixelSigma(const Eigen::Matrix3d& K, const std::vector<Pose3>& world_T_camera,
                           const Landmarks& landmarks);
+
+// The pose drift the selection adds to a vertex's sigma: options.pose_rotation_step_rad, and
+// options.pose_translation_step_fraction times the median distance between consecutive camera
+// centres of world_T_camera (0 with fewer than two cameras).
+PoseDrift WireframePoseDrift(const WireframeOptions& options, const std::vector<Pose3>& world_T_camera);
 
 // The subset of `landmarks` to draw, with the cameras world_T_camera[f] of every frame (the refined
 // poses when bundle adjustment ran). A point is kept when it passes the test and its

@@ -72,11 +72,26 @@ TEST(PoseDriftTest, LineSigmaAddsTheRelativeTranslationDrift) {
   EXPECT_NEAR(LinePositionSigma(K, views, {0, 0, Z}, Eigen::Vector3d::UnitY(), sigma, drift), both, 0.02 * both);
 }
 
+// The selection's translation step is the option's fraction of the median camera step, so a scene in
+// other units (here x 10) or a robot twice as fast gets the same rule: cameras 0.25 m apart with one
+// 5 m jump (the median ignores it) give 0.003 x 0.25 = 0.00075 m, the same cameras x 10 give 0.0075.
+// Fails with a fixed step in metres (0.0006 for both).
+TEST(PoseDriftTest, TranslationStepScalesWithTheCameraSteps) {
+  std::vector<Pose3> cameras;
+  for (const double x : {0.0, 0.25, 0.5, 0.75, 5.75}) cameras.push_back(Forward({x, 0, 0}));
+  WireframeOptions options;
+  EXPECT_NEAR(WireframePoseDrift(options, cameras).translation_step_m, 0.00075, 1e-12);
+  EXPECT_EQ(WireframePoseDrift(options, cameras).rotation_step_rad, options.pose_rotation_step_rad);
+  for (Pose3& camera : cameras) camera.translation *= 10;
+  EXPECT_NEAR(WireframePoseDrift(options, cameras).translation_step_m, 0.0075, 1e-12);
+  EXPECT_EQ(WireframePoseDrift(options, {cameras[0]}).translation_step_m, 0);
+}
+
 TEST(PoseDriftTest, BadTranslationStepIsRejected) {
   WireframeOptions options;
-  options.pose_translation_step_m = -1e-4;
+  options.pose_translation_step_fraction = -1e-4;
   EXPECT_FALSE(options.Check().ok());
-  options.pose_translation_step_m = std::nan("");
+  options.pose_translation_step_fraction = std::nan("");
   EXPECT_FALSE(options.Check().ok());
 }
 
