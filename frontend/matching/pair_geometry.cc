@@ -169,6 +169,8 @@ ParallaxFrame ParallaxFrameOf(const PairGeometry& geometry, const Eigen::Vector2
   const Eigen::Vector2d w = K.topLeftCorner<2, 2>() * w_normalised;
   if (!(w.norm() > 1e-12 * (std::abs(K(0, 0)) + std::abs(K(1, 1))) * t.norm())) return frame;
   frame.direction = w.normalized();
+  frame.scale = w.norm();
+  frame.ray_z = X.z();
   // v moves with the rotation: X -> X + omega x X = X - [X]x omega.
   Eigen::Matrix<double, 2, 3> dv_dp;
   dv_dp << 1 / p.z(), 0, -p.x() / (p.z() * p.z()), 0, 1 / p.z(), -p.y() / (p.z() * p.z());

@@ -1,0 +1,98 @@
+// The local depth range test of the guided pass (frontend/matching/depth_range.h).
+#include "frontend/matching/depth_range.h"
+
+#include <random>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "tests/matching/synthetic_views.h"
+
+namespace sfm {
+namespace {
+
+using testing::TwoViews;
+
+PairGeometry ExactGeometry(const TwoViews& views) {
+  PairGeometry geometry;
+  geometry.K = views.K;
+  geometry.camera2_T_camera1 = views.world_T_camera2.Inverse() * views.world_T_camera1;
+  // A small rotation uncertainty: the tolerance then has a pose part as well as the location part.
+  geometry.covariance.diagonal() << 1e-6, 1e-6, 1e-6, 1e-6, 1e-6, 1e-6;
+  return geometry;
+}
+
+// Camera 1 is the world frame in MakeTwoViews, so a point's depth in camera 1 is its z.
+TEST(DepthRangeTest, ParallaxGivesTheInverseDepthOfTheTriangulatedPoint) {
+  const TwoViews views = testing::MakeTwoViews();
+  const PairGeometry geometry = ExactGeometry(views);
+  const double t_z = geometry.camera2_T_camera1.translation.z();
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> x(-2, 2), y(-1.5, 1.5), z(0.8, 30);
+  for (int k = 0; k < 200; ++k) {
+    const Eigen::Vector3d point(x(rng), y(rng), z(rng));
+    const Eigen::Vector2d x1 = views.Project(0, point), x2 = views.Project(1, point);
+    const ParallaxFrame frame = ParallaxFrameOf(geometry, x1);
+    ASSERT_TRUE(frame.tested);
+    const double parallax = (x2 - frame.v).dot(frame.direction);
+    // x2 lies on the line through v2 along the direction (exact geometry): no sideways part.
+    EXPECT_NEAR((x2 - frame.v - parallax * frame.direction).norm(), 0, 1e-9);
+    EXPECT_NEAR(InverseDepthOfParallax(frame, t_z, parallax), 1 / point.z(), 1e-9 / point.z());
+    EXPECT_NEAR(ParallaxOfInverseDepth(frame, t_z, 1 / point.z()), parallax, 1e-9 * (1 + std::abs(parallax)));
+  }
+}
+
+// Verified points on two planes (a floor 1.2 m below camera 1 and a wall across at 8 m); a
+// junction's partner on either surface at its own depth passes, the same ray's point at a third of
+// that depth (3x the inverse depth, far beyond the 2.576-sigma tolerance of 0.5 px locations)
+// fails, and so does a floor point's at ten times its depth (beyond everything around it).
+TEST(DepthRangeTest, PassesPointsOnTheSurfacesAroundAndRejectsNearerOrFartherOnes) {
+  const TwoViews views = testing::MakeTwoViews();
+  const PairGeometry geometry = ExactGeometry(views);
+  std::vector<Eigen::Vector3d> points;
+  for (double x = -1.5; x <= 1.5; x += 0.5) {
+    for (double z = 3; z <= 7.5; z += 0.75) points.emplace_back(x, 1.2, z);  // floor (y down)
+    for (double y = -1; y <= 1.1; y += 0.5) points.emplace_back(x, y, 8);    // wall
+  }
+  std::vector<Eigen::Vector2d> x1, x2, locations;
+  std::vector<int> source;
+  for (size_t k = 0; k < points.size(); ++k) {
+    x1.push_back(views.Project(0, points[k]));
+    x2.push_back(views.Project(1, points[k]));
+    source.push_back(static_cast<int>(k));
+    locations.push_back(x1.back());
+  }
+  const LocalDepthRange range(geometry, x1, x2, source, locations, /*neighbours=*/12, /*gate_sigmas=*/2.576,
+                              /*location_sigma_px=*/0.5);
+  const Eigen::Vector3d camera1 = views.world_T_camera1.translation;
+  int tested = 0;
+  for (size_t k = 0; k < points.size(); ++k) {
+    if (!range.IntervalOf(static_cast<int>(k)).tested) continue;
+    ++tested;
+    // Its own partner: inside the range of the 12 other verified points nearest to it.
+    EXPECT_TRUE(range.Passes(static_cast<int>(k), x2[k])) << k;
+    const Eigen::Vector3d nearer = camera1 + (points[k] - camera1) / 3.0;
+    EXPECT_FALSE(range.Passes(static_cast<int>(k), views.Project(1, nearer))) << k;
+    // Farther: only where the parallax says so. Ten times the depth of a floor point up to 4.5 m
+    // is beyond the wall at 8 m; the wall's own points (3 px of parallax, a 1.9 px tolerance)
+    // cannot be told from infinity.
+    if (points[k].y() == 1.2 && points[k].z() <= 4.5) {
+      EXPECT_FALSE(range.Passes(static_cast<int>(k), views.Project(1, camera1 + (points[k] - camera1) * 10.0))) << k;
+    }
+  }
+  EXPECT_EQ(tested, static_cast<int>(points.size()));
+}
+
+// Without verified neighbours (or where the ray has no parallax direction) there is no test.
+TEST(DepthRangeTest, NoNeighboursNoTest) {
+  const TwoViews views = testing::MakeTwoViews();
+  const PairGeometry geometry = ExactGeometry(views);
+  const Eigen::Vector2d x1 = views.Project(0, Eigen::Vector3d(0.5, 0.2, 5));
+  const LocalDepthRange range(geometry, {x1}, {views.Project(1, Eigen::Vector3d(0.5, 0.2, 5))}, {0}, {x1}, 12, 2.576,
+                              0.5);
+  EXPECT_FALSE(range.IntervalOf(0).tested);  // its only verified correspondence is itself
+  EXPECT_TRUE(range.Passes(0, views.Project(1, Eigen::Vector3d(0.1, 0.04, 1))));
+}
+
+}  // namespace
+}  // namespace sfm
