@@ -35,12 +35,7 @@ LocalDepthRange::LocalDepthRange(const PairGeometry& geometry, const std::vector
   CHECK_GE(neighbours, 1);
   const double t_z = geometry.camera2_T_camera1.translation.z();
   // The verified correspondences' inverse depths (those whose ray has a parallax direction).
-  struct Verified {
-    Eigen::Vector2d x1;
-    int source = -1;
-    double q = 0;
-  };
-  std::vector<Verified> verified;
+  std::vector<Verified>& verified = verified_;
   verified.reserve(x1.size());
   for (size_t k = 0; k < x1.size(); ++k) {
     const ParallaxFrame frame = ParallaxFrameOf(geometry, x1[k]);
@@ -48,41 +43,79 @@ LocalDepthRange::LocalDepthRange(const PairGeometry& geometry, const std::vector
     const double q = InverseDepthOfParallax(frame, t_z, (x2[k] - frame.v).dot(frame.direction));
     if (std::isfinite(q)) verified.push_back({x1[k], source_a[k], q});
   }
-  frames_.reserve(locations_a.size());
+  // Sorted along x: the neighbour search below walks outwards from a junction's x and stops on a
+  // side once the x distance alone exceeds the farthest of the neighbours found.
+  std::sort(verified.begin(), verified.end(), [](const Verified& u, const Verified& v) { return u.x1.x() < v.x1.x(); });
+  locations_a_ = locations_a;
+  frames_.resize(locations_a.size());
   intervals_.resize(locations_a.size());
-  struct Near {
-    double distance_squared;
-    double q;
+  computed_.assign(locations_a.size(), 0);
+  geometry_ = geometry;
+  neighbours_ = static_cast<size_t>(neighbours);
+  gate_sigmas_ = gate_sigmas;
+  location_sigma_px_ = location_sigma_px;
+}
+
+const LocalDepthRange::Interval& LocalDepthRange::IntervalOf(int index_a) const {
+  const size_t a = static_cast<size_t>(index_a);
+  if (computed_[a]) return intervals_[a];
+  computed_[a] = 1;
+  const double t_z = geometry_.camera2_T_camera1.translation.z();
+  frames_[a] = ParallaxFrameOf(geometry_, locations_a_[a]);
+  const ParallaxFrame& frame = frames_[a];
+  if (!frame.tested) return intervals_[a];
+  // The nearest neighbours_ verified correspondences, kept sorted by insertion (a handful among
+  // about a hundred).
+  const size_t wanted = neighbours_;
+  std::vector<std::pair<double, double>>& nearest = nearest_;  // (squared distance, q), increasing distance
+  nearest.clear();
+  const std::vector<Verified>& verified = verified_;
+  const std::ptrdiff_t count = static_cast<std::ptrdiff_t>(verified.size());
+  const Eigen::Vector2d& p = locations_a_[a];
+  // Offer verified[k]; false once the x distance alone rules out this side.
+  auto offer = [&](std::ptrdiff_t k) {
+    const Verified& v = verified[static_cast<size_t>(k)];
+    const double dx = v.x1.x() - p.x();
+    if (nearest.size() == wanted && dx * dx >= nearest.back().first) return false;
+    if (v.source == index_a) return true;
+    const double d2 = (v.x1 - p).squaredNorm();
+    if (nearest.size() == wanted && d2 >= nearest.back().first) return true;
+    if (nearest.size() == wanted) nearest.pop_back();
+    nearest.insert(std::upper_bound(nearest.begin(), nearest.end(), d2,
+                                    [](double x, const std::pair<double, double>& y) { return x < y.first; }),
+                   {d2, v.q});
+    return true;
   };
-  std::vector<Near> nearest;
-  for (size_t a = 0; a < locations_a.size(); ++a) {
-    frames_.push_back(ParallaxFrameOf(geometry, locations_a[a]));
-    const ParallaxFrame& frame = frames_.back();
-    if (!frame.tested) continue;
-    nearest.clear();
-    for (const Verified& v : verified) {
-      if (v.source == static_cast<int>(a)) continue;
-      nearest.push_back({(v.x1 - locations_a[a]).squaredNorm(), v.q});
+  std::ptrdiff_t right = std::lower_bound(verified.begin(), verified.end(), p.x(),
+                                          [](const Verified& v, double x) { return v.x1.x() < x; }) -
+                         verified.begin();
+  std::ptrdiff_t left = right - 1;
+  while (left >= 0 || right < count) {
+    // The nearer side in x first.
+    const bool take_left = right >= count || (left >= 0 && p.x() - verified[static_cast<size_t>(left)].x1.x() <
+                                                               verified[static_cast<size_t>(right)].x1.x() - p.x());
+    if (take_left) {
+      left = offer(left) ? left - 1 : -1;
+    } else {
+      right = offer(right) ? right + 1 : count;
     }
-    if (nearest.empty()) continue;
-    const size_t n = std::min(nearest.size(), static_cast<size_t>(neighbours));
-    std::nth_element(nearest.begin(), nearest.begin() + static_cast<std::ptrdiff_t>(n - 1), nearest.end(),
-                     [](const Near& x, const Near& y) { return x.distance_squared < y.distance_squared; });
-    double q_low = kInfinity, q_high = -kInfinity;
-    for (size_t k = 0; k < n; ++k) {
-      q_low = std::min(q_low, nearest[k].q);
-      q_high = std::max(q_high, nearest[k].q);
-    }
-    const double tolerance = EpipolarBand(frame.sigma, location_sigma_px, gate_sigmas);
-    Interval& interval = intervals_[a];
-    interval.tested = true;
-    interval.lo = ParallaxOfInverseDepth(frame, t_z, q_low) - tolerance;
-    interval.hi = ParallaxOfInverseDepth(frame, t_z, q_high) + tolerance;
   }
+  if (nearest.empty()) return intervals_[a];
+  double q_low = kInfinity, q_high = -kInfinity;
+  for (const auto& [d2, q] : nearest) {
+    q_low = std::min(q_low, q);
+    q_high = std::max(q_high, q);
+  }
+  const double tolerance = EpipolarBand(frame.sigma, location_sigma_px_, gate_sigmas_);
+  Interval& interval = intervals_[a];
+  interval.tested = true;
+  interval.lo = ParallaxOfInverseDepth(frame, t_z, q_low) - tolerance;
+  interval.hi = ParallaxOfInverseDepth(frame, t_z, q_high) + tolerance;
+  return interval;
 }
 
 bool LocalDepthRange::Passes(int index_a, const Eigen::Vector2d& x2) const {
-  const Interval& interval = intervals_[static_cast<size_t>(index_a)];
+  const Interval& interval = IntervalOf(index_a);
   if (!interval.tested) return true;
   const ParallaxFrame& frame = frames_[static_cast<size_t>(index_a)];
   const double parallax = (x2 - frame.v).dot(frame.direction);

@@ -10,6 +10,7 @@
 // junction near the focus of expansion (docs/matching_results.md, "The local depth range").
 #pragma once
 
+#include <utility>
 #include <vector>
 
 #include <Eigen/Core>
@@ -49,11 +50,24 @@ class LocalDepthRange {
     bool tested = false;
     double lo = 0, hi = 0;
   };
-  const Interval& IntervalOf(int index_a) const { return intervals_[static_cast<size_t>(index_a)]; }
+  // Computed on first use (the guided pass asks only for junctions with candidates); not thread safe.
+  const Interval& IntervalOf(int index_a) const;
 
  private:
-  std::vector<ParallaxFrame> frames_;
-  std::vector<Interval> intervals_;
+  struct Verified {
+    Eigen::Vector2d x1;
+    int source = -1;
+    double q = 0;
+  };
+  PairGeometry geometry_;
+  std::vector<Verified> verified_;  // sorted by x1.x()
+  std::vector<Eigen::Vector2d> locations_a_;
+  size_t neighbours_ = 0;
+  double gate_sigmas_ = 0, location_sigma_px_ = 0;
+  mutable std::vector<char> computed_;
+  mutable std::vector<ParallaxFrame> frames_;
+  mutable std::vector<Interval> intervals_;
+  mutable std::vector<std::pair<double, double>> nearest_;  // scratch of IntervalOf
 };
 
 }  // namespace sfm
