@@ -92,6 +92,8 @@ DEFINE_int32(match_refine_min_inliers, kMatchingDefaults.refine_min_inliers,
              "With --match_refine: fewer supporting matches and the first pass is kept.");
 DEFINE_int32(match_depth_range_neighbours, kMatchingDefaults.depth_range_neighbours,
              "With --match_refine: the local depth range test's neighbours (0: off).");
+DEFINE_bool(match_depth_range_screen, kMatchingDefaults.depth_range_screen_verified,
+            "With the local depth range test: screen the verified matches by the same test first.");
 DEFINE_bool(match_topology, kMatchingDefaults.use_topology, "sigma (true) or rho (false) in rule (38).");
 DEFINE_bool(match_partial, kMatchingDefaults.match_partial,
             "With --match_refine: in the guided pass, match junctions of k and k + 1 segments left unmatched through "
@@ -864,6 +866,7 @@ int main(int argc, char** argv) {
   matching.refine_min_inliers = FLAGS_match_refine_min_inliers;
   matching.match_partial = FLAGS_match_partial;
   matching.depth_range_neighbours = FLAGS_match_depth_range_neighbours;
+  matching.depth_range_screen_verified = FLAGS_match_depth_range_screen;
   if (FLAGS_match_rho1 == "linear") {
     matching.rho1_kind = Rho1Kind::kLinear;
   } else if (FLAGS_match_rho1 == "exponential") {

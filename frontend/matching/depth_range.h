@@ -34,11 +34,12 @@ class LocalDepthRange {
   // locations_a: the locations of all junctions of image 1 to be tested. neighbours: how many of
   // the nearest verified correspondences (in image 1) set a junction's range, >= 1. The tolerance
   // is gate_sigmas * sqrt(sigma_v^2 + 2 location_sigma_px^2) pixels along the line, as the
-  // cheirality test's (sigma_v: the spread of v2 under the pose covariance).
+  // cheirality test's (sigma_v: the spread of v2 under the pose covariance). screen_verified: first
+  // drop the verified correspondences that fail the same test against the other verified ones.
   LocalDepthRange(const PairGeometry& geometry, const std::vector<Eigen::Vector2d>& x1,
                   const std::vector<Eigen::Vector2d>& x2, const std::vector<int>& source_a,
                   const std::vector<Eigen::Vector2d>& locations_a, int neighbours, double gate_sigmas,
-                  double location_sigma_px);
+                  double location_sigma_px, bool screen_verified = true);
 
   // Whether x2 may be the partner of junction index_a: its parallax lies within the interval of
   // the neighbours' inverse depths widened by the tolerance. True where no test applies (the ray
@@ -54,10 +55,15 @@ class LocalDepthRange {
   const Interval& IntervalOf(int index_a) const;
 
  private:
+  // The inverse-depth range of the neighbours_ verified correspondences nearest to p in image 1,
+  // those of junction exclude_source left out; false when there are none.
+  bool NeighbourRange(const Eigen::Vector2d& p, int exclude_source, double* q_low, double* q_high) const;
+
   struct Verified {
     Eigen::Vector2d x1;
     int source = -1;
     double q = 0;
+    int own = -1;  // index of its frame and parallax in the constructor's list
   };
   PairGeometry geometry_;
   std::vector<Verified> verified_;  // sorted by x1.x()

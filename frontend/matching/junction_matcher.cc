@@ -153,7 +153,8 @@ std::vector<JunctionMatch> MatchJunctions(const Junctions& a, const TopologyGrap
     locations_a.reserve(a.size());
     for (const Junction& junction : a) locations_a.push_back(junction.location);
     depth_range.emplace(report.refinement.geometry, x1_verified, x2_verified, source_a, locations_a,
-                        options.depth_range_neighbours, options.refine_gate_sigmas, options.location_sigma_px);
+                        options.depth_range_neighbours, options.refine_gate_sigmas, options.location_sigma_px,
+                        options.depth_range_screen_verified);
   }
   std::vector<JunctionMatch> matches =
       Match(a, graph_a, b, graph_b, similarity, guided, depth_range ? &*depth_range : nullptr);

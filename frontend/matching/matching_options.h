@@ -67,6 +67,9 @@ struct MatchingOptions {
   // the depth_range_neighbours verified matches (refinement inliers) nearest to the junction in
   // image 1, widened by the cheirality tolerance at refine_gate_sigmas. 0: off.
   int depth_range_neighbours = 12;
+  // Before that, drop the verified matches that fail the same test against the other verified ones
+  // (a wrong verified match at a near depth would widen its neighbours' range).
+  bool depth_range_screen_verified = true;
   // Partial junction correspondence in the guided pass only (not in the paper; docs/matching.md,
   // "Partial correspondence"): a junction of k >= 2 segments left unmatched may match one of k + 1
   // (a segment missed in one frame) through its best common subset, rho2 counting the missing

@@ -83,6 +83,50 @@ TEST(DepthRangeTest, PassesPointsOnTheSurfacesAroundAndRejectsNearerOrFartherOne
   EXPECT_EQ(tested, static_cast<int>(points.size()));
 }
 
+// One wrong verified correspondence: floor point m's image in camera 1 paired with the image of the
+// point at a third of its depth. Unscreened, it widens the range of the junctions around m up to
+// its inverse depth (3 / Z_m), so a partner of m's nearest neighbour k at that inverse depth
+// passes; screened (the default), it fails the test against the other verified points, is dropped,
+// and that partner fails.
+TEST(DepthRangeTest, ScreeningDropsAWrongVerifiedMatchThatWouldWidenTheRange) {
+  const TwoViews views = testing::MakeTwoViews();
+  const PairGeometry geometry = ExactGeometry(views);
+  std::vector<Eigen::Vector3d> points;
+  for (double x = -1.5; x <= 1.5; x += 0.5) {
+    for (double z = 3; z <= 7.5; z += 0.75) points.emplace_back(x, 1.2, z);
+  }
+  std::vector<Eigen::Vector2d> x1, x2;
+  std::vector<int> source;
+  for (size_t k = 0; k < points.size(); ++k) {
+    x1.push_back(views.Project(0, points[k]));
+    x2.push_back(views.Project(1, points[k]));
+    source.push_back(static_cast<int>(k));
+  }
+  const Eigen::Vector3d m(0, 1.2, 3.75);
+  x1.push_back(views.Project(0, m));
+  x2.push_back(views.Project(1, m / 3.0));  // camera 1 at the origin
+  source.push_back(static_cast<int>(points.size()));
+  // k: the floor point nearest to m in image 1 (other than m itself).
+  int k = -1;
+  for (size_t j = 0; j < points.size(); ++j) {
+    if ((points[j] - m).norm() < 1e-9) continue;
+    if (k < 0 || (x1[j] - x1.back()).norm() < (x1[static_cast<size_t>(k)] - x1.back()).norm()) k = static_cast<int>(j);
+  }
+  ASSERT_GE(k, 0);
+  // On k's ray at inverse depth 3 / Z_m.
+  const Eigen::Vector3d candidate = points[static_cast<size_t>(k)] / points[static_cast<size_t>(k)].z() * (m.z() / 3.0);
+  const std::vector<Eigen::Vector2d> locations = {x1[static_cast<size_t>(k)]};
+  std::vector<int> source_k = source;
+  for (int& s : source_k) s = s == k ? 0 : s + 1;  // junction 0 of `locations` is k
+  const LocalDepthRange unscreened(geometry, x1, x2, source_k, locations, 12, 2.576, 0.5, /*screen_verified=*/false);
+  const LocalDepthRange screened(geometry, x1, x2, source_k, locations, 12, 2.576, 0.5, /*screen_verified=*/true);
+  EXPECT_TRUE(unscreened.Passes(0, views.Project(1, candidate)));
+  EXPECT_FALSE(screened.Passes(0, views.Project(1, candidate)));
+  // k's own partner passes either way.
+  EXPECT_TRUE(unscreened.Passes(0, x2[static_cast<size_t>(k)]));
+  EXPECT_TRUE(screened.Passes(0, x2[static_cast<size_t>(k)]));
+}
+
 // Without verified neighbours (or where the ray has no parallax direction) there is no test.
 TEST(DepthRangeTest, NoNeighboursNoTest) {
   const TwoViews views = testing::MakeTwoViews();
