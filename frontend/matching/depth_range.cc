@@ -81,25 +81,32 @@ LocalDepthRange::LocalDepthRange(const PairGeometry& geometry, const std::vector
 
 bool LocalDepthRange::NeighbourRange(const Eigen::Vector2d& p, int exclude_source, double* q_low_out,
                                      double* q_high_out) const {
-  // The nearest neighbours_ verified correspondences, kept sorted by insertion (a handful among
-  // about a hundred).
+  // The nearest neighbours_ verified correspondences, unordered, with the farthest of them tracked
+  // (replacing it is a scan of a handful).
   const size_t wanted = neighbours_;
-  std::vector<std::pair<double, double>>& nearest = nearest_;  // (squared distance, q), increasing distance
+  std::vector<std::pair<double, double>>& nearest = nearest_;  // (squared distance, q)
   nearest.clear();
+  size_t farthest = 0;  // index in nearest of the largest distance
   const std::vector<Verified>& verified = verified_;
   const std::ptrdiff_t count = static_cast<std::ptrdiff_t>(verified.size());
   // Offer verified[k]; false once the x distance alone rules out this side.
   auto offer = [&](std::ptrdiff_t k) {
     const Verified& v = verified[static_cast<size_t>(k)];
     const double dx = v.x1.x() - p.x();
-    if (nearest.size() == wanted && dx * dx >= nearest.back().first) return false;
+    const bool full = nearest.size() == wanted;
+    if (full && dx * dx >= nearest[farthest].first) return false;
     if (v.source == exclude_source) return true;
     const double d2 = (v.x1 - p).squaredNorm();
-    if (nearest.size() == wanted && d2 >= nearest.back().first) return true;
-    if (nearest.size() == wanted) nearest.pop_back();
-    nearest.insert(std::upper_bound(nearest.begin(), nearest.end(), d2,
-                                    [](double x, const std::pair<double, double>& y) { return x < y.first; }),
-                   {d2, v.q});
+    if (!full) {
+      nearest.emplace_back(d2, v.q);
+      if (d2 > nearest[farthest].first) farthest = nearest.size() - 1;
+      return true;
+    }
+    if (d2 >= nearest[farthest].first) return true;
+    nearest[farthest] = {d2, v.q};
+    for (size_t n = 0; n < nearest.size(); ++n) {
+      if (nearest[n].first > nearest[farthest].first) farthest = n;
+    }
     return true;
   };
   std::ptrdiff_t right = std::lower_bound(verified.begin(), verified.end(), p.x(),
