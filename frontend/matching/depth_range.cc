@@ -51,9 +51,7 @@ LocalDepthRange::LocalDepthRange(const PairGeometry& geometry, const std::vector
     verified.push_back({x1[k], source_a[k], q, static_cast<int>(own.size())});
     own.emplace_back(frame, parallax);
   }
-  // Sorted along x: the neighbour search walks outwards from a junction's x and stops on a side
-  // once the x distance alone exceeds the farthest of the neighbours found.
-  std::sort(verified.begin(), verified.end(), [](const Verified& u, const Verified& v) { return u.x1.x() < v.x1.x(); });
+  BuildGrid();
   if (screen_verified) {
     // Each verified correspondence tested against the others, by the same rule: a range is a
     // minimum and a maximum, so one wrong verified match at a near depth would widen the range of
@@ -72,6 +70,7 @@ LocalDepthRange::LocalDepthRange(const PairGeometry& geometry, const std::vector
       if (keep[k]) kept.push_back(verified[k]);
     }
     verified.swap(kept);
+    BuildGrid();
   }
   locations_a_ = locations_a;
   frames_.resize(locations_a.size());
@@ -79,49 +78,90 @@ LocalDepthRange::LocalDepthRange(const PairGeometry& geometry, const std::vector
   computed_.assign(locations_a.size(), 0);
 }
 
+void LocalDepthRange::BuildGrid() {
+  grid_columns_ = grid_rows_ = 0;
+  cell_start_.clear();
+  if (verified_.empty()) return;
+  Eigen::Vector2d low = verified_.front().x1, high = low;
+  for (const Verified& v : verified_) {
+    low = low.cwiseMin(v.x1);
+    high = high.cwiseMax(v.x1);
+  }
+  // Cells holding about two verified points each on average: the search then visits a few rings.
+  const Eigen::Vector2d extent = (high - low).cwiseMax(1.0);
+  cell_size_ = std::max(1.0, std::sqrt(2.0 * extent.x() * extent.y() / static_cast<double>(verified_.size())));
+  grid_origin_ = low;
+  grid_columns_ = static_cast<int>(extent.x() / cell_size_) + 1;
+  grid_rows_ = static_cast<int>(extent.y() / cell_size_) + 1;
+  std::vector<std::pair<int, size_t>> order;  // (cell, index)
+  order.reserve(verified_.size());
+  for (size_t k = 0; k < verified_.size(); ++k) order.emplace_back(CellOf(verified_[k].x1), k);
+  std::sort(order.begin(), order.end());
+  std::vector<Verified> sorted;
+  sorted.reserve(verified_.size());
+  cell_start_.assign(static_cast<size_t>(grid_columns_ * grid_rows_) + 1, 0);
+  for (const auto& [cell, k] : order) {
+    sorted.push_back(verified_[k]);
+    ++cell_start_[static_cast<size_t>(cell) + 1];
+  }
+  for (size_t c = 1; c < cell_start_.size(); ++c) cell_start_[c] += cell_start_[c - 1];
+  verified_.swap(sorted);
+}
+
+int LocalDepthRange::CellOf(const Eigen::Vector2d& x) const {
+  const int column = std::clamp(static_cast<int>(std::floor((x.x() - grid_origin_.x()) / cell_size_)), 0, grid_columns_ - 1);
+  const int row = std::clamp(static_cast<int>(std::floor((x.y() - grid_origin_.y()) / cell_size_)), 0, grid_rows_ - 1);
+  return row * grid_columns_ + column;
+}
+
 bool LocalDepthRange::NeighbourRange(const Eigen::Vector2d& p, int exclude_source, double* q_low_out,
                                      double* q_high_out) const {
+  if (cell_start_.empty()) return false;
   // The nearest neighbours_ verified correspondences, unordered, with the farthest of them tracked
   // (replacing it is a scan of a handful).
   const size_t wanted = neighbours_;
   std::vector<std::pair<double, double>>& nearest = nearest_;  // (squared distance, q)
   nearest.clear();
   size_t farthest = 0;  // index in nearest of the largest distance
-  const std::vector<Verified>& verified = verified_;
-  const std::ptrdiff_t count = static_cast<std::ptrdiff_t>(verified.size());
-  // Offer verified[k]; false once the x distance alone rules out this side.
-  auto offer = [&](std::ptrdiff_t k) {
-    const Verified& v = verified[static_cast<size_t>(k)];
-    const double dx = v.x1.x() - p.x();
-    const bool full = nearest.size() == wanted;
-    if (full && dx * dx >= nearest[farthest].first) return false;
-    if (v.source == exclude_source) return true;
+  auto offer = [&](const Verified& v) {
+    if (v.source == exclude_source) return;
     const double d2 = (v.x1 - p).squaredNorm();
-    if (!full) {
+    if (nearest.size() < wanted) {
       nearest.emplace_back(d2, v.q);
       if (d2 > nearest[farthest].first) farthest = nearest.size() - 1;
-      return true;
+      return;
     }
-    if (d2 >= nearest[farthest].first) return true;
+    if (d2 >= nearest[farthest].first) return;
     nearest[farthest] = {d2, v.q};
     for (size_t n = 0; n < nearest.size(); ++n) {
       if (nearest[n].first > nearest[farthest].first) farthest = n;
     }
-    return true;
   };
-  std::ptrdiff_t right = std::lower_bound(verified.begin(), verified.end(), p.x(),
-                                          [](const Verified& v, double x) { return v.x1.x() < x; }) -
-                         verified.begin();
-  std::ptrdiff_t left = right - 1;
-  while (left >= 0 || right < count) {
-    // The nearer side in x first.
-    const bool take_left = right >= count || (left >= 0 && p.x() - verified[static_cast<size_t>(left)].x1.x() <
-                                                               verified[static_cast<size_t>(right)].x1.x() - p.x());
-    if (take_left) {
-      left = offer(left) ? left - 1 : -1;
-    } else {
-      right = offer(right) ? right + 1 : count;
+  auto offer_cell = [&](int column, int row) {
+    if (column < 0 || column >= grid_columns_ || row < 0 || row >= grid_rows_) return;
+    const size_t cell = static_cast<size_t>(row * grid_columns_ + column);
+    for (size_t k = cell_start_[cell]; k < cell_start_[cell + 1]; ++k) offer(verified_[k]);
+  };
+  // Rings of cells around p's cell (Chebyshev distance r). Every cell beyond ring r lies at least
+  // r cells plus p's distance to its own cell's edges away (0 when p is outside the grid).
+  const int home = CellOf(p);
+  const int column = home % grid_columns_, row = home / grid_columns_;
+  const Eigen::Vector2d cell_low = grid_origin_ + cell_size_ * Eigen::Vector2d(column, row);
+  const double margin = std::max(
+      0.0, std::min({p.x() - cell_low.x(), cell_low.x() + cell_size_ - p.x(), p.y() - cell_low.y(),
+                     cell_low.y() + cell_size_ - p.y()}));
+  const int rings = std::max(grid_columns_, grid_rows_);
+  for (int r = 0; r <= rings; ++r) {
+    for (int j = row - r; j <= row + r; ++j) {
+      if (j == row - r || j == row + r) {
+        for (int i = column - r; i <= column + r; ++i) offer_cell(i, j);
+      } else {
+        offer_cell(column - r, j);
+        if (r > 0) offer_cell(column + r, j);
+      }
     }
+    const double reach = r * cell_size_ + margin;
+    if (nearest.size() == wanted && nearest[farthest].first <= reach * reach) break;
   }
   if (nearest.empty()) return false;
   double q_low = kInfinity, q_high = -kInfinity;

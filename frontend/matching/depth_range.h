@@ -66,7 +66,15 @@ class LocalDepthRange {
     int own = -1;  // index of its frame and parallax in the constructor's list
   };
   PairGeometry geometry_;
-  std::vector<Verified> verified_;  // sorted by x1.x()
+  // Buckets verified_ into a uniform grid over its bounding box (verified_ reordered by cell).
+  void BuildGrid();
+  int CellOf(const Eigen::Vector2d& x) const;  // clamped to the grid
+
+  std::vector<Verified> verified_;  // ordered by grid cell
+  Eigen::Vector2d grid_origin_ = Eigen::Vector2d::Zero();
+  double cell_size_ = 1;
+  int grid_columns_ = 0, grid_rows_ = 0;
+  std::vector<size_t> cell_start_;  // verified_[cell_start_[c], cell_start_[c + 1]) lie in cell c
   std::vector<Eigen::Vector2d> locations_a_;
   size_t neighbours_ = 0;
   double gate_sigmas_ = 0, location_sigma_px_ = 0;
