@@ -150,14 +150,14 @@ bool LocalDepthRange::NeighbourRange(const Eigen::Vector2d& p, int exclude_sourc
   const double margin = std::max(
       0.0, std::min({p.x() - cell_low.x(), cell_low.x() + cell_size_ - p.x(), p.y() - cell_low.y(),
                      cell_low.y() + cell_size_ - p.y()}));
-  const int rings = std::max(grid_columns_, grid_rows_);
+  const int rings = std::max({column, grid_columns_ - 1 - column, row, grid_rows_ - 1 - row});
   for (int r = 0; r <= rings; ++r) {
-    for (int j = row - r; j <= row + r; ++j) {
+    for (int j = std::max(0, row - r); j <= std::min(grid_rows_ - 1, row + r); ++j) {
       if (j == row - r || j == row + r) {
-        for (int i = column - r; i <= column + r; ++i) offer_cell(i, j);
+        for (int i = std::max(0, column - r); i <= std::min(grid_columns_ - 1, column + r); ++i) offer_cell(i, j);
       } else {
         offer_cell(column - r, j);
-        if (r > 0) offer_cell(column + r, j);
+        offer_cell(column + r, j);
       }
     }
     const double reach = r * cell_size_ + margin;

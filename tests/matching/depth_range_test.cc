@@ -1,7 +1,9 @@
 // The local depth range test of the guided pass (frontend/matching/depth_range.h).
 #include "frontend/matching/depth_range.h"
 
+#include <algorithm>
 #include <random>
+#include <utility>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -125,6 +127,51 @@ TEST(DepthRangeTest, ScreeningDropsAWrongVerifiedMatchThatWouldWidenTheRange) {
   // k's own partner passes either way.
   EXPECT_TRUE(unscreened.Passes(0, x2[static_cast<size_t>(k)]));
   EXPECT_TRUE(screened.Passes(0, x2[static_cast<size_t>(k)]));
+}
+
+// The grid search finds the same neighbours as a brute-force search: random verified points at
+// 2-20 m in the middle of the image, junctions anywhere (also outside the verified points' box).
+TEST(DepthRangeTest, IntervalsAgreeWithABruteForceNeighbourSearch) {
+  const TwoViews views = testing::MakeTwoViews();
+  const PairGeometry geometry = ExactGeometry(views);
+  const double t_z = geometry.camera2_T_camera1.translation.z();
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(-0.5, 0.5), depth(2, 20), px(0, 640), py(0, 480);
+  std::vector<Eigen::Vector2d> x1, x2, locations;
+  std::vector<int> source;
+  std::vector<double> q;
+  for (int k = 0; k < 80; ++k) {
+    const double z = depth(rng);
+    const Eigen::Vector3d point(u(rng) * z, u(rng) * z, z);
+    x1.push_back(views.Project(0, point));
+    x2.push_back(views.Project(1, point));
+    source.push_back(k < 20 ? k : 1000 + k);  // the first 20 are junctions 0..19 below
+    q.push_back(1 / z);
+  }
+  for (int k = 0; k < 20; ++k) locations.push_back(x1[static_cast<size_t>(k)]);
+  for (int k = 0; k < 40; ++k) locations.emplace_back(px(rng), py(rng));
+  const int neighbours = 12;
+  const LocalDepthRange range(geometry, x1, x2, source, locations, neighbours, 2.576, 0.5, /*screen_verified=*/false);
+  for (size_t a = 0; a < locations.size(); ++a) {
+    std::vector<std::pair<double, double>> by_distance;  // (distance, q)
+    for (size_t k = 0; k < x1.size(); ++k) {
+      if (source[k] == static_cast<int>(a)) continue;
+      by_distance.emplace_back((x1[k] - locations[a]).norm(), q[k]);
+    }
+    std::sort(by_distance.begin(), by_distance.end());
+    double q_low = 1e300, q_high = -1e300;
+    for (int k = 0; k < neighbours; ++k) {
+      q_low = std::min(q_low, by_distance[static_cast<size_t>(k)].second);
+      q_high = std::max(q_high, by_distance[static_cast<size_t>(k)].second);
+    }
+    const ParallaxFrame frame = ParallaxFrameOf(geometry, locations[a]);
+    ASSERT_TRUE(frame.tested);
+    const double tolerance = EpipolarBand(frame.sigma, 0.5, 2.576);
+    const LocalDepthRange::Interval& interval = range.IntervalOf(static_cast<int>(a));
+    ASSERT_TRUE(interval.tested);
+    EXPECT_NEAR(interval.lo, ParallaxOfInverseDepth(frame, t_z, q_low) - tolerance, 1e-6) << a;
+    EXPECT_NEAR(interval.hi, ParallaxOfInverseDepth(frame, t_z, q_high) + tolerance, 1e-6) << a;
+  }
 }
 
 // Without verified neighbours (or where the ray has no parallax direction) there is no test.
