@@ -1,11 +1,11 @@
 #include "frontend/matching/depth_range.h"
 
+#include <glog/logging.h>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <utility>
-
-#include <glog/logging.h>
 
 namespace sfm {
 
@@ -89,7 +89,8 @@ void LocalDepthRange::BuildGrid() {
   }
   // Cells holding about two verified points each on average: the search then visits a few rings.
   const Eigen::Vector2d extent = (high - low).cwiseMax(1.0);
-  cell_size_ = std::max(1.0, std::sqrt(2.0 * extent.x() * extent.y() / static_cast<double>(verified_.size())));
+  cell_size_ =
+      std::max(1.0, std::sqrt(2.0 * extent.x() * extent.y() / static_cast<double>(verified_.size())));
   grid_origin_ = low;
   grid_columns_ = static_cast<int>(extent.x() / cell_size_) + 1;
   grid_rows_ = static_cast<int>(extent.y() / cell_size_) + 1;
@@ -109,8 +110,10 @@ void LocalDepthRange::BuildGrid() {
 }
 
 int LocalDepthRange::CellOf(const Eigen::Vector2d& x) const {
-  const int column = std::clamp(static_cast<int>(std::floor((x.x() - grid_origin_.x()) / cell_size_)), 0, grid_columns_ - 1);
-  const int row = std::clamp(static_cast<int>(std::floor((x.y() - grid_origin_.y()) / cell_size_)), 0, grid_rows_ - 1);
+  const int column =
+      std::clamp(static_cast<int>(std::floor((x.x() - grid_origin_.x()) / cell_size_)), 0, grid_columns_ - 1);
+  const int row =
+      std::clamp(static_cast<int>(std::floor((x.y() - grid_origin_.y()) / cell_size_)), 0, grid_rows_ - 1);
   return row * grid_columns_ + column;
 }
 
@@ -147,14 +150,14 @@ bool LocalDepthRange::NeighbourRange(const Eigen::Vector2d& p, int exclude_sourc
   const int home = CellOf(p);
   const int column = home % grid_columns_, row = home / grid_columns_;
   const Eigen::Vector2d cell_low = grid_origin_ + cell_size_ * Eigen::Vector2d(column, row);
-  const double margin = std::max(
-      0.0, std::min({p.x() - cell_low.x(), cell_low.x() + cell_size_ - p.x(), p.y() - cell_low.y(),
-                     cell_low.y() + cell_size_ - p.y()}));
+  const double margin = std::max(0.0, std::min({p.x() - cell_low.x(), cell_low.x() + cell_size_ - p.x(),
+                                                p.y() - cell_low.y(), cell_low.y() + cell_size_ - p.y()}));
   const int rings = std::max({column, grid_columns_ - 1 - column, row, grid_rows_ - 1 - row});
   for (int r = 0; r <= rings; ++r) {
     for (int j = std::max(0, row - r); j <= std::min(grid_rows_ - 1, row + r); ++j) {
       if (j == row - r || j == row + r) {
-        for (int i = std::max(0, column - r); i <= std::min(grid_columns_ - 1, column + r); ++i) offer_cell(i, j);
+        for (int i = std::max(0, column - r); i <= std::min(grid_columns_ - 1, column + r); ++i)
+          offer_cell(i, j);
       } else {
         offer_cell(column - r, j);
         offer_cell(column + r, j);

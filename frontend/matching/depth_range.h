@@ -10,10 +10,9 @@
 // junction near the focus of expansion (docs/matching_results.md, "The local depth range").
 #pragma once
 
+#include <Eigen/Core>
 #include <utility>
 #include <vector>
-
-#include <Eigen/Core>
 
 #include "frontend/matching/pair_geometry.h"
 

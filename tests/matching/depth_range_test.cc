@@ -1,12 +1,12 @@
 // The local depth range test of the guided pass (frontend/matching/depth_range.h).
 #include "frontend/matching/depth_range.h"
 
+#include <gtest/gtest.h>
+
 #include <algorithm>
 #include <random>
 #include <utility>
 #include <vector>
-
-#include <gtest/gtest.h>
 
 #include "tests/matching/synthetic_views.h"
 
@@ -79,7 +79,9 @@ TEST(DepthRangeTest, PassesPointsOnTheSurfacesAroundAndRejectsNearerOrFartherOne
     // is beyond the wall at 8 m; the wall's own points (3 px of parallax, a 1.9 px tolerance)
     // cannot be told from infinity.
     if (points[k].y() == 1.2 && points[k].z() <= 4.5) {
-      EXPECT_FALSE(range.Passes(static_cast<int>(k), views.Project(1, camera1 + (points[k] - camera1) * 10.0))) << k;
+      EXPECT_FALSE(
+          range.Passes(static_cast<int>(k), views.Project(1, camera1 + (points[k] - camera1) * 10.0)))
+          << k;
     }
   }
   EXPECT_EQ(tested, static_cast<int>(points.size()));
@@ -112,16 +114,20 @@ TEST(DepthRangeTest, ScreeningDropsAWrongVerifiedMatchThatWouldWidenTheRange) {
   int k = -1;
   for (size_t j = 0; j < points.size(); ++j) {
     if ((points[j] - m).norm() < 1e-9) continue;
-    if (k < 0 || (x1[j] - x1.back()).norm() < (x1[static_cast<size_t>(k)] - x1.back()).norm()) k = static_cast<int>(j);
+    if (k < 0 || (x1[j] - x1.back()).norm() < (x1[static_cast<size_t>(k)] - x1.back()).norm())
+      k = static_cast<int>(j);
   }
   ASSERT_GE(k, 0);
   // On k's ray at inverse depth 3 / Z_m.
-  const Eigen::Vector3d candidate = points[static_cast<size_t>(k)] / points[static_cast<size_t>(k)].z() * (m.z() / 3.0);
+  const Eigen::Vector3d candidate =
+      points[static_cast<size_t>(k)] / points[static_cast<size_t>(k)].z() * (m.z() / 3.0);
   const std::vector<Eigen::Vector2d> locations = {x1[static_cast<size_t>(k)]};
   std::vector<int> source_k = source;
   for (int& s : source_k) s = s == k ? 0 : s + 1;  // junction 0 of `locations` is k
-  const LocalDepthRange unscreened(geometry, x1, x2, source_k, locations, 12, 2.576, 0.5, /*screen_verified=*/false);
-  const LocalDepthRange screened(geometry, x1, x2, source_k, locations, 12, 2.576, 0.5, /*screen_verified=*/true);
+  const LocalDepthRange unscreened(geometry, x1, x2, source_k, locations, 12, 2.576, 0.5,
+                                   /*screen_verified=*/false);
+  const LocalDepthRange screened(geometry, x1, x2, source_k, locations, 12, 2.576, 0.5,
+                                 /*screen_verified=*/true);
   EXPECT_TRUE(unscreened.Passes(0, views.Project(1, candidate)));
   EXPECT_FALSE(screened.Passes(0, views.Project(1, candidate)));
   // k's own partner passes either way.
@@ -151,7 +157,8 @@ TEST(DepthRangeTest, IntervalsAgreeWithABruteForceNeighbourSearch) {
   for (int k = 0; k < 20; ++k) locations.push_back(x1[static_cast<size_t>(k)]);
   for (int k = 0; k < 40; ++k) locations.emplace_back(px(rng), py(rng));
   const int neighbours = 12;
-  const LocalDepthRange range(geometry, x1, x2, source, locations, neighbours, 2.576, 0.5, /*screen_verified=*/false);
+  const LocalDepthRange range(geometry, x1, x2, source, locations, neighbours, 2.576, 0.5,
+                              /*screen_verified=*/false);
   for (size_t a = 0; a < locations.size(); ++a) {
     std::vector<std::pair<double, double>> by_distance;  // (distance, q)
     for (size_t k = 0; k < x1.size(); ++k) {
@@ -179,8 +186,8 @@ TEST(DepthRangeTest, NoNeighboursNoTest) {
   const TwoViews views = testing::MakeTwoViews();
   const PairGeometry geometry = ExactGeometry(views);
   const Eigen::Vector2d x1 = views.Project(0, Eigen::Vector3d(0.5, 0.2, 5));
-  const LocalDepthRange range(geometry, {x1}, {views.Project(1, Eigen::Vector3d(0.5, 0.2, 5))}, {0}, {x1}, 12, 2.576,
-                              0.5);
+  const LocalDepthRange range(geometry, {x1}, {views.Project(1, Eigen::Vector3d(0.5, 0.2, 5))}, {0}, {x1}, 12,
+                              2.576, 0.5);
   EXPECT_FALSE(range.IntervalOf(0).tested);  // its only verified correspondence is itself
   EXPECT_TRUE(range.Passes(0, views.Project(1, Eigen::Vector3d(0.1, 0.04, 1))));
 }
