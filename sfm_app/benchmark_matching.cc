@@ -29,6 +29,7 @@
 #include <string>
 #include <vector>
 
+#include <Eigen/SVD>
 #include <gflags/gflags.h>
 #include <glog/logging.h>
 #include <opencv2/core.hpp>
@@ -38,6 +39,7 @@
 #include "frontend/geometry/image_undistorter.h"
 #include "frontend/junctions/topology.h"
 #include "frontend/matching/junction_matcher.h"
+#include "frontend/matching/junction_similarity.h"
 #include "frontend/segments/segment_evaluation.h"
 #include "frontend/sequence/sequence.h"
 #include "frontend/util/atomic_file.h"
@@ -88,10 +90,17 @@ DEFINE_bool(match_refine, kMatchingDefaults.refine_geometry,
 DEFINE_double(match_refine_gate, kMatchingDefaults.refine_gate_sigmas, "With --match_refine: the gate, in sigmas.");
 DEFINE_int32(match_refine_min_inliers, kMatchingDefaults.refine_min_inliers,
              "With --match_refine: fewer supporting matches and the first pass is kept.");
+DEFINE_int32(match_depth_range_neighbours, kMatchingDefaults.depth_range_neighbours,
+             "With --match_refine: the local depth range test's neighbours (0: off).");
+DEFINE_bool(match_depth_range_screen, kMatchingDefaults.depth_range_screen_verified,
+            "With the local depth range test: screen the verified matches by the same test first.");
 DEFINE_bool(match_topology, kMatchingDefaults.use_topology, "sigma (true) or rho (false) in rule (38).");
 DEFINE_bool(match_partial, kMatchingDefaults.match_partial,
             "With --match_refine: in the guided pass, match junctions of k and k + 1 segments left unmatched through "
             "their best common subset (partial correspondence).");
+DEFINE_string(vgg_matches_csv, "",
+              "If set, write every match of the consecutive VGG pairs (odometry) with its diagnosis there: verdict, "
+              "junction types, distances from the true and the refined epipolar lines, the guided band, rho and sigma.");
 
 namespace sfm {
 namespace {
@@ -721,6 +730,93 @@ std::string WrongTable(const WrongTally& t) {
   return table.str();
 }
 
+// One CSV row per match of a VGG pair, for the analysis of the wrong ones: the verdict, the two
+// junctions, their distances from the true and from the used epipolar lines, the band of the pass
+// that made the match, rho and sigma, and where the true partner of junction a was.
+void AppendVggMatchRows(const VggData& d, int i, int j, const PairInput& input, const MatchingOptions& options,
+                        const std::vector<JunctionMatch>& matches, const MatchingDiagnostics& diagnostics,
+                        std::string* csv) {
+  const Junctions& a = d.frames[i].features.junctions;
+  const Junctions& b = d.frames[j].features.junctions;
+  const Eigen::Matrix3d F_true = d.TrueF(i, j);
+  const bool refined = diagnostics.refinement.Refined();
+  const PairGeometry used = refined ? diagnostics.refinement.geometry : *input.geometry;
+  MatchingOptions pass = options;
+  if (refined) {
+    pass.use_pose_band = true;
+    pass.band_sigmas = options.refine_gate_sigmas;
+  }
+  const JunctionSimilarity similarity(a, b, used, pass);
+  const Eigen::Matrix3d F_used = used.Fundamental();
+  MatchingOptions first_only = options;
+  first_only.refine_geometry = false;
+  const std::vector<JunctionMatch> first =
+      MatchJunctions(a, d.frames[i].features.graph, b, d.frames[j].features.graph, *input.geometry, first_only);
+  std::set<std::pair<int, int>> in_first;
+  for (const JunctionMatch& m : first) in_first.insert({m.index_a, m.index_b});
+  std::vector<int> partner_of_b(b.size(), -1);
+  for (const JunctionMatch& m : matches) partner_of_b[m.index_b] = m.index_a;
+  const SameFeature same = VggSame(d, i, j);
+  const TopologyGraph& graph_b = d.frames[j].features.graph;
+  auto neighbours = [&graph_b](int x, int y) {
+    for (const int e : graph_b.edges_of_junction[x]) {
+      const TopologyEdge& edge = graph_b.edges[e];
+      if (edge.junction_a == y || edge.junction_b == y) return true;
+    }
+    return false;
+  };
+  auto lengths = [](const Junction& junction) {
+    std::string text;
+    for (const JunctionSegment& s : junction.segments) {
+      text += (text.empty() ? "" : ";") + Fixed((s.end - junction.location).norm(), 1);
+    }
+    return text;
+  };
+  std::ostringstream out;
+  for (const JunctionMatch& m : matches) {
+    const Junction& ja = a[m.index_a];
+    const Junction& jb = b[m.index_b];
+    const int identity = same(m.index_a, m.index_b);
+    const bool epipolar_ok = EpipolarConsistent(F_true, ja.location, jb.location, FLAGS_epipolar_tolerance);
+    const double true_d2 = PointLineDistance(EpipolarLineInImage2(F_true, ja.location), jb.location);
+    const double true_d1 = PointLineDistance(EpipolarLineInImage1(F_true, jb.location), ja.location);
+    const double used_d2 = PointLineDistance(EpipolarLineInImage2(F_used, ja.location), jb.location);
+    const double used_d1 = PointLineDistance(EpipolarLineInImage1(F_used, jb.location), ja.location);
+    const JunctionSimilarity::Bands bands = similarity.BandsOf(m.index_a, m.index_b);
+    const PairSimilarity rho = similarity.Rho(m.index_a, m.index_b);
+    // The junction of b at the same 3D point as a's (by the corners), if any.
+    int true_b = -1;
+    for (int k = 0; k < static_cast<int>(b.size()) && true_b < 0; ++k) {
+      if (SameTrueVertex(d.near_points[i][m.index_a], d.near_points[j][k]) == 1) true_b = k;
+    }
+    double true_b_rho = -1;
+    if (true_b >= 0 && a[m.index_a].NumSegments() == b[true_b].NumSegments()) {
+      true_b_rho = similarity.Rho(m.index_a, true_b).rho;
+    }
+    out << i << "," << j << "," << m.index_a << "," << m.index_b << "," << JunctionTypeName(ja.type) << ","
+        << JunctionTypeName(jb.type) << "," << Fixed(ja.location.x(), 2) << "," << Fixed(ja.location.y(), 2) << ","
+        << Fixed(jb.location.x(), 2) << "," << Fixed(jb.location.y(), 2) << "," << Fixed(ja.score, 3) << ","
+        << Fixed(jb.score, 3) << "," << (epipolar_ok && identity != 0 ? 1 : 0) << "," << (epipolar_ok ? 1 : 0) << ","
+        << identity << "," << Fixed(true_d1, 3) << "," << Fixed(true_d2, 3) << "," << Fixed(used_d1, 3) << ","
+        << Fixed(used_d2, 3) << "," << Fixed(bands.in_image1, 3) << "," << Fixed(bands.in_image2, 3) << ","
+        << Fixed(rho.rho, 4) << "," << Fixed(m.similarity, 4) << "," << (refined ? 1 : 0) << ","
+        << (in_first.count({m.index_a, m.index_b}) ? 1 : 0) << "," << true_b << ","
+        << (true_b >= 0 ? partner_of_b[true_b] : -2) << "," << (true_b >= 0 && true_b != m.index_b && neighbours(m.index_b, true_b) ? 1 : 0)
+        << "," << Fixed(true_b_rho, 4) << "," << lengths(ja) << "," << lengths(jb);
+    const Eigen::Matrix3d F_truepose = PairInputOf(d.sequence, i, j, true).F;
+    const Eigen::Matrix3d F_odometry = input.F;
+    for (const Eigen::Matrix3d* F : {&F_true, &F_used, &F_truepose, &F_odometry}) {
+      // The epipoles (right and left null vectors of F), pixels.
+      const Eigen::JacobiSVD<Eigen::Matrix3d> svd(*F, Eigen::ComputeFullU | Eigen::ComputeFullV);
+      const Eigen::Vector3d e1 = svd.matrixV().col(2), e2 = svd.matrixU().col(2);
+      out << "," << Fixed(e1.x() / e1.z(), 2) << "," << Fixed(e1.y() / e1.z(), 2) << "," << Fixed(e2.x() / e2.z(), 2)
+          << "," << Fixed(e2.y() / e2.z(), 2);
+    }
+    out << "\n";
+  }
+  *csv += out.str();
+}
+
 }  // namespace
 }  // namespace sfm
 
@@ -769,6 +865,8 @@ int main(int argc, char** argv) {
   matching.refine_gate_sigmas = FLAGS_match_refine_gate;
   matching.refine_min_inliers = FLAGS_match_refine_min_inliers;
   matching.match_partial = FLAGS_match_partial;
+  matching.depth_range_neighbours = FLAGS_match_depth_range_neighbours;
+  matching.depth_range_screen_verified = FLAGS_match_depth_range_screen;
   if (FLAGS_match_rho1 == "linear") {
     matching.rho1_kind = Rho1Kind::kLinear;
   } else if (FLAGS_match_rho1 == "exponential") {
@@ -952,6 +1050,10 @@ int main(int argc, char** argv) {
                                 {"odometry", &no_border, "odometry, junctions within 5 px of the border dropped"},
                                 {"odometry", &no_t, "odometry, T junctions dropped"}};
     WrongTally wrong_vgg;
+    std::string vgg_matches_csv =
+        "i,j,index_a,index_b,type_a,type_b,xa,ya,xb,yb,score_a,score_b,correct,epipolar_ok,identity,true_d1,true_d2,"
+        "used_d1,used_d2,band1,band2,rho,similarity,refined,in_first_pass,true_b,true_b_matched_to,"
+        "true_b_neighbour_of_b,true_b_rho,lengths_a,lengths_b,e1x_true,e1y_true,e2x_true,e2y_true,e1x,e1y,e2x,e2y,e1x_tp,e1y_tp,e2x_tp,e2y_tp,e1x_od,e1y_od,e2x_od,e2y_od\n";
     const int n = static_cast<int>(vgg.frames.size());
     for (int gap = 1; gap <= FLAGS_max_gap; ++gap) {
       for (const Variant& variant : variants) {
@@ -1000,6 +1102,9 @@ int main(int argc, char** argv) {
             AddLbdPair(d.frames[i], d.frames[j], d.lbd_line_id[i], d.lbd_line_id[j], VggLineOf(d, i), VggLineOf(d, j),
                        F_true, &lbd_vgg, &lbd_mutual_vgg);
             TallyWrong(d.frames[i], d.frames[j], matches, F_true, VggSame(d, i, j), /*identity_only=*/false, &wrong_vgg);
+            if (!FLAGS_vgg_matches_csv.empty() && F.geometry) {
+              AppendVggMatchRows(d, i, j, F, matching, matches, diagnostics, &vgg_matches_csv);
+            }
           }
         }
         report << "| " << gap << " | " << variant.label << " | " << pairs << " | "
@@ -1012,6 +1117,9 @@ int main(int argc, char** argv) {
                << Percent(verdicts.correct_known, verdicts.identity_known) << " | " << recall.seen_both << " | "
                << recall.matched << " | " << Percent(recall.matched, recall.seen_both) << " |\n";
       }
+    }
+    if (!FLAGS_vgg_matches_csv.empty()) {
+      if (const Status s = WriteFileAtomically(FLAGS_vgg_matches_csv, vgg_matches_csv); !s.ok()) return fail(1, s.message());
     }
     report << "\nThe wrong matches of the first row, by junction type in the first frame:\n\n" << WrongTable(wrong_vgg);
     // How many of the wrong ones are just beyond the tolerance.

@@ -6,6 +6,7 @@
 
 #include <glog/logging.h>
 
+#include "frontend/matching/depth_range.h"
 #include "frontend/matching/junction_similarity.h"
 #include "frontend/matching/similarity_table.h"
 #include "frontend/matching/topology_similarity.h"
@@ -14,12 +15,17 @@ namespace sfm {
 
 namespace {
 
+// depth_range (may be null): a pair it rejects is unmatched, for rule (38) and for sigma's
+// topology support alike.
 std::vector<JunctionMatch> Match(const Junctions& a, const TopologyGraph& graph_a, const Junctions& b,
                                  const TopologyGraph& graph_b, const JunctionSimilarity& similarity,
-                                 const MatchingOptions& options) {
+                                 const MatchingOptions& options, const LocalDepthRange* depth_range = nullptr) {
   const int num_a = static_cast<int>(a.size());
   const int num_b = static_cast<int>(b.size());
-  SimilarityTable table(num_a, num_b, [&similarity](int i, int j) { return similarity.Rho(i, j); });
+  SimilarityTable table(num_a, num_b, [&similarity, &b, depth_range](int i, int j) {
+    if (depth_range != nullptr && !depth_range->Passes(i, b[j].location)) return PairSimilarity();
+    return similarity.Rho(i, j);
+  });
   std::optional<TopologySimilarity> topology;
   if (options.use_topology) topology.emplace(a, graph_a, b, graph_b, &table);
 
@@ -132,7 +138,26 @@ std::vector<JunctionMatch> MatchJunctions(const Junctions& a, const TopologyGrap
   guided.use_pose_band = true;
   guided.band_sigmas = options.refine_gate_sigmas;
   const JunctionSimilarity similarity(a, b, report.refinement.geometry, guided);
-  std::vector<JunctionMatch> matches = Match(a, graph_a, b, graph_b, similarity, guided);
+  std::optional<LocalDepthRange> depth_range;
+  if (options.depth_range_neighbours > 0) {
+    // The verified matches: the first pass's matches within the gate at the refined pose.
+    std::vector<Eigen::Vector2d> x1_verified, x2_verified;
+    std::vector<int> source_a;
+    for (size_t k = 0; k < first.size(); ++k) {
+      if (!report.refinement.inlier[k]) continue;
+      x1_verified.push_back(x1[k]);
+      x2_verified.push_back(x2[k]);
+      source_a.push_back(first[k].index_a);
+    }
+    std::vector<Eigen::Vector2d> locations_a;
+    locations_a.reserve(a.size());
+    for (const Junction& junction : a) locations_a.push_back(junction.location);
+    depth_range.emplace(report.refinement.geometry, x1_verified, x2_verified, source_a, locations_a,
+                        options.depth_range_neighbours, options.refine_gate_sigmas, options.location_sigma_px,
+                        options.depth_range_screen_verified);
+  }
+  std::vector<JunctionMatch> matches =
+      Match(a, graph_a, b, graph_b, similarity, guided, depth_range ? &*depth_range : nullptr);
   if (!options.match_partial) return matches;
   // Only here: in the refined band (about 1.8 px) a partial pair has few rivals; in the odometry's
   // band the weaker, k/(k+1)-scaled support would compete with many wrong full-count partners.

@@ -62,6 +62,14 @@ struct MatchingOptions {
   double refine_gate_sigmas = 2.576;
   // Three matches per degree of freedom of an epipolar geometry (5).
   int refine_min_inliers = 15;
+  // The local depth range test in the guided pass (docs/matching.md, "The local depth range"): a
+  // candidate partner's depth along the epipolar line must lie within the range of inverse depths of
+  // the depth_range_neighbours verified matches (refinement inliers) nearest to the junction in
+  // image 1, widened by the cheirality tolerance at refine_gate_sigmas. 0: off.
+  int depth_range_neighbours = 12;
+  // Before that, drop the verified matches that fail the same test against the other verified ones
+  // (a wrong verified match at a near depth would widen its neighbours' range).
+  bool depth_range_screen_verified = true;
   // Partial junction correspondence in the guided pass only (not in the paper; docs/matching.md,
   // "Partial correspondence"): a junction of k >= 2 segments left unmatched may match one of k + 1
   // (a segment missed in one frame) through its best common subset, rho2 counting the missing
@@ -91,6 +99,7 @@ struct MatchingOptions {
       return bad("refine_gate_sigmas must be finite and > 0");
     }
     if (refine_min_inliers < 0) return bad("refine_min_inliers must be >= 0");
+    if (depth_range_neighbours < 0) return bad("depth_range_neighbours must be >= 0");
     if (refine_geometry && !(location_sigma_px > 0)) {
       return bad("refine_geometry needs location_sigma_px > 0");
     }

@@ -159,7 +159,9 @@ ParallaxFrame ParallaxFrameOf(const PairGeometry& geometry, const Eigen::Vector2
   const Eigen::Matrix3d& K = geometry.K;
   const Eigen::Vector3d& t = geometry.camera2_T_camera1.translation;
   // The ray of x1 in camera 2's axes; its point at infinity must be in front of camera 2.
-  const Eigen::Vector3d X = geometry.camera2_T_camera1.RotationMatrix() * (K.inverse() * x1.homogeneous());
+  // K is upper triangular: a back substitution, not an inverse (this runs for every junction).
+  const Eigen::Vector3d X =
+      geometry.camera2_T_camera1.RotationMatrix() * K.triangularView<Eigen::Upper>().solve(x1.homogeneous());
   if (!(X.z() > 1e-9 * X.norm())) return frame;
   const Eigen::Vector3d p = K * X;
   frame.v = p.head<2>() / p.z();
@@ -169,6 +171,8 @@ ParallaxFrame ParallaxFrameOf(const PairGeometry& geometry, const Eigen::Vector2
   const Eigen::Vector2d w = K.topLeftCorner<2, 2>() * w_normalised;
   if (!(w.norm() > 1e-12 * (std::abs(K(0, 0)) + std::abs(K(1, 1))) * t.norm())) return frame;
   frame.direction = w.normalized();
+  frame.scale = w.norm();
+  frame.ray_z = X.z();
   // v moves with the rotation: X -> X + omega x X = X - [X]x omega.
   Eigen::Matrix<double, 2, 3> dv_dp;
   dv_dp << 1 / p.z(), 0, -p.x() / (p.z() * p.z()), 0, 1 / p.z(), -p.y() / (p.z() * p.z());

@@ -71,6 +71,11 @@ struct ParallaxFrame {
   Eigen::Vector2d v = Eigen::Vector2d::Zero();          // v2, pixels
   Eigen::Vector2d direction = Eigen::Vector2d::Zero();  // unit w2
   double sigma = 0;                                     // spread of v2 along w2, pixels
+  // The image of the point at depth Z (camera 1) on the ray of x1 is v2 + direction * scale *
+  // q / (ray_z + q t_z), q = 1/Z, t_z camera2_T_camera1's translation z: scale = |w2| (pixels per
+  // unit of that fraction), ray_z the z of R K^-1 x1 (with K^-1 x1 = (x, y, 1)).
+  double scale = 0;
+  double ray_z = 0;
 };
 ParallaxFrame ParallaxFrameOf(const PairGeometry& geometry, const Eigen::Vector2d& x1);
 
