@@ -68,6 +68,8 @@ DEFINE_double(edge_contrast_high, sfm::SegmentDetectorOptions().edge_contrast_hi
 DEFINE_double(log10_nfa_max, sfm::SegmentDetectorOptions().fast.log10_nfa_max, "Fast segments: NFA threshold, log10.");
 DEFINE_double(presmooth_sigma, sfm::SegmentDetectorOptions().fast.presmooth_sigma,
               "Fast segments: Gaussian pre-smoothing before the Sobel pass, px.");
+DEFINE_bool(corners_between_chains, sfm::SegmentDetectorOptions().fast.corners_between_chains,
+            "Fast segments: short pieces meeting a long piece of another chain at a corner are measured from the corner.");
 DEFINE_double(line_tolerance, sfm::SegmentDetectorOptions().fast.line_tolerance, "Fast segments: splitting tolerance, px.");
 DEFINE_string(overlay_dir, "", "If set, write overlays there (every 10th generated frame, every VGG image), "
                                "with missed true junctions circled in white.");
@@ -986,6 +988,7 @@ int main(int argc, char** argv) {
     method.options.edge_contrast_high = FLAGS_edge_contrast_high;
     method.options.fast.log10_nfa_max = FLAGS_log10_nfa_max;
     method.options.fast.line_tolerance = FLAGS_line_tolerance;
+    method.options.fast.corners_between_chains = FLAGS_corners_between_chains;
     method.options.fast.presmooth_sigma = FLAGS_presmooth_sigma;
     if (name == "fast") {
       method.options.method = SegmentMethod::kFast;

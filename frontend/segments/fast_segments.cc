@@ -44,7 +44,9 @@ struct Workspace {
   std::vector<Eigen::Vector2d> points;                 // sub-pixel points of chain
   std::vector<LinePiece> pieces;                       // straight pieces of all chains
   std::vector<std::pair<size_t, size_t>> ranges;       // chain points [begin, end) of the current chain's pieces
-  std::vector<FittedLine> lines;                       // their fitted lines (MarkCornerLengths)
+  std::vector<FittedLine> lines;                       // their fitted lines (MarkCornerLengths, MarkContactCorners)
+  std::vector<Eigen::Vector2d> ends;                   // pieces' end-points (MarkContactCorners)
+  std::vector<int> short_pieces, cell_begin, cell_fill, cell_ends;  // MarkContactCorners' pieces and grid
 };
 
 // One image's detection.
@@ -67,7 +69,12 @@ class FastDetector {
         points_(workspace->points),
         pieces_(workspace->pieces),
         ranges_(workspace->ranges),
-        lines_(workspace->lines) {
+        lines_(workspace->lines),
+        ends_(workspace->ends),
+        short_pieces_(workspace->short_pieces),
+        cell_begin_(workspace->cell_begin),
+        cell_fill_(workspace->cell_fill),
+        cell_ends_(workspace->cell_ends) {
     pieces_.clear();
     const cv::Mat* smoothed = &grey;
     const double sigma = options.fast.presmooth_sigma;
@@ -126,6 +133,7 @@ class FastDetector {
       }
       MarkCornerLengths(first_piece, closed);
     }
+    if (options_.fast.corners_between_chains) MarkContactCorners();
     // A piece joined across chains is one more candidate: count every piece once more.
     num_tests_ += static_cast<double>(pieces_.size());
     // Short sides between two corners are a family of candidates of their own (see Validate).
@@ -359,6 +367,85 @@ class FastDetector {
     }
   }
 
+  // Corners between chains: a chain ends where it runs into another chain, so the short side of a
+  // box often forms a chain of its own whose end touches the long side's chain at the corner, and
+  // the within-chain rule of MarkCornerLengths never sees it. A piece shorter than min_length whose
+  // line meets the line of a piece at least min_length long (lines at least kMinCornerSine from
+  // parallel) at a point within max_gap of its own end-point and of one of that piece's end-points
+  // (an L corner: the two ends meet) has a corner at that end. Its corner_length is the distance
+  // between its corners, or from its one corner to its far end-point: the side's length before
+  // the corners rounded it off. Validate then tests it against the family of such pieces, like a
+  // short side between two corners. Long pieces' end-points are bucketed in cells of 2 max_gap.
+  void MarkContactCorners() {
+    const size_t m = pieces_.size();
+    std::vector<FittedLine>& lines = lines_;
+    lines.resize(m);
+    std::vector<Eigen::Vector2d>& ends = ends_;
+    ends.resize(2 * m);
+    std::vector<int>& short_pieces = short_pieces_;
+    short_pieces.clear();
+    const double cell = std::ceil(2 * options_.max_gap);
+    const int grid_cols = static_cast<int>(cols_ / cell) + 1, grid_rows = static_cast<int>(rows_ / cell) + 1;
+    auto cell_of = [&](const Eigen::Vector2d& p) {
+      const int cx = std::clamp(static_cast<int>(p.x() / cell), 0, grid_cols - 1);
+      const int cy = std::clamp(static_cast<int>(p.y() / cell), 0, grid_rows - 1);
+      return cy * grid_cols + cx;
+    };
+    // Counting sort of the long pieces' end-points by cell: cell c holds
+    // cell_ends_[cell_begin_[c] .. cell_begin_[c + 1]) (indices into ends).
+    cell_begin_.assign(static_cast<size_t>(grid_cols) * grid_rows + 1, 0);
+    for (size_t k = 0; k < m; ++k) {
+      lines[k] = pieces_[k].fit.Fit();
+      ends[2 * k] = lines[k].Project(pieces_[k].first);
+      ends[2 * k + 1] = lines[k].Project(pieces_[k].last);
+      const double length = (ends[2 * k + 1] - ends[2 * k]).norm();
+      if (length >= options_.min_length) {
+        ++cell_begin_[cell_of(ends[2 * k]) + 1];
+        ++cell_begin_[cell_of(ends[2 * k + 1]) + 1];
+      } else if (length > 0 && pieces_[k].corner_length < options_.min_length) {
+        short_pieces.push_back(static_cast<int>(k));
+      }
+    }
+    if (short_pieces.empty()) return;
+    for (size_t c = 1; c < cell_begin_.size(); ++c) cell_begin_[c] += cell_begin_[c - 1];
+    cell_ends_.resize(cell_begin_.back());
+    cell_fill_.assign(cell_begin_.begin(), cell_begin_.end() - 1);
+    for (size_t k = 0; k < m; ++k) {
+      if ((ends[2 * k + 1] - ends[2 * k]).norm() < options_.min_length) continue;
+      for (int e = 0; e < 2; ++e) cell_ends_[cell_fill_[cell_of(ends[2 * k + e])]++] = static_cast<int>(2 * k + e);
+    }
+    const double gap = options_.max_gap, reach2 = 4 * gap * gap;
+    for (const int s : short_pieces) {
+      Eigen::Vector2d corners[2] = {ends[2 * s], ends[2 * s + 1]};
+      bool any = false;
+      for (int e = 0; e < 2; ++e) {
+        const Eigen::Vector2d& end = ends[2 * s + e];
+        // The meeting point is within max_gap of both end-points, so they are within 2 max_gap of
+        // each other: the 3 x 3 cells around this end hold them.
+        const int cx = cell_of(end) % grid_cols, cy = cell_of(end) / grid_cols;
+        double best = gap;
+        for (int y = std::max(cy - 1, 0); y <= std::min(cy + 1, grid_rows - 1); ++y) {
+          for (int x = std::max(cx - 1, 0); x <= std::min(cx + 1, grid_cols - 1); ++x) {
+            const int c = y * grid_cols + x;
+            for (int i = cell_begin_[c]; i < cell_begin_[c + 1]; ++i) {
+              const Eigen::Vector2d& other_end = ends[cell_ends_[i]];
+              if ((other_end - end).squaredNorm() > reach2) continue;
+              Eigen::Vector2d corner;
+              if (!Intersect(lines[s], lines[cell_ends_[i] / 2], &corner)) continue;
+              const double to_end = (corner - end).norm();
+              if (to_end <= best && (corner - other_end).norm() <= gap) {
+                best = to_end;
+                corners[e] = corner;
+                any = true;
+              }
+            }
+          }
+        }
+      }
+      if (any) pieces_[s].corner_length = std::max(pieces_[s].corner_length, (corners[1] - corners[0]).norm());
+    }
+  }
+
   // The common point of two lines, if they are at least kMinCornerSine from parallel.
   static bool Intersect(const FittedLine& a, const FittedLine& b, Eigen::Vector2d* point) {
     const double sine = a.direction.x() * b.direction.y() - a.direction.y() * b.direction.x();
@@ -450,6 +537,11 @@ class FastDetector {
   std::vector<LinePiece>& pieces_;
   std::vector<std::pair<size_t, size_t>>& ranges_;
   std::vector<FittedLine>& lines_;
+  std::vector<Eigen::Vector2d>& ends_;
+  std::vector<int>& short_pieces_;
+  std::vector<int>& cell_begin_;
+  std::vector<int>& cell_fill_;
+  std::vector<int>& cell_ends_;
 };
 
 }  // namespace

@@ -39,6 +39,10 @@ struct FastSegmentOptions {
   double presmooth_sigma = 0.7;     // pixels: Gaussian pre-smoothing before the Sobel pass (0: none)
   double line_tolerance = 1.0;      // pixels: a chain pixel farther than this from the growing line ends it
   double log10_nfa_max = 0.0;       // a piece is kept if log10(number of false alarms) <= this (NFA <= 1)
+  // A piece shorter than min_length whose end meets the end of a piece at least min_length long
+  // (of any chain) at a corner is measured from that corner, as a short side between two corners
+  // (docs/segments.md, step 7). false: only short sides within one chain, between two corners.
+  bool corners_between_chains = true;
 };
 
 struct SegmentDetectorOptions {
