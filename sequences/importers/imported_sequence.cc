@@ -4,7 +4,10 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <cmath>
 #include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <utility>
 
 #include <glog/logging.h>
@@ -215,6 +218,27 @@ Status WriteImportedSequence(const ImportedSequence& sequence, const SequenceWri
   SFM_RETURN_IF_ERROR(MoveIntoPlace(&temporary, target));
   LOG(INFO) << "import: wrote " << sequence.frames.size() << " frames of " << SizeText(size.width, size.height)
             << " to " << target.string();
+  return Status::Ok();
+}
+
+Status ReadImageWarps(const std::string& path, std::vector<Eigen::Matrix<double, 2, 3>>* warps) {
+  std::ifstream in(path);
+  if (!in) return Status::Error(path + ": cannot be read");
+  warps->clear();
+  std::string line;
+  for (int number = 1; std::getline(in, line); ++number) {
+    if (line.empty() || line[0] == '#') continue;
+    std::istringstream fields(line);
+    std::string image;
+    Eigen::Matrix<double, 2, 3> A;
+    fields >> image >> A(0, 0) >> A(0, 1) >> A(0, 2) >> A(1, 0) >> A(1, 1) >> A(1, 2);
+    std::string extra;
+    if (!fields || (fields >> extra) || !A.allFinite()) {
+      return Status::Error(path + ": line " + std::to_string(number) +
+                           " is not 'image a11 a12 a13 a21 a22 a23' with six finite numbers");
+    }
+    warps->push_back(A);
+  }
   return Status::Ok();
 }
 

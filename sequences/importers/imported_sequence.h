@@ -60,4 +60,10 @@ struct SequenceWriteOptions {
 Status WriteImportedSequence(const ImportedSequence& sequence, const SequenceWriteOptions& options,
                              const std::string& output_dir);
 
+// Reads image_warps.txt as WriteImportedSequence writes it: per image in order, the affine map
+// (2 x 3) from the data set's pixels to the sequence's. For consumers that compare the sequence
+// with the data set's own image measurements (docs/importers.md). Fails, naming the file and the
+// line, on a missing file, a malformed row or a non-finite entry.
+Status ReadImageWarps(const std::string& path, std::vector<Eigen::Matrix<double, 2, 3>>* warps);
+
 }  // namespace sfm

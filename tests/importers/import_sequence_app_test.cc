@@ -14,6 +14,7 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "frontend/sequence/sequence.h"
+#include "sequences/importers/imported_sequence.h"
 #include "tests/test_data.h"
 
 namespace sfm {
@@ -124,20 +125,41 @@ TEST(ImportSequenceAppTest, ImportsAndRefusesToOverwriteUnlessAsked) {
   }
 }
 
-// image_warps.txt as a map per image: images/NNNNNN.png -> [a11 a12 a13; a21 a22 a23].
-std::vector<Eigen::Matrix<double, 2, 3>> ReadImageWarps(const fs::path& path) {
+// image_warps.txt through the library's reader (failing the test on a read error).
+std::vector<Eigen::Matrix<double, 2, 3>> WarpsOf(const fs::path& path) {
   std::vector<Eigen::Matrix<double, 2, 3>> warps;
-  std::ifstream in(path);
-  std::string line;
-  while (std::getline(in, line)) {
-    if (line.empty() || line[0] == '#') continue;
-    std::istringstream fields(line);
-    std::string image;
-    Eigen::Matrix<double, 2, 3> A;
-    fields >> image >> A(0, 0) >> A(0, 1) >> A(0, 2) >> A(1, 0) >> A(1, 1) >> A(1, 2);
-    if (fields) warps.push_back(A);
-  }
+  const Status read = ReadImageWarps(path.string(), &warps);
+  EXPECT_TRUE(read.ok()) << read.message();
   return warps;
+}
+
+// The reader names the file and the line of a malformed row (here five numbers) and of a NaN.
+TEST(ImportSequenceAppTest, ImageWarpsReaderNamesTheBadLine) {
+  const fs::path scratch = testing::MakeScratchDir("image_warps_reader");
+  const fs::path path = scratch / "image_warps.txt";
+  std::vector<Eigen::Matrix<double, 2, 3>> warps;
+  {
+    std::ofstream out(path);
+    out << "# header\nimages/000000.png 1 0 0 0 1 0\nimages/000001.png 1 0 0 0 1\n";
+  }
+  Status read = ReadImageWarps(path.string(), &warps);
+  ASSERT_FALSE(read.ok());
+  EXPECT_THAT(read.message(), ::testing::HasSubstr(path.string() + ": line 3"));
+  {
+    std::ofstream out(path);
+    out << "images/000000.png 1 0 nan 0 1 0\n";
+  }
+  read = ReadImageWarps(path.string(), &warps);
+  ASSERT_FALSE(read.ok());
+  EXPECT_THAT(read.message(), ::testing::HasSubstr(": line 1"));
+  {
+    std::ofstream out(path);
+    out << "images/000000.png 2 0 1 0 2 -1\n";
+  }
+  ASSERT_TRUE(ReadImageWarps(path.string(), &warps).ok());
+  ASSERT_EQ(warps.size(), 1u);
+  EXPECT_EQ(warps[0](0, 2), 1);
+  EXPECT_FALSE(ReadImageWarps((scratch / "absent.txt").string(), &warps).ok());
 }
 
 // --vgg_warp_to_shared_k through the app, with --scale: image_warps.txt must map the data set's
@@ -155,8 +177,8 @@ TEST(ImportSequenceAppTest, VggWarpFileComposesTheScaling) {
   Sequence full, half;
   ASSERT_TRUE(ReadSequence((scratch / "full").string(), &full).ok());
   ASSERT_TRUE(ReadSequence((scratch / "half").string(), &half).ok());
-  const std::vector<Eigen::Matrix<double, 2, 3>> full_warps = ReadImageWarps(scratch / "full" / "image_warps.txt");
-  const std::vector<Eigen::Matrix<double, 2, 3>> half_warps = ReadImageWarps(scratch / "half" / "image_warps.txt");
+  const std::vector<Eigen::Matrix<double, 2, 3>> full_warps = WarpsOf(scratch / "full" / "image_warps.txt");
+  const std::vector<Eigen::Matrix<double, 2, 3>> half_warps = WarpsOf(scratch / "half" / "image_warps.txt");
   ASSERT_EQ(full_warps.size(), 11u);
   ASSERT_EQ(half_warps.size(), 11u);
   const Camera& a = full.calibration.camera;

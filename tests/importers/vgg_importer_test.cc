@@ -246,19 +246,11 @@ TEST(VggImporterTest, CorridorGroundTruthReprojectsOntoTheCorners) {
             sequence.frames.front().world_T_base_groundtruth->translation);
 }
 
-// image_warps.txt: per image, the affine map from the data set's pixels to the sequence's.
-std::vector<Eigen::Matrix<double, 2, 3>> ReadWarps(const fs::path& path) {
+// image_warps.txt through the library's reader (failing the test on a read error).
+std::vector<Eigen::Matrix<double, 2, 3>> Warps(const fs::path& path) {
   std::vector<Eigen::Matrix<double, 2, 3>> warps;
-  std::ifstream in(path);
-  std::string line;
-  while (std::getline(in, line)) {
-    if (line.empty() || line[0] == '#') continue;
-    std::istringstream fields(line);
-    std::string image;
-    Eigen::Matrix<double, 2, 3> A;
-    fields >> image >> A(0, 0) >> A(0, 1) >> A(0, 2) >> A(1, 0) >> A(1, 1) >> A(1, 2);
-    if (fields) warps.push_back(A);
-  }
+  const Status read = ReadImageWarps(path.string(), &warps);
+  EXPECT_TRUE(read.ok()) << read.message();
   return warps;
 }
 
@@ -285,7 +277,7 @@ TEST(VggImporterTest, CorridorWarpedToTheSharedKReprojectsAsTheFilesDo) {
   const cv::Mat first = cv::imread((out / "images" / "000000.png").string(), cv::IMREAD_UNCHANGED);
   EXPECT_EQ(first.cols, camera.width);
   EXPECT_EQ(first.rows, camera.height);
-  const std::vector<Eigen::Matrix<double, 2, 3>> warps = ReadWarps(out / "image_warps.txt");
+  const std::vector<Eigen::Matrix<double, 2, 3>> warps = Warps(out / "image_warps.txt");
   ASSERT_EQ(warps.size(), 11u);
 
   const Eigen::Matrix3d K = camera.K();
