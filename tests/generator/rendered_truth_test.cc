@@ -410,10 +410,12 @@ TEST(RenderedTruthTest, CorridorDistortedStoredAndUndistortedImages) {
   ExpectOcclusionEndsOnContours(measured.occlusion_gaps, 1000);
 }
 
-// Sharp rendering (8 x 8 samples, no blur) resolves edges 3 px apart, such as the cabinet's top
-// front edge 4-8 px above its door's top edge in the frames of the report. Steps are then 1 px
-// wide, so the profile needs only 2 px each way; an edge is placed to half a sample (1/16 px)
-// twice over, and bilinear reading of an unblurred step errs by up to 1/8 px.
+// Sharp rendering (6 x 6 samples, no blur): steps are 1 px wide, so the profile needs 2.5 px each
+// way and a probe 3.5 px of clearance from other edges (5 px with the blur), which lets in more
+// probes between close edges (35 k instead of 28 k). An edge is placed to half a sample (1/12 px),
+// twice over with distortion, and bilinear reading of an unblurred step errs by up to 1/8 px.
+// Measured: median 0.052 px, max 0.24 px; corners median 0.07 px, max 0.29 px. (The two top edges
+// of the report's cabinet, 2.8 px apart across in frame 22, are still too close to probe.)
 TEST(RenderedTruthTest, CorridorDistortedSharpRenderingNearbyEdges) {
   GeneratorOptions options = CorridorDistorted();
   options.render.supersampling = 6;
