@@ -98,6 +98,11 @@ DEFINE_bool(match_topology, kMatchingDefaults.use_topology, "sigma (true) or rho
 DEFINE_bool(match_partial, kMatchingDefaults.match_partial,
             "With --match_refine: in the guided pass, match junctions of k and k + 1 segments left unmatched through "
             "their best common subset (partial correspondence).");
+DEFINE_bool(match_partial_rule_a, kMatchingDefaults.partial_rule_not_line_half,
+            "With --match_partial: rule (a), the left-out segment may not be half of a line through the junction.");
+DEFINE_bool(match_partial_rule_b, kMatchingDefaults.partial_rule_same_lines,
+            "With --match_partial: rule (b), the kept segments have as many lines through the junction as the smaller "
+            "junction.");
 DEFINE_string(vgg_matches_csv, "",
               "If set, write every match of the consecutive VGG pairs (odometry) with its diagnosis there: verdict, "
               "junction types, distances from the true and the refined epipolar lines, the guided band, rho and sigma.");
@@ -865,6 +870,8 @@ int main(int argc, char** argv) {
   matching.refine_gate_sigmas = FLAGS_match_refine_gate;
   matching.refine_min_inliers = FLAGS_match_refine_min_inliers;
   matching.match_partial = FLAGS_match_partial;
+  matching.partial_rule_not_line_half = FLAGS_match_partial_rule_a;
+  matching.partial_rule_same_lines = FLAGS_match_partial_rule_b;
   matching.depth_range_neighbours = FLAGS_match_depth_range_neighbours;
   matching.depth_range_screen_verified = FLAGS_match_depth_range_screen;
   if (FLAGS_match_rho1 == "linear") {

@@ -76,6 +76,12 @@ struct MatchingOptions {
   // segment's term as 0, by rule (38) among the junctions the full pass left unmatched. Off by
   // default: frontend/tracks and the match overlay expect equal segment counts.
   bool match_partial = false;
+  // The two rules on the segment a partial pair leaves out (docs/matching.md, "Partial
+  // correspondence"; JunctionSimilarity::PartialRho): (a) it is not half of a straight line through
+  // the location; (b) the kept segments have as many straight lines through it as the smaller
+  // junction. Switches for the measurement of each rule's effect; both on by default.
+  bool partial_rule_not_line_half = true;
+  bool partial_rule_same_lines = true;
 
   Status Check() const {
     auto bad = [](const std::string& what) { return Status::Error("MatchingOptions: " + what); };
