@@ -63,17 +63,17 @@ std::vector<JunctionMatch> MatchPartial(const Junctions& a, const Junctions& b, 
     matched_a[match.index_a] = 1;
     matched_b[match.index_b] = 1;
   }
-  std::vector<int> left_a, left_b;
-  for (int i = 0; i < static_cast<int>(a.size()); ++i) {
-    if (!matched_a[i]) left_a.push_back(i);
-  }
-  for (int j = 0; j < static_cast<int>(b.size()); ++j) {
-    if (!matched_b[j]) left_b.push_back(j);
-  }
   std::vector<JunctionMatch> candidates;
-  for (const int i : left_a) {
+  std::vector<int> partners;
+  for (int i = 0; i < static_cast<int>(a.size()); ++i) {
+    if (matched_a[i]) continue;
     const int n_a = a[i].NumSegments();
-    for (const int j : left_b) {
+    // The cheap epipolar scan first (one product over b's locations): most leftover pairs are far
+    // apart, and testing each with Rho or PartialRho cost more than the rest of the partial pass.
+    partners.clear();
+    similarity.PossiblePartners(i, &partners, 1);
+    for (const int j : partners) {
+      if (matched_b[j]) continue;
       const int n_b = b[j].NumSegments();
       // The depth test after rho: the range of junction i is computed on its first use, and most
       // leftover pairs fail rho's band test first.

@@ -83,7 +83,7 @@ JunctionSimilarity::JunctionSimilarity(const Junctions& a, const Junctions& b, c
   for (size_t j = 0; j < b.size(); ++j) locations_b_.col(static_cast<Eigen::Index>(j)) = b[j].location.homogeneous();
 }
 
-void JunctionSimilarity::PossiblePartners(int index_a, std::vector<int>* out) const {
+void JunctionSimilarity::PossiblePartners(int index_a, std::vector<int>* out, int max_count_difference) const {
   const int n = side_a_.count[index_a];
   if (n == 0) return;
   const double bound = has_geometry_ && options_.use_pose_band ? side_a_.deviation_bound[index_a]
@@ -91,7 +91,9 @@ void JunctionSimilarity::PossiblePartners(int index_a, std::vector<int>* out) co
   // d' of every b at once (one 1x3 by 3xQ product), then the two tests Rho starts with.
   const Eigen::RowVectorXd d_prime = (side_a_.location_line[index_a].transpose() * locations_b_).cwiseAbs();
   for (Eigen::Index j = 0; j < d_prime.size(); ++j) {
-    if (d_prime(j) <= bound && side_b_.count[static_cast<size_t>(j)] == n) out->push_back(static_cast<int>(j));
+    if (d_prime(j) <= bound && std::abs(side_b_.count[static_cast<size_t>(j)] - n) <= max_count_difference) {
+      out->push_back(static_cast<int>(j));
+    }
   }
 }
 
