@@ -403,8 +403,10 @@ TEST(JunctionMatcherTest, PartialMatchPairsAnLWithItsY) {
   const Scene& scene = partial.scene;
   const PairGeometry odometry = OdometryGeometry(scene.views);
   MatchingDiagnostics diagnostics;
+  MatchingOptions without;
+  without.match_partial = false;
   const std::vector<JunctionMatch> full =
-      MatchJunctions(scene.a, scene.graph_a, scene.b, scene.graph_b, odometry, MatchingOptions(), &diagnostics);
+      MatchJunctions(scene.a, scene.graph_a, scene.b, scene.graph_b, odometry, without, &diagnostics);
   ASSERT_TRUE(diagnostics.refinement.Refined());
   EXPECT_EQ(diagnostics.partial_matches, 0);
   for (const JunctionMatch& m : full) EXPECT_NE(m.index_a, partial.l) << "counts differ: no full match";
