@@ -98,6 +98,11 @@ DEFINE_bool(match_topology, kMatchingDefaults.use_topology, "sigma (true) or rho
 DEFINE_bool(match_partial, kMatchingDefaults.match_partial,
             "With --match_refine: in the guided pass, match junctions of k and k + 1 segments left unmatched through "
             "their best common subset (partial correspondence).");
+DEFINE_bool(match_partial_rule_a, kMatchingDefaults.partial_rule_not_line_half,
+            "With --match_partial: rule (a), the left-out segment may not be half of a line through the junction.");
+DEFINE_bool(match_partial_rule_b, kMatchingDefaults.partial_rule_same_lines,
+            "With --match_partial: rule (b), the kept segments have as many lines through the junction as the smaller "
+            "junction.");
 DEFINE_string(vgg_matches_csv, "",
               "If set, write every match of the consecutive VGG pairs (odometry) with its diagnosis there: verdict, "
               "junction types, distances from the true and the refined epipolar lines, the guided band, rho and sigma.");
@@ -669,18 +674,14 @@ Status WriteVerdictPicture(const std::string& path, const LoadedFrame& a, const 
                            const std::vector<JunctionMatch>& matches, const Eigen::Matrix3d& F_true,
                            const SameFeature& same) {
   std::vector<bool> correct;
-  // DrawMatchOverlay pairs segments by the shift of equal counts: partial matches are left out of
-  // the picture (they are counted in every table).
-  std::vector<JunctionMatch> full;
+  // Partial matches included: DrawMatchOverlay pairs their segments by PartnerSegment and draws the
+  // left-out one in grey.
   for (const JunctionMatch& m : matches) {
-    if (!m.Partial()) full.push_back(m);
-  }
-  for (const JunctionMatch& m : full) {
     const MatchVerdicts v = JudgeMatches({{m.index_a, m.index_b}}, JunctionLocations(a.features.junctions),
                                          JunctionLocations(b.features.junctions), F_true, FLAGS_epipolar_tolerance, same);
     correct.push_back(v.correct == 1);
   }
-  return WritePng(path, DrawMatchOverlay(a.grey, a.features.junctions, b.grey, b.features.junctions, full, 2, correct));
+  return WritePng(path, DrawMatchOverlay(a.grey, a.features.junctions, b.grey, b.features.junctions, matches, 2, correct));
 }
 
 
@@ -865,6 +866,8 @@ int main(int argc, char** argv) {
   matching.refine_gate_sigmas = FLAGS_match_refine_gate;
   matching.refine_min_inliers = FLAGS_match_refine_min_inliers;
   matching.match_partial = FLAGS_match_partial;
+  matching.partial_rule_not_line_half = FLAGS_match_partial_rule_a;
+  matching.partial_rule_same_lines = FLAGS_match_partial_rule_b;
   matching.depth_range_neighbours = FLAGS_match_depth_range_neighbours;
   matching.depth_range_screen_verified = FLAGS_match_depth_range_screen;
   if (FLAGS_match_rho1 == "linear") {
@@ -926,19 +929,22 @@ int main(int argc, char** argv) {
            << "Precision: of the matches whose two junctions are both at vertices, those at one same vertex "
            << "(\"nearest\": the nearest vertices are the same, stricter). Recall: of the vertices with a junction "
            << "within " << FLAGS_radius << " px in both frames, those joined by a match between such junctions; "
-           << "\"equal counts\": of those whose junctions have the same number of segments in both frames (only "
-           << "these can be matched). F error: for the vertices visible in both frames, the larger distance of the "
+           << "\"equal counts\": of those, the ones whose junctions have the same number of segments in both frames; "
+           << "\"recall, equal counts\": of these, the ones joined by a full match (junctions of equal counts, as the "
+           << "paper's rule requires); \"matched partially\": vertices joined by partial matches only (junctions of "
+           << "k and k + 1 segments, --match_partial), part of \"matched\". F error: for the vertices visible in both frames, the larger distance of the "
            << "true pixels from the other's epipolar line under the F used, median / 95 %.\n\n"
            << "| sequence | F from | pairs | matches | both at vertices | same vertex | **precision** | goal | "
            << "precision, nearest | vertices in both | equal counts | matched | **recall** | goal | recall, equal counts "
-           << "| F error (px) |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+           << "| matched partially | F error (px) |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
     auto row = [&](const std::string& name, const char* source, const VertexMatchCounts& c, const std::string& error) {
       report << "| " << name << " | " << source << " | " << c.pairs << " | " << c.matches << " | " << c.associated
              << " | " << c.same_vertex << " | **" << Percent(c.same_vertex, c.associated) << "** | "
              << Goal(c.same_vertex, c.associated, 99) << " | " << Percent(c.same_nearest, c.associated) << " | "
              << c.seen_both << " | " << c.seen_both_same_count << " | " << c.matched << " | **"
              << Percent(c.matched, c.seen_both) << "** | " << Goal(c.matched, c.seen_both, 90) << " | "
-             << Percent(c.matched, c.seen_both_same_count) << " | " << error << " |\n";
+             << Percent(c.matched_same_count, c.seen_both_same_count) << " | " << c.matched_partial_only << " | "
+             << error << " |\n";
     };
     std::ostringstream misses;
     misses << "\nWhy vertices seen in both frames were not matched (first reason that applies, for the pair of "

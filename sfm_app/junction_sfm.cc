@@ -66,6 +66,8 @@ DEFINE_bool(match_topology, kDefaults.matching.use_topology,
 DEFINE_bool(match_partial, kDefaults.matching.match_partial,
             "With --match_refine: in the guided pass, match junctions of k and k + 1 segments left unmatched through "
             "their best common subset (partial correspondence, docs/matching.md).");
+DEFINE_bool(match_partial_rule_a, kDefaults.matching.partial_rule_not_line_half,
+            "With --match_partial: rule (a), the left-out segment may not be half of a line through the junction.");
 
 DEFINE_bool(bundle_adjustment, kDefaults.bundle_adjustment,
             "Refine poses, points and lines with the Ceres bundle adjustment (false: outputs use the odometry).");
@@ -109,6 +111,7 @@ bool OptionsFromFlags(sfm::PipelineOptions* options, std::string* error) {
   options->matching.refine_gate_sigmas = FLAGS_match_refine_gate;
   options->matching.refine_min_inliers = FLAGS_match_refine_min_inliers;
   options->matching.match_partial = FLAGS_match_partial;
+  options->matching.partial_rule_not_line_half = FLAGS_match_partial_rule_a;
   options->bundle_adjustment = FLAGS_bundle_adjustment;
   options->bundle_adjustment_options.outlier_threshold_px = FLAGS_ba_outlier_threshold;
   options->bundle_adjustment_options.robust_loss_scale_px = FLAGS_ba_loss_scale;

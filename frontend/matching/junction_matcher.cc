@@ -51,35 +51,43 @@ std::vector<JunctionMatch> Match(const Junctions& a, const TopologyGraph& graph_
 // (PartialRho) and, as their competitors, the leftover pairs with equal counts (Rho: each lost the
 // full pass's rule (38) or had no admissible shift, so it stays out of the result, but a junction
 // with an equal-count rival as close as its partial partner is ambiguous). Rule (38) both ways on
-// rho (topology's sigma needs equal counts at both ends of an edge). Returns the partial matches.
+// rho (topology's sigma needs equal counts at both ends of an edge). depth_range (may be null): as
+// in the full pass, a pair it rejects is no candidate, partial or competitor (an occlusion T read
+// as a Y or an L against a real L elsewhere on the epipolar line is a partner at another depth than
+// the verified matches around it). Returns the partial matches.
 std::vector<JunctionMatch> MatchPartial(const Junctions& a, const Junctions& b, const JunctionSimilarity& similarity,
-                                        const std::vector<JunctionMatch>& full, const MatchingOptions& options) {
+                                        const std::vector<JunctionMatch>& full, const MatchingOptions& options,
+                                        const LocalDepthRange* depth_range) {
   std::vector<char> matched_a(a.size(), 0), matched_b(b.size(), 0);
   for (const JunctionMatch& match : full) {
     matched_a[match.index_a] = 1;
     matched_b[match.index_b] = 1;
   }
-  std::vector<int> left_a, left_b;
-  for (int i = 0; i < static_cast<int>(a.size()); ++i) {
-    if (!matched_a[i]) left_a.push_back(i);
-  }
-  for (int j = 0; j < static_cast<int>(b.size()); ++j) {
-    if (!matched_b[j]) left_b.push_back(j);
-  }
   std::vector<JunctionMatch> candidates;
-  for (const int i : left_a) {
+  std::vector<int> partners;
+  for (int i = 0; i < static_cast<int>(a.size()); ++i) {
+    if (matched_a[i]) continue;
     const int n_a = a[i].NumSegments();
-    for (const int j : left_b) {
+    // The cheap epipolar scan first (one product over b's locations): most leftover pairs are far
+    // apart, and testing each with Rho or PartialRho cost more than the rest of the partial pass.
+    partners.clear();
+    similarity.PossiblePartners(i, &partners, 1);
+    for (const int j : partners) {
+      if (matched_b[j]) continue;
       const int n_b = b[j].NumSegments();
+      // The depth test after rho: the range of junction i is computed on its first use, and most
+      // leftover pairs fail rho's band test first.
+      auto passes_depth = [&](const PairSimilarity& rho) {
+        return rho.Matched() && rho.rho > options.tau1 &&
+               (depth_range == nullptr || depth_range->Passes(i, b[j].location));
+      };
       if (n_a == n_b) {
         const PairSimilarity rho = similarity.Rho(i, j);
         // missing_a = missing_b = -1 and the flag below: a competitor only.
-        if (rho.Matched() && rho.rho > options.tau1) candidates.push_back({i, j, rho.rho, -1, -1, -1});
+        if (passes_depth(rho)) candidates.push_back({i, j, rho.rho, -1, -1, -1});
       } else if (std::abs(n_a - n_b) == 1) {
         const PairSimilarity rho = similarity.PartialRho(i, j);
-        if (rho.Matched() && rho.rho > options.tau1) {
-          candidates.push_back({i, j, rho.rho, rho.shift, rho.missing_a, rho.missing_b});
-        }
+        if (passes_depth(rho)) candidates.push_back({i, j, rho.rho, rho.shift, rho.missing_a, rho.missing_b});
       }
     }
   }
@@ -161,7 +169,8 @@ std::vector<JunctionMatch> MatchJunctions(const Junctions& a, const TopologyGrap
   if (!options.match_partial) return matches;
   // Only here: in the refined band (about 1.8 px) a partial pair has few rivals; in the odometry's
   // band the weaker, k/(k+1)-scaled support would compete with many wrong full-count partners.
-  const std::vector<JunctionMatch> partial = MatchPartial(a, b, similarity, matches, guided);
+  const std::vector<JunctionMatch> partial =
+      MatchPartial(a, b, similarity, matches, guided, depth_range ? &*depth_range : nullptr);
   report.partial_matches = static_cast<int>(partial.size());
   matches.insert(matches.end(), partial.begin(), partial.end());
   std::stable_sort(matches.begin(), matches.end(),

@@ -83,7 +83,7 @@ JunctionSimilarity::JunctionSimilarity(const Junctions& a, const Junctions& b, c
   for (size_t j = 0; j < b.size(); ++j) locations_b_.col(static_cast<Eigen::Index>(j)) = b[j].location.homogeneous();
 }
 
-void JunctionSimilarity::PossiblePartners(int index_a, std::vector<int>* out) const {
+void JunctionSimilarity::PossiblePartners(int index_a, std::vector<int>* out, int max_count_difference) const {
   const int n = side_a_.count[index_a];
   if (n == 0) return;
   const double bound = has_geometry_ && options_.use_pose_band ? side_a_.deviation_bound[index_a]
@@ -91,7 +91,9 @@ void JunctionSimilarity::PossiblePartners(int index_a, std::vector<int>* out) co
   // d' of every b at once (one 1x3 by 3xQ product), then the two tests Rho starts with.
   const Eigen::RowVectorXd d_prime = (side_a_.location_line[index_a].transpose() * locations_b_).cwiseAbs();
   for (Eigen::Index j = 0; j < d_prime.size(); ++j) {
-    if (d_prime(j) <= bound && side_b_.count[static_cast<size_t>(j)] == n) out->push_back(static_cast<int>(j));
+    if (d_prime(j) <= bound && std::abs(side_b_.count[static_cast<size_t>(j)] - n) <= max_count_difference) {
+      out->push_back(static_cast<int>(j));
+    }
   }
 }
 
@@ -309,7 +311,7 @@ PairSimilarity JunctionSimilarity::PartialRho(int index_a, int index_b) const {
     for (int i = 0; i <= k; ++i) {
       continues_another = continues_another || (i != missing && OneLine(larger_directions, larger_lines, missing, i, min_sin_));
     }
-    if (continues_another) continue;
+    if (continues_another && options_.partial_rule_not_line_half) continue;
     // The larger junction's segments without `missing`, in their (clockwise) order.
     for (int i = 0, j = 0; i <= k; ++i) {
       if (i != missing) subset[j++] = i;
@@ -317,7 +319,10 @@ PairSimilarity JunctionSimilarity::PartialRho(int index_a, int index_b) const {
     // (b) Without its missed segment the larger junction is what detection reads in the other
     // frame, so the kept segments must have the smaller junction's lines through the location: a
     // T without its stem is a straight line, not an L (and an X without a half-line a T, not a Y).
-    if (LinesThrough(larger_directions, larger_lines, subset, k, min_sin_) != smaller_lines_through) continue;
+    if (options_.partial_rule_same_lines &&
+        LinesThrough(larger_directions, larger_lines, subset, k, min_sin_) != smaller_lines_through) {
+      continue;
+    }
     for (int shift = 0; shift < k; ++shift) {
       const std::optional<double> sum = a_larger ? SubsetSupport(index_a, index_b, subset, all, k, shift, bands)
                                                  : SubsetSupport(index_a, index_b, all, subset, k, shift, bands);

@@ -63,8 +63,9 @@ class JunctionSimilarity {
   // The junctions of b that Rho(index_a, .) does not reject by its first, cheap tests (same segment
   // count, p'0 within R or the largest band of index_a from the epipolar line of p0), appended to
   // `out` in increasing index. Every other pair has Rho unmatched: the candidate scan of (38) needs
-  // Rho only for these.
-  void PossiblePartners(int index_a, std::vector<int>* out) const;
+  // Rho only for these. max_count_difference = 1: also the junctions with one segment more or less,
+  // which PartialRho does not reject by the same tests (the partial pass's scan).
+  void PossiblePartners(int index_a, std::vector<int>* out, int max_count_difference = 0) const;
 
   // Eq. (32): M(k) = (1/N) sum_i H(p_i, p'_j) H'(p_i, p'_j), j = (i + k) mod N. nullopt when the
   // shift violates (36) or (37) or a segment pairing fails (17); the segment counts must agree.

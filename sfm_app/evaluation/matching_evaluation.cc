@@ -244,6 +244,8 @@ void VertexMatchCounts::Add(const VertexMatchCounts& o) {
   seen_both += o.seen_both;
   seen_both_same_count += o.seen_both_same_count;
   matched += o.matched;
+  matched_same_count += o.matched_same_count;
+  matched_partial_only += o.matched_partial_only;
   for (int k = 0; k < static_cast<int>(MissReason::kNumReasons); ++k) misses[k] += o.misses[k];
 }
 
@@ -256,6 +258,7 @@ VertexMatchCounts ScoreVertexMatches(const Junctions& a, const Junctions& b, con
   VertexMatchCounts c;
   c.pairs = 1;
   std::set<int> joined;
+  std::set<int> joined_full;  // by a match of junctions with equal segment counts
   for (const JunctionMatch& m : matches) {
     ++c.matches;
     const std::vector<int>& va = near_a[m.index_a];
@@ -265,8 +268,11 @@ VertexMatchCounts ScoreVertexMatches(const Junctions& a, const Junctions& b, con
     ++c.associated;
     if (same == 1) ++c.same_vertex;
     if (same == 1 && va.front() == vb.front()) ++c.same_nearest;
+    const bool full = a[m.index_a].NumSegments() == b[m.index_b].NumSegments();
     for (int v : va) {
-      if (std::find(vb.begin(), vb.end(), v) != vb.end()) joined.insert(v);
+      if (std::find(vb.begin(), vb.end(), v) == vb.end()) continue;
+      joined.insert(v);
+      if (full) joined_full.insert(v);
     }
   }
   // The junctions within the radius of each vertex, in each frame.
@@ -289,8 +295,11 @@ VertexMatchCounts ScoreVertexMatches(const Junctions& a, const Junctions& b, con
       for (int ib : list_b) same_count = same_count || a[ia].NumSegments() == b[ib].NumSegments();
     }
     if (same_count) ++c.seen_both_same_count;
+    // A full match needs junctions of equal counts at the vertex, so joined_full implies same_count.
+    if (joined_full.count(vertex)) ++c.matched_same_count;
     if (joined.count(vertex)) {
       ++c.matched;
+      if (!joined_full.count(vertex)) ++c.matched_partial_only;
       continue;
     }
     // The reason, for the pair of junctions at the vertex that got farthest.

@@ -125,6 +125,12 @@ struct VertexMatchCounts {
   int seen_both = 0;      // vertices with a junction within the radius in each frame
   int seen_both_same_count = 0;  // of those, with junctions of equal segment count in the two frames
   int matched = 0;        // of seen_both, joined by a match between junctions within the radius of it
+  // Of seen_both_same_count, joined by a full match (junctions of equal segment counts): the recall
+  // of the paper's rule, at most seen_both_same_count.
+  int matched_same_count = 0;
+  // Of matched, joined by partial matches only (junctions of k and k + 1 segments; MatchingOptions::
+  // match_partial): matched = matched by a full match + matched_partial_only.
+  int matched_partial_only = 0;
   int misses[static_cast<int>(MissReason::kNumReasons)] = {};
   void Add(const VertexMatchCounts& o);
 };

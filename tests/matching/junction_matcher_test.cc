@@ -371,6 +371,7 @@ struct PartialScene {
   int l = -1;                 // index in a of the L
   int y = -1;                 // index in b of the true Y
   std::vector<int> arms_of_l;  // 3D arm of each of the L's segments
+  Junction3d y3d;              // the 3D Y
 };
 
 PartialScene MakePartialScene(std::mt19937* rng) {
@@ -384,6 +385,7 @@ PartialScene MakePartialScene(std::mt19937* rng) {
   partial.scene = MakeScene(views, junctions3d, 15, rng);
   partial.l = 60;
   partial.y = partial.scene.b_of_a[60];
+  partial.y3d = junctions3d[60];
   const ProjectedJunction& y_a = partial.scene.projected_a[60];
   Junction& l = partial.scene.a[60];
   l.segments.clear();
@@ -401,8 +403,10 @@ TEST(JunctionMatcherTest, PartialMatchPairsAnLWithItsY) {
   const Scene& scene = partial.scene;
   const PairGeometry odometry = OdometryGeometry(scene.views);
   MatchingDiagnostics diagnostics;
+  MatchingOptions without;
+  without.match_partial = false;
   const std::vector<JunctionMatch> full =
-      MatchJunctions(scene.a, scene.graph_a, scene.b, scene.graph_b, odometry, MatchingOptions(), &diagnostics);
+      MatchJunctions(scene.a, scene.graph_a, scene.b, scene.graph_b, odometry, without, &diagnostics);
   ASSERT_TRUE(diagnostics.refinement.Refined());
   EXPECT_EQ(diagnostics.partial_matches, 0);
   for (const JunctionMatch& m : full) EXPECT_NE(m.index_a, partial.l) << "counts differ: no full match";
@@ -433,6 +437,46 @@ TEST(JunctionMatcherTest, PartialMatchPairsAnLWithItsY) {
     }
   }
   EXPECT_EQ(partial_found, 1);
+}
+
+// The partial pass applies the local depth range test as the full pass does (docs/matching.md,
+// "Partial correspondence"). The scene of PartialMatchPairsAnLWithItsY with image 2's Y replaced by
+// the image of the 3D Y shrunk towards camera 1's centre to 0.3 of its size (as in
+// DepthRangeRejectsAPartnerFarNearerThanItsNeighbours): the same image in camera 1, so the L fits
+// it as well as the true Y, but at 0.3 of the depth of every verified match around it. Without the
+// test (depth_range_neighbours = 0) the partial pass pairs the L with that decoy; with the default
+// 12 neighbours the L stays unmatched, and the 60 full matches are the same either way.
+TEST(JunctionMatcherTest, PartialMatchRejectsAPartnerFarNearerThanItsNeighbours) {
+  std::mt19937 rng(31);
+  PartialScene partial = MakePartialScene(&rng);
+  Scene& scene = partial.scene;
+  const Eigen::Vector3d camera1 = scene.views.world_T_camera1.translation;
+  Junction3d nearer = partial.y3d;
+  nearer.location = camera1 + 0.3 * (nearer.location - camera1);
+  for (Eigen::Vector3d& end : nearer.ends) end = camera1 + 0.3 * (end - camera1);
+  const ProjectedJunction decoy = testing::ProjectJunction(scene.views, 1, nearer);
+  ASSERT_TRUE(testing::IsWellShaped(decoy.junction, scene.views, 20, 25));
+  scene.b[partial.y] = decoy.junction;
+  const PairGeometry odometry = OdometryGeometry(scene.views);
+  MatchingOptions without;
+  without.match_partial = true;
+  without.depth_range_neighbours = 0;
+  MatchingOptions with = without;
+  with.depth_range_neighbours = MatchingOptions().depth_range_neighbours;
+  ASSERT_GT(with.depth_range_neighbours, 0);
+  MatchingDiagnostics diagnostics;
+  const std::vector<JunctionMatch> before =
+      MatchJunctions(scene.a, scene.graph_a, scene.b, scene.graph_b, odometry, without, &diagnostics);
+  ASSERT_TRUE(diagnostics.refinement.Refined());
+  ASSERT_EQ(diagnostics.partial_matches, 1) << "the test needs the partial pass to take the decoy without the test";
+  const std::vector<JunctionMatch> after =
+      MatchJunctions(scene.a, scene.graph_a, scene.b, scene.graph_b, odometry, with, &diagnostics);
+  ASSERT_TRUE(diagnostics.refinement.Refined());
+  EXPECT_EQ(diagnostics.partial_matches, 0);
+  for (const JunctionMatch& m : after) {
+    EXPECT_NE(m.index_a, partial.l) << "matched to " << m.index_b << " (the decoy is " << partial.y << ")";
+  }
+  EXPECT_EQ(after.size(), before.size() - 1);
 }
 
 TEST(JunctionMatcherTest, PartialMatchRefusesAnLThatFitsTwoYsEqually) {

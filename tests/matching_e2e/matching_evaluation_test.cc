@@ -114,6 +114,39 @@ TEST(MatchingEvaluationTest, ScoreVertexMatchesCountsPrecisionRecallAndReasons) 
   EXPECT_EQ(c.seen_both_same_count, 1);
   EXPECT_EQ(c.matched, 1);
   EXPECT_EQ(c.misses[static_cast<int>(MissReason::kSegmentCount)], 1);
+  EXPECT_EQ(c.matched_same_count, 1);
+  EXPECT_EQ(c.matched_partial_only, 0);
+}
+
+// Partial matches in the recall columns: "recall, equal counts" counts only vertices joined by a
+// full match, so it stays <= 100 % (before, every matched vertex was divided by the equal-count
+// ones: 2 / 1 here); vertices joined by partial matches only are counted apart. Vertex 1: L-L, a
+// full match; vertex 3: L against a Y, a partial match; vertex 5: L-L (equal counts) joined only
+// by a partial match between another L and a Y also at it.
+TEST(MatchingEvaluationTest, PartialMatchesAreCountedApartFromTheEqualCountRecall) {
+  auto L = [](double x, double y) {
+    Junction j;
+    j.location = Eigen::Vector2d(x, y);
+    j.segments = {{Eigen::Vector2d(x - 30, y), 0}, {Eigen::Vector2d(x, y - 30), 1}};
+    return j;
+  };
+  auto Y = [&L](double x, double y) {
+    Junction j = L(x, y);
+    j.segments.push_back({Eigen::Vector2d(x + 30, y + 30), 2});
+    return j;
+  };
+  const Junctions a = {L(100, 100), L(500, 300), L(300, 400), L(301, 401)};
+  const Junctions b = {L(90, 100), Y(490, 300), L(290, 400), Y(291, 401)};
+  const std::vector<std::vector<int>> near_a = {{1}, {3}, {5}, {5}}, near_b = {{1}, {3}, {5}, {5}};
+  const std::vector<JunctionMatch> matches = {{0, 0, 1.0, 0}, {1, 1, 0.8, 0, -1, 2}, {3, 3, 0.8, 0, -1, 2}};
+  ASSERT_TRUE(matches[1].Partial());
+  const VertexMatchCounts c = ScoreVertexMatches(a, b, near_a, near_b, matches, SidewaysF(), MatchingOptions());
+  EXPECT_EQ(c.seen_both, 3);
+  EXPECT_EQ(c.seen_both_same_count, 2);  // vertices 1 and 5
+  EXPECT_EQ(c.matched, 3);
+  EXPECT_EQ(c.matched_same_count, 1);  // vertex 1
+  EXPECT_EQ(c.matched_partial_only, 2);  // vertices 3 and 5
+  EXPECT_LE(c.matched_same_count, c.seen_both_same_count);
 }
 
 TEST(MatchingEvaluationTest, AssociateSegmentsWantsTheSameLineAndOverlap) {
