@@ -98,7 +98,8 @@ void Reconstruct(const Sequence& sequence, const PipelineOptions& options, Pipel
   result->tracks = BuildTracks(result->junctions, result->pairs, &track_report);
   LOG(INFO) << "tracks: " << result->tracks.size() << " from " << track_report.matches << " matches ("
             << track_report.rejected_junction_conflict + track_report.rejected_segment_conflict
-            << " rejected as inconsistent)";
+            << " rejected as inconsistent, " << track_report.skipped_partial_occlusion
+            << " partial matches at a T or X not joined)";
   TriangulationReport triangulation_report;
   result->landmarks = TriangulateTracks(sequence.calibration.camera.K(), result->world_T_camera_odometry,
                                         result->junctions, result->tracks, options.triangulation,

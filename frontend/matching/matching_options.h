@@ -75,13 +75,13 @@ struct MatchingOptions {
   // (a segment missed in one frame) through its best common subset, rho2 counting the missing
   // segment's term as 0, by rule (38) among the junctions the full pass left unmatched, under the
   // same local depth range test as the full pass. Tracks (PartnerSegment) and the match overlay take
-  // partial matches. It meets the matching goals (generated recall 80.6 -> 91.3 % with the odometry
-  // at 99.4 % precision, VGG consecutive precision 98.5 -> 97.7 %), but off by default because the
-  // reconstruction gets worse with it: fewer triangulated points and higher ATE on every generated
-  // sequence of benchmark_backend (room loop 470 -> 360 points, ATE ratio 0.092 -> 0.124; most of
-  // its partial L-T matches are off any true vertex, at occlusions; not traced further:
-  // docs/matching_results.md, "Partial correspondence under the local depth range").
-  bool match_partial = false;
+  // partial matches; BuildTracks does not join a partial match with a T or an X on either side (an
+  // occlusion seen with one arm hidden: most partial L-T matches are off any true vertex). On by
+  // default: it meets the matching goals (generated recall 80.6 -> 91.3 % with the odometry at
+  // 99.4 % precision, VGG consecutive precision 98.5 -> 97.7 %), and with the T/X rule in the
+  // tracks the reconstruction is about as good as without partial matches (docs/matching_results.md,
+  // "Partial correspondence under the local depth range", and docs/backend_results.md).
+  bool match_partial = true;
   // The two rules on the segment a partial pair leaves out (docs/matching.md, "Partial
   // correspondence"; JunctionSimilarity::PartialRho). (a) It is not half of a straight line through
   // the location (against occlusion T's read as L's). Off by default: the depth range test now

@@ -10,6 +10,11 @@
 namespace sfm {
 namespace {
 
+// A T or an X: a crossing that may be an occlusion rather than a 3D junction (BuildTracks).
+bool MayBeAnOcclusion(const Junction& junction) {
+  return junction.type == JunctionType::kT || junction.type == JunctionType::kX;
+}
+
 // Node numbering of the two union-finds: junction (f, j) is junction_node[f][j]; its segment i is
 // segment_node[f][j] + i.
 struct NodeIndex {
@@ -97,6 +102,12 @@ std::vector<JunctionTrack> BuildTracks(const std::vector<Junctions>& frames,
   TrackBuildReport counts;
   counts.matches = static_cast<int>(matches.size());
   for (const FrameMatch& m : matches) {
+    const Junction& junction_a = frames[m.frame_a][m.match.index_a];
+    const Junction& junction_b = frames[m.frame_b][m.match.index_b];
+    if (m.match.Partial() && (MayBeAnOcclusion(junction_a) || MayBeAnOcclusion(junction_b))) {
+      ++counts.skipped_partial_occlusion;
+      continue;
+    }
     const int node_a = nodes.junction_node[m.frame_a][m.match.index_a];
     const int node_b = nodes.junction_node[m.frame_b][m.match.index_b];
     if (!junction_sets.CanUnion(node_a, node_b)) {

@@ -51,6 +51,7 @@ struct TrackBuildReport {
   int accepted = 0;                    // joined into tracks
   int rejected_junction_conflict = 0;  // would have put two junctions of one frame in one track
   int rejected_segment_conflict = 0;   // segment pairs disagreeing with the track's: two segments of one frame
+  int skipped_partial_occlusion = 0;   // partial matches with a T or an X on either side, not joined (below)
 };
 
 // The frame pairs to match so that tracks survive a junction missed in one frame: every
@@ -68,6 +69,12 @@ std::vector<std::pair<int, int>> FramePairsToMatch(int num_frames);
 // none of its segment pairs (segment i of a <-> PartnerSegment(match, i, ...) of b; N pairs, or k
 // for a partial match) joins two segments of one frame; otherwise it is rejected and counted. So an inconsistent component is never formed: it is split
 // where its weakest conflicting match was. Components of a single junction are not tracks.
+//
+// A partial match with a T or an X on either side is not joined (skipped_partial_occlusion): a T
+// or an X may be where a nearer edge cuts a farther one, which slides along the edges as the
+// camera moves and is no 3D point, and a partial match is exactly what such a crossing gives when
+// one of its arms is hidden in the other frame (an L against a T). Tracks are for triangulation;
+// the pair's matches (matches/*.csv) keep them. Full matches of T's and X's are joined as before.
 std::vector<JunctionTrack> BuildTracks(const std::vector<Junctions>& frames,
                                        const std::vector<FramePairMatches>& pairs,
                                        TrackBuildReport* report = nullptr);

@@ -200,6 +200,25 @@ TEST(BuildTracksTest, APartialMatchJoinsItsCommonSegmentsAndLeavesTheMissingOneO
   EXPECT_EQ(tracks[0].views[3].segments, (std::vector<int>{0, -1, 2}));
 }
 
+// A partial match with a T (or an X) on either side may be an occlusion seen with one arm hidden:
+// it is not joined, and counted; the same L against a Y is joined, and a full T-T match is too.
+TEST(BuildTracksTest, APartialMatchWithATOrAnXIsNotJoined) {
+  std::vector<Junctions> frames = MakeOneJunctionFrames({2, 3});
+  TrackBuildReport report;
+  EXPECT_EQ(BuildTracks(frames, {Pair(0, 1, {Partial(0.8, 0, -1, 1)})}, &report).size(), 1u);
+  EXPECT_EQ(report.skipped_partial_occlusion, 0);
+  for (const JunctionType type : {JunctionType::kT, JunctionType::kX}) {
+    frames[1][0].type = type;
+    EXPECT_TRUE(BuildTracks(frames, {Pair(0, 1, {Partial(0.8, 0, -1, 1)})}, &report).empty());
+    EXPECT_EQ(report.skipped_partial_occlusion, 1);
+    EXPECT_EQ(report.accepted, 0);
+  }
+  std::vector<Junctions> two_ts = MakeOneJunctionFrames({3, 3});
+  two_ts[0][0].type = two_ts[1][0].type = JunctionType::kT;
+  EXPECT_EQ(BuildTracks(two_ts, {Pair(0, 1, {{0, 0, 0.9, 0}})}, &report).size(), 1u);
+  EXPECT_EQ(report.skipped_partial_occlusion, 0);
+}
+
 TEST(BuildTracksTest, AnLMatchedOnlyToAYMakesTwoSegmentTracks) {
   // Frame 0: an L (A, C = 0, 1); frame 1: a Y (A, B, C = 0, 1, 2), B missing. The Y's B is in no
   // segment track, and the track's segment s is the L's segment s.
