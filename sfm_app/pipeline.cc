@@ -1,12 +1,15 @@
 #include "sfm_app/pipeline.h"
 
+#include <algorithm>
 #include <chrono>
+#include <memory>
 #include <vector>
 
 #include <glog/logging.h>
 #include <opencv2/core.hpp>
 
 #include "backend/bundle_adjustment/bundle_adjuster.h"
+#include "backend/bundle_adjustment/pose_covariance.h"
 #include "backend/metrics/drift.h"
 #include "backend/triangulation/triangulate_tracks.h"
 #include "frontend/geometry/image_undistorter.h"
@@ -134,14 +137,60 @@ Status Refine(const Sequence& sequence, const PipelineOptions& options, Pipeline
   return Status::Ok();
 }
 
+// Bundle adjustment's own covariance of the refined poses, at the pixel noise the wireframe's tests
+// use (docs/tracks_and_triangulation.md, "Pose error from bundle adjustment"); null when it cannot
+// be computed (the wireframe then keeps the random-walk model). With ground truth, the log compares
+// it with the refined trajectory's actual relative pose errors.
+std::shared_ptr<const PoseCovariance> RefinedPoseCovariance(const Sequence& sequence, const PipelineOptions& options,
+                                                            const PipelineResult& result) {
+  const WireframeOptions& wireframe = options.triangulation.wireframe;
+  const Eigen::Matrix3d K = sequence.calibration.camera.K();
+  const std::vector<Pose3>& poses = result.world_T_camera_refined;
+  const double sigma_px = wireframe.estimate_pixel_sigma
+                              ? std::max(wireframe.pixel_sigma_px, EstimatePixelSigma(K, poses, result.landmarks))
+                              : wireframe.pixel_sigma_px;
+  std::vector<Pose3> odometry, refined;
+  const Pose3 camera_T_base = sequence.calibration.base_T_camera.Inverse();
+  for (const Frame& frame : sequence.frames) odometry.push_back(frame.world_T_base_odometry);
+  for (const Pose3& camera : poses) refined.push_back(camera * camera_T_base);
+  auto covariance = std::make_shared<PoseCovariance>();
+  const Status status = ComputePoseCovariance(sequence.calibration, odometry, refined, result.landmarks,
+                                              options.bundle_adjustment_options, sigma_px, covariance.get());
+  if (!status.ok()) {
+    LOG(WARNING) << status.message() << "; the wireframe keeps the random-walk pose error model";
+    return nullptr;
+  }
+  if (result.world_T_camera_truth) {
+    for (const PoseCovarianceCheck& check :
+         CheckPoseCovariance(*covariance, poses, *result.world_T_camera_truth, {1, 4, 16, 32})) {
+      LOG(INFO) << "pose covariance against the truth, lag " << check.lag << " (" << check.pairs
+                << " pairs): rotation RMS predicted " << check.predicted_rotation_rad << " rad, actual "
+                << check.actual_rotation_rad << "; centre predicted " << check.predicted_centre_m << " m, actual "
+                << check.actual_centre_m;
+    }
+  }
+  return covariance;
+}
+
 // The landmarks the wireframe draws (docs/tracks_and_triangulation.md, "Wireframe vertices"):
 // judged on the final poses; bundle adjustment and the COLMAP model keep every landmark.
 void SelectWireframe(const Sequence& sequence, const PipelineOptions& options, PipelineResult* result) {
   const std::vector<Pose3>& poses =
       result->world_T_camera_refined.empty() ? result->world_T_camera_odometry : result->world_T_camera_refined;
+  const WireframeOptions& wireframe = options.triangulation.wireframe;
+  const Eigen::Matrix3d K = sequence.calibration.camera.K();
+  PoseDrift drift = WireframePoseDrift(wireframe, poses);
+  double covariance_seconds = 0;
+  if (wireframe.pose_error_from_bundle_adjustment && !result->world_T_camera_refined.empty()) {
+    const Clock::time_point start = Clock::now();
+    drift.covariance = RefinedPoseCovariance(sequence, options, *result);
+    covariance_seconds = SecondsSince(start);
+  }
   WireframeSelectionReport& report = result->wireframe_selection;
-  result->wireframe_landmarks = SelectWireframeLandmarks(sequence.calibration.camera.K(), poses, result->landmarks,
-                                                         result->junctions, options.triangulation.wireframe, &report);
+  result->wireframe_landmarks =
+      SelectWireframeLandmarks(K, poses, result->landmarks, result->junctions, wireframe, drift, &report);
+  report.pose_error_model = drift.covariance ? "bundle_adjustment" : "random_walk";
+  report.pose_covariance_seconds = covariance_seconds;
   LOG(INFO) << "wireframe: " << report.points_kept << " of " << result->landmarks.points.size() << " points and "
             << report.lines_kept << " of " << result->landmarks.lines.size() << " lines drawn (pixel noise "
             << report.pixel_sigma_px << " px); not drawn: points " << report.points_untestable << " untestable, " << report.points_occlusion_untested

@@ -103,7 +103,9 @@ std::string WireframeJson(const PipelineResult& result) {
          ", \"lines_untestable\": " + std::to_string(report.lines_untestable) +
          ", \"lines_inconsistent\": " + std::to_string(report.lines_inconsistent) +
          ", \"lines_undetermined\": " + std::to_string(report.lines_uncertain_end0 + report.lines_uncertain_end1) +
-         ", \"lines_unbounded\": " + std::to_string(report.lines_unbounded) + "}";
+         ", \"lines_unbounded\": " + std::to_string(report.lines_unbounded) +
+         ", \"pose_error_model\": " + JsonString(report.pose_error_model) +
+         ", \"pose_covariance_s\": " + JsonNumber(report.pose_covariance_seconds) + "}";
 }
 
 std::optional<double> Ate(const std::optional<DriftMetrics>& drift) {

@@ -103,6 +103,14 @@ Landmarks SelectWireframeLandmarks(const Eigen::Matrix3d& K, const std::vector<P
 Landmarks SelectWireframeLandmarks(const Eigen::Matrix3d& K, const std::vector<Pose3>& world_T_camera,
                                    const Landmarks& landmarks, const std::vector<Junctions>& junctions,
                                    const WireframeOptions& options, WireframeSelectionReport* report) {
+  return SelectWireframeLandmarks(K, world_T_camera, landmarks, junctions, options,
+                                  WireframePoseDrift(options, world_T_camera), report);
+}
+
+Landmarks SelectWireframeLandmarks(const Eigen::Matrix3d& K, const std::vector<Pose3>& world_T_camera,
+                                   const Landmarks& landmarks, const std::vector<Junctions>& junctions,
+                                   const WireframeOptions& options, const PoseDrift& drift,
+                                   WireframeSelectionReport* report) {
   CHECK(options.Check().ok()) << options.Check().message();
   const double sigma_px =
       options.estimate_pixel_sigma
@@ -121,7 +129,6 @@ Landmarks SelectWireframeLandmarks(const Eigen::Matrix3d& K, const std::vector<P
   auto determined = [&](double sigma, double depth) {
     return depth > 0 && sigma <= MaxVertexSigma(bound_options, fx, depth);
   };
-  const PoseDrift drift = WireframePoseDrift(options, world_T_camera);
   WireframeSelectionReport counts;
   Landmarks selected;
   std::vector<int> new_index(landmarks.points.size(), -1);

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <string>
 #include <vector>
 
 #include "backend/triangulation/landmark_uncertainty.h"
@@ -28,6 +29,10 @@ struct WireframeSelectionReport {
   int lines_unbounded = 0;        // no extent of positive length in front of the cameras on the final poses
   int points_kept = 0, lines_kept = 0;
   double pixel_sigma_px = 0;      // the noise the chi-square tests used
+  // Set by the pipeline: the pose error model of the determination test ("random_walk" or
+  // "bundle_adjustment"), and the seconds the bundle adjustment's pose covariance took (0 without).
+  std::string pose_error_model = "random_walk";
+  double pose_covariance_seconds = 0;
 };
 
 // The largest position sigma (metres) that WireframeOptions allows for a vertex whose smallest
@@ -68,5 +73,12 @@ Landmarks SelectWireframeLandmarks(const Eigen::Matrix3d& K, const std::vector<P
 Landmarks SelectWireframeLandmarks(const Eigen::Matrix3d& K, const std::vector<Pose3>& world_T_camera,
                                    const Landmarks& landmarks, const std::vector<Junctions>& junctions,
                                    const WireframeOptions& options, WireframeSelectionReport* report = nullptr);
+
+// The same with the pose error given (instead of WireframePoseDrift(options, world_T_camera)), e.g.
+// PoseDrift::covariance from bundle adjustment (backend/bundle_adjustment/pose_covariance.h).
+Landmarks SelectWireframeLandmarks(const Eigen::Matrix3d& K, const std::vector<Pose3>& world_T_camera,
+                                   const Landmarks& landmarks, const std::vector<Junctions>& junctions,
+                                   const WireframeOptions& options, const PoseDrift& drift,
+                                   WireframeSelectionReport* report = nullptr);
 
 }  // namespace sfm
