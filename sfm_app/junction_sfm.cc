@@ -79,6 +79,11 @@ DEFINE_string(floor_prior, FloorPriorName(kDefaults.bundle_adjustment_options.fl
               "Bundle adjustment: ground-plane prior that fixes the odometry's scale: 'auto' (when the rig, the "
               "odometry and the map show a ground robot with its base origin on the floor), 'on' (whenever a floor "
               "plane is found) or 'off'.");
+DEFINE_string(
+    odometry_rotation_bias,
+    kDefaults.bundle_adjustment_options.estimate_odometry_rotation_bias ? "on" : "off",
+    "Bundle adjustment: estimate the odometry's constant rotation increment per step jointly with the "
+    "poses ('on' or 'off').");
 DEFINE_int32(threads, kDefaults.bundle_adjustment_options.num_threads, "Threads for the bundle adjustment.");
 DEFINE_bool(wireframe_ba_pose_error, kDefaults.triangulation.wireframe.pose_error_from_bundle_adjustment,
             "Wireframe selection: the pose error of the determination test from bundle adjustment's own pose "
@@ -128,6 +133,12 @@ bool OptionsFromFlags(sfm::PipelineOptions* options, std::string* error) {
     options->bundle_adjustment_options.floor_prior = sfm::FloorPriorMode::kOff;
   } else {
     *error = "--floor_prior must be 'auto', 'on' or 'off', not '" + FLAGS_floor_prior + "'";
+    return false;
+  }
+  if (FLAGS_odometry_rotation_bias == "on" || FLAGS_odometry_rotation_bias == "off") {
+    options->bundle_adjustment_options.estimate_odometry_rotation_bias = FLAGS_odometry_rotation_bias == "on";
+  } else {
+    *error = "--odometry_rotation_bias must be 'on' or 'off', not '" + FLAGS_odometry_rotation_bias + "'";
     return false;
   }
   if (FLAGS_match_rho1 == "exponential") {

@@ -1,5 +1,6 @@
 #include "sfm_app/pipeline_outputs.h"
 
+#include <array>
 #include <cstdio>
 #include <filesystem>
 #include <sstream>
@@ -91,6 +92,15 @@ std::string FloorPriorJson(const PipelineResult& result, bool refined) {
          ", \"report\": " + JsonString(summary.floor_prior_report) + "}";
 }
 
+// Not in SPEC's list: the odometry's rotation bias per step the bundle adjustment estimated
+// ([x, y, z] rad, angle-axis in the base frame); null without bundle adjustment or when it was
+// not estimated (--odometry_rotation_bias=off).
+std::string RotationBiasJson(const PipelineResult& result, bool refined) {
+  if (!refined || !result.bundle_adjustment.odometry_rotation_bias_estimated) return "null";
+  const std::array<double, 3>& b = result.bundle_adjustment.odometry_rotation_bias_rad;
+  return "[" + JsonNumber(b[0]) + ", " + JsonNumber(b[1]) + ", " + JsonNumber(b[2]) + "]";
+}
+
 // Not in SPEC's list: how many landmarks wireframe.ply draws and why the others are left out.
 std::string WireframeJson(const PipelineResult& result) {
   const WireframeSelectionReport& report = result.wireframe_selection;
@@ -142,6 +152,7 @@ std::string MetricsJson(const Sequence& sequence, const PipelineResult& result) 
        << ", \"matching\": " << JsonNumber(times.matching) << ", \"backend\": " << JsonNumber(times.backend)
        << ", \"total\": " << JsonNumber(times.total) << "},\n"
        << "  \"floor_prior\": " << FloorPriorJson(result, refined) << ",\n"
+       << "  \"odometry_rotation_bias_rad\": " << RotationBiasJson(result, refined) << ",\n"
        << "  \"wireframe\": " << WireframeJson(result) << "\n"
        << "}\n";
   return json.str();

@@ -164,6 +164,7 @@ class BundleAdjuster {
   Status RevertToOdometry(const std::string& why) {
     for (size_t f = 0; f < poses_.size(); ++f) poses_[f] = PoseParameters::FromPose(odometry_[f]);
     odometry_scale_ = 1;
+    rotation_bias_ = {0, 0, 0};
     floor_.points.clear();
     floor_.lines.clear();
     FinishFloorSummary();
@@ -238,6 +239,7 @@ class BundleAdjuster {
     summary_->floor_points = static_cast<int>(floor_.points.size());
     summary_->floor_lines = static_cast<int>(floor_.lines.size());
     summary_->odometry_scale = odometry_scale_;
+    summary_->odometry_rotation_bias_rad = rotation_bias_;
   }
 
   // The residuals of one observation at the current parameters; false when it cannot be evaluated.
@@ -504,12 +506,31 @@ class BundleAdjuster {
       }
     }
 
+    // The odometry's rotation bias: a zero-mean prior with the noise model's per-frame rotation
+    // sigma (a bias larger than the whole per-frame noise the model states is outside the model;
+    // the steps' vision-determined rotations pin it far tighter, about sigma / sqrt(steps)).
+    const bool with_bias = options_.estimate_odometry_rotation_bias;
+    double* const bias = rotation_bias_.data();
+    if (with_bias) {
+      problem.AddParameterBlock(bias, 3);
+      ordering->AddElementToGroup(bias, 1);
+      problem.AddResidualBlock(OdometryRotationBiasPriorCost::Create(noise_.rotation_sigma), nullptr, bias);
+    }
     for (size_t f = 0; f + 1 < poses_.size(); ++f) {
       const Pose3 motion = odometry_[f].Inverse() * odometry_[f + 1];
       const OdometryStepSigmas sigmas = OdometryStepSigmasFor(motion.translation.norm(), noise_, options_);
       double* const pose_blocks[4] = {poses_[f].rotation.data(), poses_[f].translation.data(),
                                       poses_[f + 1].rotation.data(), poses_[f + 1].translation.data()};
-      if (scale_free_) {
+      if (with_bias && scale_free_) {
+        problem.AddResidualBlock(OdometryPriorWithScaleAndBiasCost::Create(motion, noise_.rotation_sigma,
+                                                                           sigmas.along_m, sigmas.across_m),
+                                 nullptr, pose_blocks[0], pose_blocks[1], pose_blocks[2], pose_blocks[3],
+                                 &odometry_scale_, bias);
+      } else if (with_bias) {
+        problem.AddResidualBlock(
+            OdometryPriorWithBiasCost::Create(motion, noise_.rotation_sigma, sigmas.along_m, sigmas.across_m),
+            nullptr, pose_blocks[0], pose_blocks[1], pose_blocks[2], pose_blocks[3], bias);
+      } else if (scale_free_) {
         problem.AddResidualBlock(
             OdometryPriorWithScaleCost::Create(motion, noise_.rotation_sigma, sigmas.along_m, sigmas.across_m), nullptr,
             pose_blocks[0], pose_blocks[1], pose_blocks[2], pose_blocks[3], &odometry_scale_);
@@ -566,11 +587,13 @@ class BundleAdjuster {
       ordering->AddElementToGroup(poses_[f].translation.data(), 2 + static_cast<int>(f % 2));
     }
     if (scale_free_) ordering->AddElementToGroup(&odometry_scale_, 4);
+    // The rotation bias shares every odometry residual with the scale: a group of its own.
+    if (options_.estimate_odometry_rotation_bias) ordering->AddElementToGroup(rotation_bias_.data(), 5);
     // The landmark blocks start at their sizes' offsets; walk them as Solve laid them out.
     const size_t point_count = landmarks_->points.size();
-    for (size_t i = 0; i < point_count; ++i) ordering->AddElementToGroup(landmark_values.data() + 3 * i, 5);
+    for (size_t i = 0; i < point_count; ++i) ordering->AddElementToGroup(landmark_values.data() + 3 * i, 6);
     for (size_t j = 3 * point_count; j < landmark_values.size(); j += 6) {
-      ordering->AddElementToGroup(landmark_values.data() + j, 5);
+      ordering->AddElementToGroup(landmark_values.data() + j, 6);
     }
     return ordering;
   }
@@ -643,6 +666,8 @@ class BundleAdjuster {
   FloorLandmarks floor_;
   std::vector<std::array<Eigen::Vector3d, 2>> floor_anchors_;
   double odometry_scale_ = 1;
+  // The odometry's rotation bias b (rad per step, angle-axis in base_i), when estimated.
+  std::array<double, 3> rotation_bias_ = {0, 0, 0};
   ceres::EigenQuaternionManifold quaternion_manifold_;
   OrthonormalLineManifold line_manifold_;
 };
@@ -661,6 +686,12 @@ Status BundleAdjust(const Calibration& calibration, const std::vector<Pose3>& wo
   SFM_RETURN_IF_ERROR(CheckInput(calibration, world_T_base_odometry, *landmarks));
   BundleAdjuster adjuster(calibration, world_T_base_odometry, options, landmarks, summary);
   const Status status = adjuster.Run();
+  summary->odometry_rotation_bias_estimated = options.estimate_odometry_rotation_bias;
+  if (options.estimate_odometry_rotation_bias) {
+    const std::array<double, 3>& b = summary->odometry_rotation_bias_rad;
+    LOG(INFO) << "bundle adjustment: odometry rotation bias per step (" << b[0] << ", " << b[1] << ", "
+              << b[2] << ") rad, angle-axis in the base frame";
+  }
   *world_T_base_refined = adjuster.RefinedPoses();
   summary->time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return status;

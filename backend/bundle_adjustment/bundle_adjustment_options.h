@@ -2,6 +2,7 @@
 // chosen: docs/bundle_adjustment.md.
 #pragma once
 
+#include <array>
 #include <optional>
 #include <string>
 
@@ -58,6 +59,10 @@ struct BundleAdjustmentOptions {
   // this is weighted the same in every direction (its measured direction is mostly slip).
   double odometry_min_distance_m = 0.05;
   OdometryTranslationModel odometry_translation_model = OdometryTranslationModel::kAlongAcross;
+  // Estimate the odometry's constant rotation increment per step b jointly with the poses (one
+  // shared 3-vector, zero-mean Gaussian prior with the noise model's per-frame rotation sigma;
+  // docs/bundle_adjustment.md, "Odometry rotation bias").
+  bool estimate_odometry_rotation_bias = false;
   double min_point_triangulation_angle_deg = 1.0;  // deg, points with less are dropped before solving
   double min_line_triangulation_angle_deg = 2.0;   // deg, lines with less are dropped (unobservable)
   // m, a point less deep than this in a camera that observes it, or a line whose points seen at
@@ -112,6 +117,10 @@ struct BundleAdjustmentSummary {
   std::optional<double> floor_plane_z_m;  // m; none when no floor plane was found
   double odometry_scale = 1;
   std::string floor_prior_report;
+  // rad per step, angle-axis in the base frame: the odometry's estimated rotation bias b (zero
+  // when options.estimate_odometry_rotation_bias is off or nothing was solved).
+  std::array<double, 3> odometry_rotation_bias_rad = {0, 0, 0};
+  bool odometry_rotation_bias_estimated = false;  // options.estimate_odometry_rotation_bias, as run
   double time_s = 0;          // wall-clock seconds, the whole call
   std::string solver_report;  // Ceres's BriefReport of the last solve, or why nothing was solved
 };

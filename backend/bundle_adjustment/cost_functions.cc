@@ -185,6 +185,30 @@ ceres::CostFunction* OdometryPriorWithScaleCost::Create(const Pose3& base_i_T_ba
       OdometryPriorCost(base_i_T_base_j_odometry, rotation_sigma_rad, along_sigma_m, across_sigma_m)));
 }
 
+ceres::CostFunction* OdometryPriorWithBiasCost::Create(const Pose3& base_i_T_base_j_odometry,
+                                                       double rotation_sigma_rad, double along_sigma_m,
+                                                       double across_sigma_m) {
+  CheckOdometrySigmas(base_i_T_base_j_odometry, rotation_sigma_rad, along_sigma_m, across_sigma_m);
+  return new ceres::AutoDiffCostFunction<OdometryPriorWithBiasCost, 6, 4, 3, 4, 3, 3>(
+      new OdometryPriorWithBiasCost(
+          OdometryPriorCost(base_i_T_base_j_odometry, rotation_sigma_rad, along_sigma_m, across_sigma_m)));
+}
+
+ceres::CostFunction* OdometryPriorWithScaleAndBiasCost::Create(const Pose3& base_i_T_base_j_odometry,
+                                                               double rotation_sigma_rad,
+                                                               double along_sigma_m, double across_sigma_m) {
+  CheckOdometrySigmas(base_i_T_base_j_odometry, rotation_sigma_rad, along_sigma_m, across_sigma_m);
+  return new ceres::AutoDiffCostFunction<OdometryPriorWithScaleAndBiasCost, 6, 4, 3, 4, 3, 1, 3>(
+      new OdometryPriorWithScaleAndBiasCost(
+          OdometryPriorCost(base_i_T_base_j_odometry, rotation_sigma_rad, along_sigma_m, across_sigma_m)));
+}
+
+ceres::CostFunction* OdometryRotationBiasPriorCost::Create(double sigma_rad) {
+  CHECK_GT(sigma_rad, 0);
+  return new ceres::AutoDiffCostFunction<OdometryRotationBiasPriorCost, 3, 3>(
+      new OdometryRotationBiasPriorCost(sigma_rad));
+}
+
 ceres::CostFunction* FloorPointCost::Create(double sigma_m) {
   CHECK_GT(sigma_m, 0);
   return new ceres::AutoDiffCostFunction<FloorPointCost, 1, 3>(new FloorPointCost(sigma_m));

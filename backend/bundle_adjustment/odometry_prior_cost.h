@@ -9,6 +9,10 @@
 // distance error and the step's direction with its heading error (OdometryStepSigmas;
 // docs/bundle_adjustment.md, "Odometry prior").
 // OdometryPriorWithScaleCost scales the measured translation by a free factor (the floor prior).
+// The *BiasCost variants add a constant rotation increment per step b shared by every step (a
+// wheel-base error or an unequal wheel pair turns the odometry by the same small angle every
+// frame): the odometry's rotation is predicted as Exp(b) X_R (docs/bundle_adjustment.md,
+// "Odometry rotation bias").
 #pragma once
 
 #include <ceres/cost_function.h>
@@ -76,19 +80,32 @@ struct OdometryPriorCost {
   template <typename T>
   bool operator()(const T* rotation_i, const T* translation_i, const T* rotation_j, const T* translation_j,
                   T* residuals) const {
-    return Residuals(rotation_i, translation_i, rotation_j, translation_j, T(1), residuals);
+    return Residuals(rotation_i, translation_i, rotation_j, translation_j, T(1),
+                     static_cast<const T*>(nullptr), residuals);
   }
 
   // The residuals with the measured translation multiplied by `scale` (the odometry's scale
-  // factor of the floor prior, OdometryPriorWithScaleCost; 1 without it).
+  // factor of the floor prior, OdometryPriorWithScaleCost; 1 without it) and, when
+  // `rotation_bias` is not null, the estimated rotation turned by the odometry's rotation bias b
+  // (angle-axis, base_i) before it is compared with the measurement: E_R = M_R^-1 Exp(b) X_R.
+  // Left multiplication in base_i because the odometry models add their bias that way
+  // (sequences/generator/odometry_noise.h: R' = Rz(bias + noise) R; the importer's
+  // camera_odometry_noise.h: R' = Exp(bias e_y + noise) R). The translation is not turned: both
+  // models leave the measured step's translation in base_i unrotated by the bias.
   template <typename T>
   bool Residuals(const T* rotation_i, const T* translation_i, const T* rotation_j, const T* translation_j,
-                 const T& scale, T* residuals) const {
+                 const T& scale, const T* rotation_bias, T* residuals) const {
     const Eigen::Map<const Eigen::Quaternion<T>> q_i(rotation_i), q_j(rotation_j);
     const Eigen::Map<const Eigen::Matrix<T, 3, 1>> t_i(translation_i), t_j(translation_j);
     const Eigen::Quaternion<T> q_i_inverse = q_i.conjugate();
     // X = est_i^-1 est_j, then E = M^-1 X = (M_R^T X_R, M_R^T (X_t - M_t)).
-    const Eigen::Quaternion<T> estimated_rotation = q_i_inverse * q_j;
+    Eigen::Quaternion<T> estimated_rotation = q_i_inverse * q_j;
+    if (rotation_bias != nullptr) {
+      T bias_wxyz[4];
+      ceres::AngleAxisToQuaternion(rotation_bias, bias_wxyz);
+      estimated_rotation =
+          Eigen::Quaternion<T>(bias_wxyz[0], bias_wxyz[1], bias_wxyz[2], bias_wxyz[3]) * estimated_rotation;
+    }
     const Eigen::Matrix<T, 3, 1> estimated_translation = q_i_inverse * (t_j - t_i);
     const Eigen::Quaternion<T> measured_inverse = measured_rotation_inverse.cast<T>();
     const Eigen::Quaternion<T> error_rotation = measured_inverse * estimated_rotation;
@@ -131,7 +148,8 @@ struct OdometryPriorWithScaleCost {
   template <typename T>
   bool operator()(const T* rotation_i, const T* translation_i, const T* rotation_j, const T* translation_j,
                   const T* scale, T* residuals) const {
-    return prior.Residuals(rotation_i, translation_i, rotation_j, translation_j, scale[0], residuals);
+    return prior.Residuals(rotation_i, translation_i, rotation_j, translation_j, scale[0],
+                           static_cast<const T*>(nullptr), residuals);
   }
 
   // Automatic derivatives (cost_functions.cc). As OdometryPriorCost::Create.
@@ -143,6 +161,61 @@ struct OdometryPriorWithScaleCost {
   }
 
   OdometryPriorCost prior;
+};
+
+// The prior with the odometry's rotation bias b (Residuals above).
+// Parameter blocks: the four of OdometryPriorCost, then [4] b 3 (rad, angle-axis in base_i).
+struct OdometryPriorWithBiasCost {
+  explicit OdometryPriorWithBiasCost(const OdometryPriorCost& prior) : prior(prior) {}
+
+  template <typename T>
+  bool operator()(const T* rotation_i, const T* translation_i, const T* rotation_j, const T* translation_j,
+                  const T* rotation_bias, T* residuals) const {
+    return prior.Residuals(rotation_i, translation_i, rotation_j, translation_j, T(1), rotation_bias,
+                           residuals);
+  }
+
+  // Automatic derivatives (cost_functions.cc). As OdometryPriorCost::Create.
+  static ceres::CostFunction* Create(const Pose3& base_i_T_base_j_odometry, double rotation_sigma_rad,
+                                     double along_sigma_m, double across_sigma_m);
+
+  OdometryPriorCost prior;
+};
+
+// The prior with both the scale factor and the rotation bias.
+// Parameter blocks: the four of OdometryPriorCost, [4] scale 1, [5] b 3.
+struct OdometryPriorWithScaleAndBiasCost {
+  explicit OdometryPriorWithScaleAndBiasCost(const OdometryPriorCost& prior) : prior(prior) {}
+
+  template <typename T>
+  bool operator()(const T* rotation_i, const T* translation_i, const T* rotation_j, const T* translation_j,
+                  const T* scale, const T* rotation_bias, T* residuals) const {
+    return prior.Residuals(rotation_i, translation_i, rotation_j, translation_j, scale[0], rotation_bias,
+                           residuals);
+  }
+
+  // Automatic derivatives (cost_functions.cc). As OdometryPriorCost::Create.
+  static ceres::CostFunction* Create(const Pose3& base_i_T_base_j_odometry, double rotation_sigma_rad,
+                                     double along_sigma_m, double across_sigma_m);
+
+  OdometryPriorCost prior;
+};
+
+// Zero-mean Gaussian prior on the odometry's rotation bias: b / sigma_rad (3 residuals,
+// dimensionless). Parameter block: [0] b 3 (rad).
+struct OdometryRotationBiasPriorCost {
+  explicit OdometryRotationBiasPriorCost(double sigma_rad) : sigma_rad(sigma_rad) {}
+
+  template <typename T>
+  bool operator()(const T* rotation_bias, T* residuals) const {
+    for (int k = 0; k < 3; ++k) residuals[k] = rotation_bias[k] / sigma_rad;
+    return true;
+  }
+
+  // Automatic derivatives (cost_functions.cc). sigma_rad must be > 0.
+  static ceres::CostFunction* Create(double sigma_rad);
+
+  double sigma_rad;
 };
 
 }  // namespace sfm

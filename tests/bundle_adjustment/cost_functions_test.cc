@@ -519,6 +519,97 @@ TEST(FloorLineCostTest, GradientCheck) {
   }
 }
 
+// The bias turns the estimated motion before the comparison: an odometry that turned b more than
+// the estimate every step (the generator's R' = Rz(b) R) is matched exactly by that b, and with
+// b = 0 the residuals are OdometryPriorCost's. Tolerance 1e-9.
+TEST(OdometryPriorWithBiasCostTest, HandBuiltValues) {
+  const Pose3 est_i(Eigen::Quaterniond(Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitZ())),
+                    Eigen::Vector3d(1, 2, 0));
+  const Pose3 motion(Eigen::Quaterniond(Eigen::AngleAxisd(0.1, Eigen::Vector3d::UnitZ())),
+                     Eigen::Vector3d(0.2, 0.01, 0));
+  const Pose3 est_j = est_i * motion;
+  const Eigen::Vector3d b(0.0004, -0.0002, 0.001);
+  const Pose3 measured(Eigen::Quaterniond(Eigen::AngleAxisd(b.norm(), b.normalized())) * motion.rotation,
+                       motion.translation);
+  const double sigma = 0.002;
+  std::unique_ptr<ceres::CostFunction> with_bias(
+      OdometryPriorWithBiasCost::Create(measured, sigma, 0.004, 0.0005));
+  std::unique_ptr<ceres::CostFunction> plain(OdometryPriorCost::Create(measured, sigma, 0.004, 0.0005));
+  const PoseParameters i = PoseParameters::FromPose(est_i), j = PoseParameters::FromPose(est_j);
+  Eigen::Matrix<double, 6, 1> r, r_plain;
+  const Eigen::Vector3d zero = Eigen::Vector3d::Zero();
+  const double* parameters[] = {i.rotation.data(), i.translation.data(), j.rotation.data(),
+                                j.translation.data(), b.data()};
+  ASSERT_TRUE(with_bias->Evaluate(parameters, r.data(), nullptr));
+  EXPECT_NEAR(r.norm(), 0, 1e-9);
+  parameters[4] = zero.data();
+  ASSERT_TRUE(with_bias->Evaluate(parameters, r.data(), nullptr));
+  ASSERT_TRUE(plain->Evaluate(parameters, r_plain.data(), nullptr));
+  EXPECT_NEAR((r - r_plain).norm(), 0, 1e-12);
+  // Without the bias the rotation residual is the bias in sigmas (measured minus estimated: -b,
+  // expressed in base_j, which for these small angles is b to 1e-4 relative).
+  EXPECT_NEAR((r.head<3>() + motion.rotation.conjugate() * b / sigma).norm(), 0, 1e-6);
+
+  std::unique_ptr<ceres::CostFunction> both(
+      OdometryPriorWithScaleAndBiasCost::Create(measured, sigma, 0.004, 0.0005));
+  const double scale = 1;
+  const double* both_parameters[] = {
+      i.rotation.data(), i.translation.data(), j.rotation.data(), j.translation.data(), &scale, b.data()};
+  ASSERT_TRUE(both->Evaluate(both_parameters, r.data(), nullptr));
+  EXPECT_NEAR(r.norm(), 0, 1e-9);
+}
+
+TEST(OdometryPriorWithBiasCostTest, GradientCheck) {
+  Random random;
+  ceres::EigenQuaternionManifold quaternion;
+  const std::vector<const ceres::Manifold*> manifolds = {&quaternion, nullptr, &quaternion, nullptr, nullptr};
+  const std::vector<const ceres::Manifold*> manifolds_with_scale = {&quaternion, nullptr, &quaternion,
+                                                                    nullptr,     nullptr, nullptr};
+  for (int trial = 0; trial < kRandomTrials; ++trial) {
+    const Pose3 est_i = random.Pose(), est_j = random.Pose();
+    const Pose3 perturbation(
+        Eigen::Quaterniond(Eigen::AngleAxisd(random.Uniform(0, 0.5), random.Vector(-1, 1).normalized())),
+        random.Vector(-0.3, 0.3));
+    const Pose3 measured = est_i.Inverse() * est_j * perturbation;
+    const double rotation_sigma = random.Uniform(0.001, 0.1), along = random.Uniform(0.001, 0.1),
+                 across = random.Uniform(0.0001, 0.1);
+    // Biases from none to 0.1 rad, the first trial exactly zero (the angle-axis conversion's
+    // small-angle branch, where the solver starts).
+    const Eigen::Vector3d bias = trial == 0 ? Eigen::Vector3d::Zero() : random.Vector(-0.1, 0.1);
+    const double scale = random.Uniform(0.9, 1.1);
+    const PoseParameters i = PoseParameters::FromPose(est_i), j = PoseParameters::FromPose(est_j);
+    std::unique_ptr<ceres::CostFunction> cost(
+        OdometryPriorWithBiasCost::Create(measured, rotation_sigma, along, across));
+    const double* parameters[] = {i.rotation.data(), i.translation.data(), j.rotation.data(),
+                                  j.translation.data(), bias.data()};
+    ceres::GradientChecker checker(cost.get(), &manifolds, RiddersOptions());
+    ceres::GradientChecker::ProbeResults results;
+    EXPECT_TRUE(checker.Probe(parameters, kGradientTolerance, &results))
+        << "trial " << trial << ": " << results.error_log;
+    std::unique_ptr<ceres::CostFunction> both(
+        OdometryPriorWithScaleAndBiasCost::Create(measured, rotation_sigma, along, across));
+    const double* both_parameters[] = {
+        i.rotation.data(), i.translation.data(), j.rotation.data(), j.translation.data(), &scale,
+        bias.data()};
+    ceres::GradientChecker both_checker(both.get(), &manifolds_with_scale, RiddersOptions());
+    EXPECT_TRUE(both_checker.Probe(both_parameters, kGradientTolerance, &results))
+        << "trial " << trial << " (with scale): " << results.error_log;
+  }
+}
+
+TEST(OdometryRotationBiasPriorCostTest, ValuesAndGradientCheck) {
+  std::unique_ptr<ceres::CostFunction> cost(OdometryRotationBiasPriorCost::Create(0.002));
+  const std::vector<const ceres::Manifold*> manifolds = {nullptr};
+  const Eigen::Vector3d b(0.001, -0.0005, 0.004);
+  const double* parameters[] = {b.data()};
+  Eigen::Vector3d r;
+  ASSERT_TRUE(cost->Evaluate(parameters, r.data(), nullptr));
+  EXPECT_NEAR((r - b / 0.002).norm(), 0, 1e-12);
+  ceres::GradientChecker checker(cost.get(), &manifolds, RiddersOptions());
+  ceres::GradientChecker::ProbeResults results;
+  EXPECT_TRUE(checker.Probe(parameters, kGradientTolerance, &results)) << results.error_log;
+}
+
 TEST(OdometryScalePriorCostTest, ValuesAndGradientCheck) {
   std::unique_ptr<ceres::CostFunction> cost(OdometryScalePriorCost::Create(0.02));
   const std::vector<const ceres::Manifold*> manifolds = {nullptr};
