@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
+#include <vector>
 
 namespace sfm {
 namespace {
@@ -14,10 +16,13 @@ double Angle(const Junction& junction, const JunctionSegment& segment) {
 }  // namespace
 
 void OrderClockwise(Junction* junction) {
-  std::sort(junction->segments.begin(), junction->segments.end(),
-            [&](const JunctionSegment& a, const JunctionSegment& b) {
-              return Angle(*junction, a) < Angle(*junction, b);
-            });
+  // Each angle computed once, not twice per comparison; std::sort sees the same comparisons as
+  // when comparing atan2 results directly, so the order (ties included) is unchanged.
+  std::vector<std::pair<double, JunctionSegment>> keyed;
+  keyed.reserve(junction->segments.size());
+  for (const JunctionSegment& segment : junction->segments) keyed.emplace_back(Angle(*junction, segment), segment);
+  std::sort(keyed.begin(), keyed.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  for (size_t i = 0; i < keyed.size(); ++i) junction->segments[i] = keyed[i].second;
 }
 
 JunctionType ClassifyJunction(const Junction& junction, double collinear_tolerance_rad) {

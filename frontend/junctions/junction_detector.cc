@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <functional>
 #include <set>
 #include <utility>
 #include <vector>
@@ -95,10 +94,12 @@ struct Group {
 // members, or -1: it must pass the pair test with every member (an end-point or an interior of a
 // segment not yet in the group), and each located hit must lie within max_gap of the group's
 // location. Other junctions are not looked at here: ChooseJunctions resolves the conflicts.
-int BestJoiner(const PairGraph& graph, const Group& group, double max_gap, std::vector<int>* joiner_hits) {
+// `hits` is scratch space, passed in so that its allocation is reused across calls.
+int BestJoiner(const PairGraph& graph, const Group& group, double max_gap, std::vector<int>* joiner_hits,
+               std::vector<int>* scratch) {
   int best = -1;
   double best_sum = 0;
-  std::vector<int> hits;
+  std::vector<int>& hits = *scratch;
   const int anchor = group.nodes.front();
   for (int k = 0; k < graph.degree(anchor); ++k) {
     const int candidate = OtherNode(graph.hit(graph.incident(anchor)[k]), anchor);
@@ -130,6 +131,7 @@ Junction MakeJunction(const Group& group, const std::vector<SegmentLine>& lines,
   junction.id = id;
   junction.location = group.Location();
   junction.score = group.score;
+  junction.segments.reserve(2 * group.nodes.size());
   for (int node : group.nodes) {
     const int s = SegmentOf(node);
     const Contact contact = ContactOf(node);
@@ -195,6 +197,9 @@ std::vector<int> ChooseJunctions(const std::vector<Group>& candidates, size_t nu
   std::vector<int> component(m, -1);
   std::vector<bool> keep(m, false);
   std::vector<int> blocked(m, 0);
+  std::vector<int> members;  // reused by every group: most groups are small and allocations add up
+  std::vector<double> rest;
+  std::vector<int> current, best;
   for (int root = 0; root < m; ++root) {
     if (component[root] >= 0) continue;
     // The connected group of conflicting candidates around root, strongest first.
@@ -203,7 +208,7 @@ std::vector<int> ChooseJunctions(const std::vector<Group>& candidates, size_t nu
       keep[root] = true;
       continue;
     }
-    std::vector<int> members = {root};
+    members.assign(1, root);
     for (size_t k = 0; k < members.size(); ++k) {
       for (int other : conflicts(members[k])) {
         if (component[other] < 0) {
@@ -228,11 +233,13 @@ std::vector<int> ChooseJunctions(const std::vector<Group>& candidates, size_t nu
     }
     // Branch and bound: take or leave each member in score order; prune when even taking all the
     // rest cannot beat the best set found. Strict improvement keeps the earliest (greedy) set on ties.
-    std::vector<double> rest(members.size() + 1, 0.0);
+    rest.assign(members.size() + 1, 0.0);
     for (int k = static_cast<int>(members.size()) - 1; k >= 0; --k) rest[k] = rest[k + 1] + candidates[members[k]].score;
-    std::vector<int> current, best;
+    current.clear();
+    best.clear();
     double best_score = -1;
-    std::function<void(size_t, double)> search = [&](size_t k, double score) {
+    // A generic lambda calling itself (not std::function): no allocation, calls can be inlined.
+    auto search = [&](auto& self, size_t k, double score) -> void {
       if (score + rest[k] <= best_score) return;
       if (k == members.size()) {
         best_score = score;
@@ -243,13 +250,13 @@ std::vector<int> ChooseJunctions(const std::vector<Group>& candidates, size_t nu
       if (blocked[c] == 0) {
         current.push_back(c);
         block(c, +1);
-        search(k + 1, score + candidates[c].score);
+        self(self, k + 1, score + candidates[c].score);
         block(c, -1);
         current.pop_back();
       }
-      search(k + 1, score);
+      self(self, k + 1, score);
     };
-    search(0, 0.0);
+    search(search, 0, 0.0);
     for (int c : best) keep[c] = true;
   }
   std::vector<int> chosen;
@@ -275,9 +282,10 @@ Junctions DetectJunctions(const LineSegments& segments, const JunctionDetectorOp
   }
 
   std::vector<PairHit> hits;
+  const double min_sine = CollinearMinSine(options);
   for (const auto& [a, b] : CandidatePairs(lines, use, options.max_gap_px + kSearchMarginPx,
                                            options.collinear_max_offset_px + kSearchMarginPx)) {
-    if (std::optional<PairHit> hit = TestPair(lines, a, b, options)) hits.push_back(*hit);
+    if (std::optional<PairHit> hit = TestPair(lines, a, b, options, min_sine)) hits.push_back(*hit);
   }
   const PairGraph graph(std::move(hits), 3 * n);
 
@@ -292,8 +300,9 @@ Junctions DetectJunctions(const LineSegments& segments, const JunctionDetectorOp
   // the pair does not). Collinear pieces alone are one broken line, not a junction.
   // A pair's node set is its own (one hit per pair of segments), so only grown groups can repeat.
   std::vector<Group> candidates;
+  candidates.reserve(order.size());
   std::set<std::vector<int>> seen_grown;
-  std::vector<int> joiner_hits;
+  std::vector<int> joiner_hits, joiner_scratch;
   for (int seed : order) {
     const PairHit& hit = graph.hit(seed);
     Group pair;
@@ -304,7 +313,7 @@ Junctions DetectJunctions(const LineSegments& segments, const JunctionDetectorOp
     if (graph.degree(NodeA(hit)) > 1 && graph.degree(NodeB(hit)) > 1) {
       Group group = pair;
       while (true) {
-        const int joiner = BestJoiner(graph, group, options.max_gap_px, &joiner_hits);
+        const int joiner = BestJoiner(graph, group, options.max_gap_px, &joiner_hits, &joiner_scratch);
         if (joiner < 0) break;
         group.nodes.push_back(joiner);
         for (int h : joiner_hits) group.Add(graph.hit(h), h);
@@ -321,6 +330,7 @@ Junctions DetectJunctions(const LineSegments& segments, const JunctionDetectorOp
   const std::vector<int> chosen = ChooseJunctions(candidates, graph.hits().size(), 3 * n);
   const double collinear_tolerance_rad = options.collinear_tolerance_deg * M_PI / 180.0;
   Junctions junctions;
+  junctions.reserve(chosen.size());
   for (int c : chosen) {
     junctions.push_back(
         MakeJunction(candidates[c], lines, static_cast<int>(junctions.size()), collinear_tolerance_rad));
