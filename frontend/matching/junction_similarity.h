@@ -82,6 +82,10 @@ class JunctionSimilarity {
 
  private:
   std::optional<double> M(int index_a, int index_b, int shift, const Bands& bands) const;
+  // The parts of BandsOf (with geometry and use_pose_band): the pose sigma of the residual, and a
+  // band from it.
+  double PoseSigmaE(int index_a, int index_b) const;
+  double PoseBand(double sigma_e, double line_norm) const;
   // H H' of segment ia of image 1 with segment ib of image 2 (indices into the sides' segments).
   std::optional<double> SegmentPairSupport(int ia, int ib, const Bands& bands) const;
   // d, d' within the bands and the cheirality test, as Rho starts; the bands and d, d' out.
@@ -114,8 +118,6 @@ class JunctionSimilarity {
   double min_sin_;  // sin(options.cyclic_order_min_angle_deg)
   Side side_a_;     // lines through F
   Side side_b_;     // lines through F^T
-  // b's locations as homogeneous columns, for PossiblePartners' scan.
-  Eigen::Matrix<double, 3, Eigen::Dynamic> locations_b_;
 };
 
 }  // namespace sfm
