@@ -15,10 +15,14 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-// Distance of x from a line (a, b, c) with |(a, b)| = 1; one expression for every caller, so that
-// the candidate scan and the test of each pair agree to the last bit.
+// Distance of (x, y) from a line (a, b, c) with |(a, b)| = 1; one expression for every caller, so
+// that the candidate scan and the test of each pair agree to the last bit. The sum in the order of
+// Eigen's line.dot(x.homogeneous()) ((a x + b y) + c), which it replaced: the same bits.
+double DistanceToLine(const Eigen::Vector3d& line, double x, double y) {
+  return std::abs(line(0) * x + line(1) * y + line(2));
+}
 double DistanceToLine(const Eigen::Vector3d& line, const Eigen::Vector2d& x) {
-  return std::abs(line.dot(x.homogeneous()));
+  return DistanceToLine(line, x.x(), x.y());
 }
 
 // True when segments a and b of one junction (its unit directions and detected line segments) are
@@ -85,6 +89,12 @@ JunctionSimilarity::JunctionSimilarity(const Junctions& a, const Junctions& b, c
       min_sin_(std::sin(options.cyclic_order_min_angle_deg * kPi / 180)),
       side_a_(MakeSide(a, F)),
       side_b_(MakeSide(b, F.transpose())) {
+  b_x_.reserve(b.size());
+  b_y_.reserve(b.size());
+  for (const Junction& junction : b) {
+    b_x_.push_back(junction.location.x());
+    b_y_.push_back(junction.location.y());
+  }
 }
 
 void JunctionSimilarity::PossiblePartners(int index_a, std::vector<int>* out, int max_count_difference) const {
@@ -95,11 +105,16 @@ void JunctionSimilarity::PossiblePartners(int index_a, std::vector<int>* out, in
   // The two tests Rho starts with; d' computed as LocationsAgree does (DistanceToLine), so that the
   // list holds exactly the pairs whose d' passes there. A loop without a temporary row: this runs
   // for every junction of a in every pass.
+  // b's coordinates and counts in separate arrays, so that the loop reads them contiguously.
   const Eigen::Vector3d& line = side_a_.location_line[index_a];
-  const int num_b = static_cast<int>(side_b_.location.size());
+  const int num_b = static_cast<int>(b_x_.size());
+  const double* x = b_x_.data();
+  const double* y = b_y_.data();
+  const int* count = side_b_.count.data();
   for (int j = 0; j < num_b; ++j) {
-    if (std::abs(side_b_.count[static_cast<size_t>(j)] - n) > max_count_difference) continue;
-    if (DistanceToLine(line, side_b_.location[static_cast<size_t>(j)]) <= bound) out->push_back(j);
+    if (DistanceToLine(line, x[j], y[j]) <= bound && std::abs(count[j] - n) <= max_count_difference) {
+      out->push_back(j);
+    }
   }
 }
 

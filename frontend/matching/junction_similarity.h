@@ -118,6 +118,8 @@ class JunctionSimilarity {
   double min_sin_;  // sin(options.cyclic_order_min_angle_deg)
   Side side_a_;     // lines through F
   Side side_b_;     // lines through F^T
+  // b's locations, x and y apart, for PossiblePartners' scan.
+  std::vector<double> b_x_, b_y_;
 };
 
 }  // namespace sfm
