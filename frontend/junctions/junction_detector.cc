@@ -138,8 +138,7 @@ Junction MakeJunction(const Group& group, const std::vector<SegmentLine>& lines,
     if (contact != Contact::kEnd1) junction.segments.push_back({lines[s].p1, s});
     if (contact != Contact::kEnd0) junction.segments.push_back({lines[s].p0, s});
   }
-  OrderClockwise(&junction);
-  junction.type = ClassifyJunction(junction, collinear_tolerance_rad);
+  junction.type = OrderClockwiseAndClassify(&junction, collinear_tolerance_rad);
   return junction;
 }
 
