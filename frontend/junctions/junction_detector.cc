@@ -301,7 +301,11 @@ Junctions DetectJunctions(const LineSegments& segments, const JunctionDetectorOp
   std::vector<Group> candidates;
   candidates.reserve(order.size());
   std::set<std::vector<int>> seen_grown;
-  std::vector<int> joiner_hits, joiner_scratch;
+  std::vector<int> joiner_hits, joiner_scratch, key;
+  // The grown group is built in `grown`, reused from seed to seed (its vectors keep their
+  // capacity), and copied into the candidates only when new: most groups are found again from
+  // each of their pairs.
+  Group grown;
   for (int seed : order) {
     const PairHit& hit = graph.hit(seed);
     Group pair;
@@ -310,17 +314,24 @@ Junctions DetectJunctions(const LineSegments& segments, const JunctionDetectorOp
     if (!pair.Located()) continue;
     // A joiner needs a pair with each member, so both nodes must have another pair.
     if (graph.degree(NodeA(hit)) > 1 && graph.degree(NodeB(hit)) > 1) {
-      Group group = pair;
+      grown.nodes.assign(pair.nodes.begin(), pair.nodes.end());
+      grown.hits.assign(pair.hits.begin(), pair.hits.end());
+      grown.weight = pair.weight;
+      grown.weighted_sum = pair.weighted_sum;
+      grown.score = pair.score;
       while (true) {
-        const int joiner = BestJoiner(graph, group, options.max_gap_px, &joiner_hits, &joiner_scratch);
+        const int joiner = BestJoiner(graph, grown, options.max_gap_px, &joiner_hits, &joiner_scratch);
         if (joiner < 0) break;
-        group.nodes.push_back(joiner);
-        for (int h : joiner_hits) group.Add(graph.hit(h), h);
+        grown.nodes.push_back(joiner);
+        for (int h : joiner_hits) grown.Add(graph.hit(h), h);
       }
-      if (group.nodes.size() > 2) {
-        std::vector<int> key = group.nodes;
+      if (grown.nodes.size() > 2) {
+        key.assign(grown.nodes.begin(), grown.nodes.end());
         std::sort(key.begin(), key.end());
-        if (seen_grown.insert(std::move(key)).second) candidates.push_back(std::move(group));
+        if (seen_grown.find(key) == seen_grown.end()) {
+          seen_grown.insert(key);
+          candidates.push_back(grown);
+        }
       }
     }
     candidates.push_back(std::move(pair));
