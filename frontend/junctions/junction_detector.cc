@@ -163,25 +163,39 @@ std::vector<int> ChooseJunctions(const std::vector<Group>& candidates, size_t nu
     for (int h : candidates[c].hits) keyed.emplace_back(static_cast<int64_t>(num_nodes) + h, c);
   }
   std::sort(keyed.begin(), keyed.end());
-  std::vector<std::pair<int, int>> edges;
-  for (size_t i = 0; i < keyed.size();) {
-    size_t j = i;
-    while (j < keyed.size() && keyed[j].first == keyed[i].first) ++j;
-    for (size_t x = i; x < j; ++x) {
-      for (size_t y = x + 1; y < j; ++y) {
-        edges.emplace_back(keyed[x].second, keyed[y].second);
-        edges.emplace_back(keyed[y].second, keyed[x].second);
+  // Each pair of candidates sharing a key, both ways, bucketed by the first (a counting sort), then
+  // each candidate's few conflicts sorted and deduplicated: cheaper than sorting all the pairs.
+  auto for_each_link = [&](auto&& link) {
+    for (size_t i = 0; i < keyed.size();) {
+      size_t j = i;
+      while (j < keyed.size() && keyed[j].first == keyed[i].first) ++j;
+      for (size_t x = i; x < j; ++x) {
+        for (size_t y = x + 1; y < j; ++y) {
+          link(keyed[x].second, keyed[y].second);
+          link(keyed[y].second, keyed[x].second);
+        }
       }
+      i = j;
     }
-    i = j;
+  };
+  std::vector<int> bucket_begin(m + 1, 0);
+  for_each_link([&](int from, int) { ++bucket_begin[from + 1]; });
+  for (int c = 0; c < m; ++c) bucket_begin[c + 1] += bucket_begin[c];
+  std::vector<int> linked(bucket_begin[m]);
+  {
+    std::vector<int> fill(bucket_begin.begin(), bucket_begin.end() - 1);
+    for_each_link([&](int from, int to) { linked[fill[from]++] = to; });
   }
-  std::sort(edges.begin(), edges.end());
-  edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
-  // conflicts of c: conflict_list[conflict_begin[c] .. conflict_begin[c + 1]).
-  std::vector<int> conflict_begin(m + 1, 0), conflict_list(edges.size());
-  for (const auto& [from, to] : edges) ++conflict_begin[from + 1];
-  for (int c = 0; c < m; ++c) conflict_begin[c + 1] += conflict_begin[c];
-  for (size_t e = 0; e < edges.size(); ++e) conflict_list[e] = edges[e].second;
+  // conflicts of c: conflict_list[conflict_begin[c] .. conflict_begin[c + 1]), ascending.
+  std::vector<int> conflict_begin(m + 1, 0), conflict_list;
+  conflict_list.reserve(linked.size());
+  for (int c = 0; c < m; ++c) {
+    int* first = linked.data() + bucket_begin[c];
+    int* last = linked.data() + bucket_begin[c + 1];
+    std::sort(first, last);
+    conflict_list.insert(conflict_list.end(), first, std::unique(first, last));
+    conflict_begin[c + 1] = static_cast<int>(conflict_list.size());
+  }
   struct Range {
     const int* b;
     const int* e;
