@@ -152,30 +152,37 @@ Junction MakeJunction(const Group& group, const std::vector<SegmentLine>& lines,
 std::vector<int> ChooseJunctions(const std::vector<Group>& candidates, size_t num_hits, int num_nodes) {
   constexpr int kMaxExact = 20;
   const int m = static_cast<int>(candidates.size());
-  // Conflicting candidate pairs: candidates listed by end-point node and by hit (one flat list of
-  // (key, candidate), sorted), every two with the same key linked. Flat arrays, not a vector per
-  // node: the allocations otherwise cost more than the search.
-  std::vector<std::pair<int64_t, int>> keyed;
-  for (int c = 0; c < m; ++c) {
-    for (int node : candidates[c].nodes) {
-      if (ContactOf(node) != Contact::kThrough) keyed.emplace_back(node, c);
+  // Conflicting candidate pairs: candidates listed by key (end-point node, or num_nodes + hit) in
+  // one flat array by a counting sort (candidates ascending within a key), every two with the same
+  // key linked. Flat arrays, not a vector per node: the allocations otherwise cost more than the
+  // search.
+  const size_t num_keys = static_cast<size_t>(num_nodes) + num_hits;
+  std::vector<int> key_begin(num_keys + 1, 0);
+  auto for_each_key = [&](auto&& visit) {
+    for (int c = 0; c < m; ++c) {
+      for (int node : candidates[c].nodes) {
+        if (ContactOf(node) != Contact::kThrough) visit(static_cast<size_t>(node), c);
+      }
+      for (int h : candidates[c].hits) visit(static_cast<size_t>(num_nodes) + h, c);
     }
-    for (int h : candidates[c].hits) keyed.emplace_back(static_cast<int64_t>(num_nodes) + h, c);
+  };
+  for_each_key([&](size_t key, int) { ++key_begin[key + 1]; });
+  for (size_t k = 0; k < num_keys; ++k) key_begin[k + 1] += key_begin[k];
+  std::vector<int> keyed(key_begin[num_keys]);  // candidates, key after key
+  {
+    std::vector<int> fill(key_begin.begin(), key_begin.end() - 1);
+    for_each_key([&](size_t key, int c) { keyed[fill[key]++] = c; });
   }
-  std::sort(keyed.begin(), keyed.end());
   // Each pair of candidates sharing a key, both ways, bucketed by the first (a counting sort), then
   // each candidate's few conflicts sorted and deduplicated: cheaper than sorting all the pairs.
   auto for_each_link = [&](auto&& link) {
-    for (size_t i = 0; i < keyed.size();) {
-      size_t j = i;
-      while (j < keyed.size() && keyed[j].first == keyed[i].first) ++j;
-      for (size_t x = i; x < j; ++x) {
-        for (size_t y = x + 1; y < j; ++y) {
-          link(keyed[x].second, keyed[y].second);
-          link(keyed[y].second, keyed[x].second);
+    for (size_t k = 0; k < num_keys; ++k) {
+      for (int x = key_begin[k]; x < key_begin[k + 1]; ++x) {
+        for (int y = x + 1; y < key_begin[k + 1]; ++y) {
+          link(keyed[x], keyed[y]);
+          link(keyed[y], keyed[x]);
         }
       }
-      i = j;
     }
   };
   std::vector<int> bucket_begin(m + 1, 0);
