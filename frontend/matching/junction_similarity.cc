@@ -122,13 +122,14 @@ JunctionSimilarity::JunctionSimilarity(const Junctions& a, const Junctions& b, c
                                        const MatchingOptions& options)
     : JunctionSimilarity(a, b, geometry.Fundamental(), options) {
   has_geometry_ = true;
-  const PairGeometry inverse = InversePairGeometry(geometry);
-  for (auto [side, pose] : {std::make_pair(&side_a_, &geometry), std::make_pair(&side_b_, &inverse)}) {
-    for (const Eigen::Vector2d& location : side->location) {
-      side->parallax.push_back(ParallaxFrameOf(*pose, location));
-      side->parallax_tolerance.push_back(
-          EpipolarBand(side->parallax.back().sigma, options.location_sigma_px, options.band_sigmas));
-    }
+  geometry_ = geometry;
+  inverse_geometry_ = InversePairGeometry(geometry);
+  // The cheirality frames are computed on first use (ParallaxOf): most locations never reach the
+  // test, which comes after the band tests.
+  for (Side* side : {&side_a_, &side_b_}) {
+    side->parallax.resize(side->location.size());
+    side->parallax_tolerance.resize(side->location.size());
+    side->parallax_known.assign(side->location.size(), 0);
   }
   Eigen::Matrix3d G[6];
   geometry.FundamentalDeviations(G);
@@ -228,10 +229,20 @@ bool JunctionSimilarity::PassesCheirality(int index_a, int index_b) const {
   // sfm::PassesCheirality with each location's part computed once.
   const Eigen::Vector2d& x1 = side_a_.location[index_a];
   const Eigen::Vector2d& x2 = side_b_.location[index_b];
-  const ParallaxFrame& forward = side_a_.parallax[index_a];
+  const ParallaxFrame& forward = ParallaxOf(side_a_, geometry_, index_a);
   if (forward.tested && (x2 - forward.v).dot(forward.direction) < -side_a_.parallax_tolerance[index_a]) return false;
-  const ParallaxFrame& backward = side_b_.parallax[index_b];
+  const ParallaxFrame& backward = ParallaxOf(side_b_, inverse_geometry_, index_b);
   return !(backward.tested && (x1 - backward.v).dot(backward.direction) < -side_b_.parallax_tolerance[index_b]);
+}
+
+const ParallaxFrame& JunctionSimilarity::ParallaxOf(const Side& side, const PairGeometry& pose, int index) const {
+  if (!side.parallax_known[index]) {
+    side.parallax[index] = ParallaxFrameOf(pose, side.location[index]);
+    side.parallax_tolerance[index] =
+        EpipolarBand(side.parallax[index].sigma, options_.location_sigma_px, options_.band_sigmas);
+    side.parallax_known[index] = 1;
+  }
+  return side.parallax[index];
 }
 
 bool JunctionSimilarity::LocationsAgree(int index_a, int index_b, Bands* bands, double* d, double* d_prime) const {

@@ -103,8 +103,10 @@ class JunctionSimilarity {
     std::vector<Eigen::Vector3d> location_line;  // epipolar line of p0 in the other image, |(a,b)| = 1
     std::vector<double> location_line_norm;      // |(a,b)| of F p0 before normalising
     std::vector<Eigen::Matrix<double, 3, 6>> deviation;  // image 1 only, with geometry: G_k p0
-    std::vector<ParallaxFrame> parallax;  // with geometry: the cheirality test of each location
-    std::vector<double> parallax_tolerance;  // band_sigmas sqrt(sigma_v^2 + 2 location_sigma^2)
+    // With geometry: the cheirality test of each location, filled on first use (ParallaxOf).
+    mutable std::vector<ParallaxFrame> parallax;
+    mutable std::vector<double> parallax_tolerance;  // band_sigmas sqrt(sigma_v^2 + 2 location_sigma^2)
+    mutable std::vector<char> parallax_known;
     std::vector<double> deviation_bound;  // image 1 only: the band of the largest sigma_d' over image 2's locations
     std::vector<OrientedSegment> segments;
     std::vector<Eigen::Vector2d> directions;      // segments[k].direction, contiguous for (36)-(37)
@@ -112,9 +114,13 @@ class JunctionSimilarity {
     std::vector<EndpointEpipolar> epipolar;       // of each end-point, into the other image
   };
   static Side MakeSide(const Junctions& junctions, const Eigen::Matrix3d& F);
+  // side.parallax[index] under pose, computed on the first call.
+  const ParallaxFrame& ParallaxOf(const Side& side, const PairGeometry& pose, int index) const;
 
   MatchingOptions options_;
   bool has_geometry_ = false;
+  PairGeometry geometry_;          // with geometry: camera 2 from camera 1
+  PairGeometry inverse_geometry_;  // and camera 1 from camera 2
   double min_sin_;  // sin(options.cyclic_order_min_angle_deg)
   Side side_a_;     // lines through F
   Side side_b_;     // lines through F^T
