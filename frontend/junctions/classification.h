@@ -16,4 +16,8 @@ void OrderClockwise(Junction* junction);
 // 180 degrees, else Y; 4 X; more N.
 JunctionType ClassifyJunction(const Junction& junction, double collinear_tolerance_rad);
 
+// OrderClockwise, then ClassifyJunction, with each segment's angle computed once for both: the
+// same order and type.
+JunctionType OrderClockwiseAndClassify(Junction* junction, double collinear_tolerance_rad);
+
 }  // namespace sfm

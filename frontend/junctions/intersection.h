@@ -26,5 +26,8 @@ struct SegmentLine {
 // error sigma then moves p0 by sigma / sin(angle) along the lines, so p0 is no usable location.
 std::optional<Eigen::Vector2d> IntersectLines(const SegmentLine& a, const SegmentLine& b,
                                               double min_angle_rad);
+// The same with sin(min_angle_rad) given, for callers testing many pairs with one angle.
+std::optional<Eigen::Vector2d> IntersectLinesMinSine(const SegmentLine& a, const SegmentLine& b,
+                                                     double min_sine);
 
 }  // namespace sfm

@@ -2,8 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdint>
-#include <functional>
 #include <set>
 #include <utility>
 #include <vector>
@@ -95,10 +93,12 @@ struct Group {
 // members, or -1: it must pass the pair test with every member (an end-point or an interior of a
 // segment not yet in the group), and each located hit must lie within max_gap of the group's
 // location. Other junctions are not looked at here: ChooseJunctions resolves the conflicts.
-int BestJoiner(const PairGraph& graph, const Group& group, double max_gap, std::vector<int>* joiner_hits) {
+// `hits` is scratch space, passed in so that its allocation is reused across calls.
+int BestJoiner(const PairGraph& graph, const Group& group, double max_gap, std::vector<int>* joiner_hits,
+               std::vector<int>* scratch) {
   int best = -1;
   double best_sum = 0;
-  std::vector<int> hits;
+  std::vector<int>& hits = *scratch;
   const int anchor = group.nodes.front();
   for (int k = 0; k < graph.degree(anchor); ++k) {
     const int candidate = OtherNode(graph.hit(graph.incident(anchor)[k]), anchor);
@@ -130,14 +130,14 @@ Junction MakeJunction(const Group& group, const std::vector<SegmentLine>& lines,
   junction.id = id;
   junction.location = group.Location();
   junction.score = group.score;
+  junction.segments.reserve(2 * group.nodes.size());
   for (int node : group.nodes) {
     const int s = SegmentOf(node);
     const Contact contact = ContactOf(node);
     if (contact != Contact::kEnd1) junction.segments.push_back({lines[s].p1, s});
     if (contact != Contact::kEnd0) junction.segments.push_back({lines[s].p0, s});
   }
-  OrderClockwise(&junction);
-  junction.type = ClassifyJunction(junction, collinear_tolerance_rad);
+  junction.type = OrderClockwiseAndClassify(&junction, collinear_tolerance_rad);
   return junction;
 }
 
@@ -151,36 +151,57 @@ Junction MakeJunction(const Group& group, const std::vector<SegmentLine>& lines,
 std::vector<int> ChooseJunctions(const std::vector<Group>& candidates, size_t num_hits, int num_nodes) {
   constexpr int kMaxExact = 20;
   const int m = static_cast<int>(candidates.size());
-  // Conflicting candidate pairs: candidates listed by end-point node and by hit (one flat list of
-  // (key, candidate), sorted), every two with the same key linked. Flat arrays, not a vector per
-  // node: the allocations otherwise cost more than the search.
-  std::vector<std::pair<int64_t, int>> keyed;
-  for (int c = 0; c < m; ++c) {
-    for (int node : candidates[c].nodes) {
-      if (ContactOf(node) != Contact::kThrough) keyed.emplace_back(node, c);
+  // Conflicting candidate pairs: candidates listed by key (end-point node, or num_nodes + hit) in
+  // one flat array by a counting sort (candidates ascending within a key), every two with the same
+  // key linked. Flat arrays, not a vector per node: the allocations otherwise cost more than the
+  // search.
+  const size_t num_keys = static_cast<size_t>(num_nodes) + num_hits;
+  std::vector<int> key_begin(num_keys + 1, 0);
+  auto for_each_key = [&](auto&& visit) {
+    for (int c = 0; c < m; ++c) {
+      for (int node : candidates[c].nodes) {
+        if (ContactOf(node) != Contact::kThrough) visit(static_cast<size_t>(node), c);
+      }
+      for (int h : candidates[c].hits) visit(static_cast<size_t>(num_nodes) + h, c);
     }
-    for (int h : candidates[c].hits) keyed.emplace_back(static_cast<int64_t>(num_nodes) + h, c);
+  };
+  for_each_key([&](size_t key, int) { ++key_begin[key + 1]; });
+  for (size_t k = 0; k < num_keys; ++k) key_begin[k + 1] += key_begin[k];
+  std::vector<int> keyed(key_begin[num_keys]);  // candidates, key after key
+  {
+    std::vector<int> fill(key_begin.begin(), key_begin.end() - 1);
+    for_each_key([&](size_t key, int c) { keyed[fill[key]++] = c; });
   }
-  std::sort(keyed.begin(), keyed.end());
-  std::vector<std::pair<int, int>> edges;
-  for (size_t i = 0; i < keyed.size();) {
-    size_t j = i;
-    while (j < keyed.size() && keyed[j].first == keyed[i].first) ++j;
-    for (size_t x = i; x < j; ++x) {
-      for (size_t y = x + 1; y < j; ++y) {
-        edges.emplace_back(keyed[x].second, keyed[y].second);
-        edges.emplace_back(keyed[y].second, keyed[x].second);
+  // Each pair of candidates sharing a key, both ways, bucketed by the first (a counting sort), then
+  // each candidate's few conflicts sorted and deduplicated: cheaper than sorting all the pairs.
+  auto for_each_link = [&](auto&& link) {
+    for (size_t k = 0; k < num_keys; ++k) {
+      for (int x = key_begin[k]; x < key_begin[k + 1]; ++x) {
+        for (int y = x + 1; y < key_begin[k + 1]; ++y) {
+          link(keyed[x], keyed[y]);
+          link(keyed[y], keyed[x]);
+        }
       }
     }
-    i = j;
+  };
+  std::vector<int> bucket_begin(m + 1, 0);
+  for_each_link([&](int from, int) { ++bucket_begin[from + 1]; });
+  for (int c = 0; c < m; ++c) bucket_begin[c + 1] += bucket_begin[c];
+  std::vector<int> linked(bucket_begin[m]);
+  {
+    std::vector<int> fill(bucket_begin.begin(), bucket_begin.end() - 1);
+    for_each_link([&](int from, int to) { linked[fill[from]++] = to; });
   }
-  std::sort(edges.begin(), edges.end());
-  edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
-  // conflicts of c: conflict_list[conflict_begin[c] .. conflict_begin[c + 1]).
-  std::vector<int> conflict_begin(m + 1, 0), conflict_list(edges.size());
-  for (const auto& [from, to] : edges) ++conflict_begin[from + 1];
-  for (int c = 0; c < m; ++c) conflict_begin[c + 1] += conflict_begin[c];
-  for (size_t e = 0; e < edges.size(); ++e) conflict_list[e] = edges[e].second;
+  // conflicts of c: conflict_list[conflict_begin[c] .. conflict_begin[c + 1]), ascending.
+  std::vector<int> conflict_begin(m + 1, 0), conflict_list;
+  conflict_list.reserve(linked.size());
+  for (int c = 0; c < m; ++c) {
+    int* first = linked.data() + bucket_begin[c];
+    int* last = linked.data() + bucket_begin[c + 1];
+    std::sort(first, last);
+    conflict_list.insert(conflict_list.end(), first, std::unique(first, last));
+    conflict_begin[c + 1] = static_cast<int>(conflict_list.size());
+  }
   struct Range {
     const int* b;
     const int* e;
@@ -195,6 +216,9 @@ std::vector<int> ChooseJunctions(const std::vector<Group>& candidates, size_t nu
   std::vector<int> component(m, -1);
   std::vector<bool> keep(m, false);
   std::vector<int> blocked(m, 0);
+  std::vector<int> members;  // reused by every group: most groups are small and allocations add up
+  std::vector<double> rest;
+  std::vector<int> current, best;
   for (int root = 0; root < m; ++root) {
     if (component[root] >= 0) continue;
     // The connected group of conflicting candidates around root, strongest first.
@@ -203,7 +227,7 @@ std::vector<int> ChooseJunctions(const std::vector<Group>& candidates, size_t nu
       keep[root] = true;
       continue;
     }
-    std::vector<int> members = {root};
+    members.assign(1, root);
     for (size_t k = 0; k < members.size(); ++k) {
       for (int other : conflicts(members[k])) {
         if (component[other] < 0) {
@@ -228,11 +252,13 @@ std::vector<int> ChooseJunctions(const std::vector<Group>& candidates, size_t nu
     }
     // Branch and bound: take or leave each member in score order; prune when even taking all the
     // rest cannot beat the best set found. Strict improvement keeps the earliest (greedy) set on ties.
-    std::vector<double> rest(members.size() + 1, 0.0);
+    rest.assign(members.size() + 1, 0.0);
     for (int k = static_cast<int>(members.size()) - 1; k >= 0; --k) rest[k] = rest[k + 1] + candidates[members[k]].score;
-    std::vector<int> current, best;
+    current.clear();
+    best.clear();
     double best_score = -1;
-    std::function<void(size_t, double)> search = [&](size_t k, double score) {
+    // A generic lambda calling itself (not std::function): no allocation, calls can be inlined.
+    auto search = [&](auto& self, size_t k, double score) -> void {
       if (score + rest[k] <= best_score) return;
       if (k == members.size()) {
         best_score = score;
@@ -243,13 +269,13 @@ std::vector<int> ChooseJunctions(const std::vector<Group>& candidates, size_t nu
       if (blocked[c] == 0) {
         current.push_back(c);
         block(c, +1);
-        search(k + 1, score + candidates[c].score);
+        self(self, k + 1, score + candidates[c].score);
         block(c, -1);
         current.pop_back();
       }
-      search(k + 1, score);
+      self(self, k + 1, score);
     };
-    search(0, 0.0);
+    search(search, 0, 0.0);
     for (int c : best) keep[c] = true;
   }
   std::vector<int> chosen;
@@ -275,9 +301,10 @@ Junctions DetectJunctions(const LineSegments& segments, const JunctionDetectorOp
   }
 
   std::vector<PairHit> hits;
+  const double min_sine = CollinearMinSine(options);
   for (const auto& [a, b] : CandidatePairs(lines, use, options.max_gap_px + kSearchMarginPx,
                                            options.collinear_max_offset_px + kSearchMarginPx)) {
-    if (std::optional<PairHit> hit = TestPair(lines, a, b, options)) hits.push_back(*hit);
+    if (std::optional<PairHit> hit = TestPair(lines, a, b, options, min_sine)) hits.push_back(*hit);
   }
   const PairGraph graph(std::move(hits), 3 * n);
 
@@ -292,8 +319,13 @@ Junctions DetectJunctions(const LineSegments& segments, const JunctionDetectorOp
   // the pair does not). Collinear pieces alone are one broken line, not a junction.
   // A pair's node set is its own (one hit per pair of segments), so only grown groups can repeat.
   std::vector<Group> candidates;
+  candidates.reserve(order.size());
   std::set<std::vector<int>> seen_grown;
-  std::vector<int> joiner_hits;
+  std::vector<int> joiner_hits, joiner_scratch, key;
+  // The grown group is built in `grown`, reused from seed to seed (its vectors keep their
+  // capacity), and copied into the candidates only when new: most groups are found again from
+  // each of their pairs.
+  Group grown;
   for (int seed : order) {
     const PairHit& hit = graph.hit(seed);
     Group pair;
@@ -302,17 +334,24 @@ Junctions DetectJunctions(const LineSegments& segments, const JunctionDetectorOp
     if (!pair.Located()) continue;
     // A joiner needs a pair with each member, so both nodes must have another pair.
     if (graph.degree(NodeA(hit)) > 1 && graph.degree(NodeB(hit)) > 1) {
-      Group group = pair;
+      grown.nodes.assign(pair.nodes.begin(), pair.nodes.end());
+      grown.hits.assign(pair.hits.begin(), pair.hits.end());
+      grown.weight = pair.weight;
+      grown.weighted_sum = pair.weighted_sum;
+      grown.score = pair.score;
       while (true) {
-        const int joiner = BestJoiner(graph, group, options.max_gap_px, &joiner_hits);
+        const int joiner = BestJoiner(graph, grown, options.max_gap_px, &joiner_hits, &joiner_scratch);
         if (joiner < 0) break;
-        group.nodes.push_back(joiner);
-        for (int h : joiner_hits) group.Add(graph.hit(h), h);
+        grown.nodes.push_back(joiner);
+        for (int h : joiner_hits) grown.Add(graph.hit(h), h);
       }
-      if (group.nodes.size() > 2) {
-        std::vector<int> key = group.nodes;
+      if (grown.nodes.size() > 2) {
+        key.assign(grown.nodes.begin(), grown.nodes.end());
         std::sort(key.begin(), key.end());
-        if (seen_grown.insert(std::move(key)).second) candidates.push_back(std::move(group));
+        if (seen_grown.find(key) == seen_grown.end()) {
+          seen_grown.insert(key);
+          candidates.push_back(grown);
+        }
       }
     }
     candidates.push_back(std::move(pair));
@@ -321,6 +360,7 @@ Junctions DetectJunctions(const LineSegments& segments, const JunctionDetectorOp
   const std::vector<int> chosen = ChooseJunctions(candidates, graph.hits().size(), 3 * n);
   const double collinear_tolerance_rad = options.collinear_tolerance_deg * M_PI / 180.0;
   Junctions junctions;
+  junctions.reserve(chosen.size());
   for (int c : chosen) {
     junctions.push_back(
         MakeJunction(candidates[c], lines, static_cast<int>(junctions.size()), collinear_tolerance_rad));

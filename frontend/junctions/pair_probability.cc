@@ -80,10 +80,18 @@ double PairProbability(const SegmentLine& a, const SegmentLine& b, const Eigen::
 
 std::optional<PairHit> TestPair(const std::vector<SegmentLine>& lines, int a, int b,
                                 const JunctionDetectorOptions& options) {
+  return TestPair(lines, a, b, options, CollinearMinSine(options));
+}
+
+double CollinearMinSine(const JunctionDetectorOptions& options) {
+  return std::sin(options.collinear_tolerance_deg * kDegToRad);
+}
+
+std::optional<PairHit> TestPair(const std::vector<SegmentLine>& lines, int a, int b,
+                                const JunctionDetectorOptions& options, double min_sine) {
   const SegmentLine& la = lines[a];
   const SegmentLine& lb = lines[b];
-  const std::optional<Eigen::Vector2d> p0 =
-      IntersectLines(la, lb, options.collinear_tolerance_deg * kDegToRad);
+  const std::optional<Eigen::Vector2d> p0 = IntersectLinesMinSine(la, lb, min_sine);
   if (!p0) return TestCollinear(la, lb, a, b, options);
 
   const SegmentContact ca = ContactAt(la, *p0, options.min_arm_px);

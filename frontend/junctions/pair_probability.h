@@ -53,4 +53,10 @@ struct PairHit {
 std::optional<PairHit> TestPair(const std::vector<SegmentLine>& lines, int a, int b,
                                 const JunctionDetectorOptions& options);
 
+// sin(options.collinear_tolerance_deg), the parallel limit of TestPair's line intersection.
+double CollinearMinSine(const JunctionDetectorOptions& options);
+// TestPair with CollinearMinSine(options) given: computed once for all the pairs of an image.
+std::optional<PairHit> TestPair(const std::vector<SegmentLine>& lines, int a, int b,
+                                const JunctionDetectorOptions& options, double min_sine);
+
 }  // namespace sfm

@@ -15,6 +15,16 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
+// Distance of (x, y) from a line (a, b, c) with |(a, b)| = 1; one expression for every caller, so
+// that the candidate scan and the test of each pair agree to the last bit. The sum in the order of
+// Eigen's line.dot(x.homogeneous()) ((a x + b y) + c), which it replaced: the same bits.
+double DistanceToLine(const Eigen::Vector3d& line, double x, double y) {
+  return std::abs(line(0) * x + line(1) * y + line(2));
+}
+double DistanceToLine(const Eigen::Vector3d& line, const Eigen::Vector2d& x) {
+  return DistanceToLine(line, x.x(), x.y());
+}
+
 // True when segments a and b of one junction (its unit directions and detected line segments) are
 // one line through it, as junction detection reads a T's bar (docs/junctions.md, "Type"): both
 // from one detected line segment, or pointing opposite ways within the angle whose sine is min_sin.
@@ -79,8 +89,12 @@ JunctionSimilarity::JunctionSimilarity(const Junctions& a, const Junctions& b, c
       min_sin_(std::sin(options.cyclic_order_min_angle_deg * kPi / 180)),
       side_a_(MakeSide(a, F)),
       side_b_(MakeSide(b, F.transpose())) {
-  locations_b_.resize(3, static_cast<Eigen::Index>(b.size()));
-  for (size_t j = 0; j < b.size(); ++j) locations_b_.col(static_cast<Eigen::Index>(j)) = b[j].location.homogeneous();
+  b_x_.reserve(b.size());
+  b_y_.reserve(b.size());
+  for (const Junction& junction : b) {
+    b_x_.push_back(junction.location.x());
+    b_y_.push_back(junction.location.y());
+  }
 }
 
 void JunctionSimilarity::PossiblePartners(int index_a, std::vector<int>* out, int max_count_difference) const {
@@ -88,11 +102,18 @@ void JunctionSimilarity::PossiblePartners(int index_a, std::vector<int>* out, in
   if (n == 0) return;
   const double bound = has_geometry_ && options_.use_pose_band ? side_a_.deviation_bound[index_a]
                                                                 : options_.max_epipolar_distance_px;
-  // d' of every b at once (one 1x3 by 3xQ product), then the two tests Rho starts with.
-  const Eigen::RowVectorXd d_prime = (side_a_.location_line[index_a].transpose() * locations_b_).cwiseAbs();
-  for (Eigen::Index j = 0; j < d_prime.size(); ++j) {
-    if (d_prime(j) <= bound && std::abs(side_b_.count[static_cast<size_t>(j)] - n) <= max_count_difference) {
-      out->push_back(static_cast<int>(j));
+  // The two tests Rho starts with; d' computed as LocationsAgree does (DistanceToLine), so that the
+  // list holds exactly the pairs whose d' passes there. A loop without a temporary row: this runs
+  // for every junction of a in every pass.
+  // b's coordinates and counts in separate arrays, so that the loop reads them contiguously.
+  const Eigen::Vector3d& line = side_a_.location_line[index_a];
+  const int num_b = static_cast<int>(b_x_.size());
+  const double* x = b_x_.data();
+  const double* y = b_y_.data();
+  const int* count = side_b_.count.data();
+  for (int j = 0; j < num_b; ++j) {
+    if (DistanceToLine(line, x[j], y[j]) <= bound && std::abs(count[j] - n) <= max_count_difference) {
+      out->push_back(j);
     }
   }
 }
@@ -101,13 +122,14 @@ JunctionSimilarity::JunctionSimilarity(const Junctions& a, const Junctions& b, c
                                        const MatchingOptions& options)
     : JunctionSimilarity(a, b, geometry.Fundamental(), options) {
   has_geometry_ = true;
-  const PairGeometry inverse = InversePairGeometry(geometry);
-  for (auto [side, pose] : {std::make_pair(&side_a_, &geometry), std::make_pair(&side_b_, &inverse)}) {
-    for (const Eigen::Vector2d& location : side->location) {
-      side->parallax.push_back(ParallaxFrameOf(*pose, location));
-      side->parallax_tolerance.push_back(
-          EpipolarBand(side->parallax.back().sigma, options.location_sigma_px, options.band_sigmas));
-    }
+  geometry_ = geometry;
+  inverse_geometry_ = InversePairGeometry(geometry);
+  // The cheirality frames are computed on first use (ParallaxOf): most locations never reach the
+  // test, which comes after the band tests.
+  for (Side* side : {&side_a_, &side_b_}) {
+    side->parallax.resize(side->location.size());
+    side->parallax_tolerance.resize(side->location.size());
+    side->parallax_known.assign(side->location.size(), 0);
   }
   Eigen::Matrix3d G[6];
   geometry.FundamentalDeviations(G);
@@ -142,17 +164,21 @@ JunctionSimilarity::Bands JunctionSimilarity::BandsOf(int index_a, int index_b) 
     bands.in_image1 = bands.in_image2 = options_.max_epipolar_distance_px;
     return bands;
   }
-  // Residual e = x2^T F x1 and its pose sigma; d' = |e| / |F x1|_xy, d = |e| / |F^T x2|_xy.
-  const double sigma_e =
-      (side_a_.deviation[index_a].transpose() * side_b_.location[index_b].homogeneous()).norm();
-  const double norm_a = side_a_.location_line_norm[index_a];
-  const double norm_b = side_b_.location_line_norm[index_b];
-  const double infinity = std::numeric_limits<double>::infinity();
-  bands.in_image2 = EpipolarBand(norm_a > 0 ? sigma_e / norm_a : infinity, options_.location_sigma_px,
-                                 options_.band_sigmas);
-  bands.in_image1 = EpipolarBand(norm_b > 0 ? sigma_e / norm_b : infinity, options_.location_sigma_px,
-                                 options_.band_sigmas);
+  const double sigma_e = PoseSigmaE(index_a, index_b);
+  bands.in_image2 = PoseBand(sigma_e, side_a_.location_line_norm[index_a]);
+  bands.in_image1 = PoseBand(sigma_e, side_b_.location_line_norm[index_b]);
   return bands;
+}
+
+// Residual e = x2^T F x1 and its pose sigma; d' = |e| / |F x1|_xy, d = |e| / |F^T x2|_xy.
+double JunctionSimilarity::PoseSigmaE(int index_a, int index_b) const {
+  return (side_a_.deviation[index_a].transpose() * side_b_.location[index_b].homogeneous()).norm();
+}
+
+// The band of sigma_e over the norm of an epipolar line's (a, b).
+double JunctionSimilarity::PoseBand(double sigma_e, double line_norm) const {
+  return EpipolarBand(line_norm > 0 ? sigma_e / line_norm : std::numeric_limits<double>::infinity(),
+                      options_.location_sigma_px, options_.band_sigmas);
 }
 
 std::optional<double> JunctionSimilarity::M(int index_a, int index_b, int shift) const {
@@ -203,23 +229,41 @@ bool JunctionSimilarity::PassesCheirality(int index_a, int index_b) const {
   // sfm::PassesCheirality with each location's part computed once.
   const Eigen::Vector2d& x1 = side_a_.location[index_a];
   const Eigen::Vector2d& x2 = side_b_.location[index_b];
-  const ParallaxFrame& forward = side_a_.parallax[index_a];
+  const ParallaxFrame& forward = ParallaxOf(side_a_, geometry_, index_a);
   if (forward.tested && (x2 - forward.v).dot(forward.direction) < -side_a_.parallax_tolerance[index_a]) return false;
-  const ParallaxFrame& backward = side_b_.parallax[index_b];
+  const ParallaxFrame& backward = ParallaxOf(side_b_, inverse_geometry_, index_b);
   return !(backward.tested && (x1 - backward.v).dot(backward.direction) < -side_b_.parallax_tolerance[index_b]);
+}
+
+const ParallaxFrame& JunctionSimilarity::ParallaxOf(const Side& side, const PairGeometry& pose, int index) const {
+  if (!side.parallax_known[index]) {
+    side.parallax[index] = ParallaxFrameOf(pose, side.location[index]);
+    side.parallax_tolerance[index] =
+        EpipolarBand(side.parallax[index].sigma, options_.location_sigma_px, options_.band_sigmas);
+    side.parallax_known[index] = 1;
+  }
+  return side.parallax[index];
 }
 
 bool JunctionSimilarity::LocationsAgree(int index_a, int index_b, Bands* bands, double* d, double* d_prime) const {
   // d' of p'0 from the line of p0, d of p0 from the line of p'0 (lines normalised): the cheap test
   // that rejects nearly every pair.
-  *d_prime = std::abs(side_a_.location_line[index_a].dot(side_b_.location[index_b].homogeneous()));
+  *d_prime = DistanceToLine(side_a_.location_line[index_a], side_b_.location[index_b]);
   if (has_geometry_ && options_.use_pose_band) {
     // Cheap rejection first, with the band of the largest sigma_d' over b's locations.
     if (!(*d_prime <= side_a_.deviation_bound[index_a])) return false;
   }
-  *bands = BandsOf(index_a, index_b);
-  if (!(*d_prime <= bands->in_image2)) return false;
-  *d = std::abs(side_b_.location_line[index_b].dot(side_a_.location[index_a].homogeneous()));
+  if (has_geometry_ && options_.use_pose_band) {
+    // BandsOf, with the band in image 1 computed only for a pair whose d' passes.
+    const double sigma_e = PoseSigmaE(index_a, index_b);
+    bands->in_image2 = PoseBand(sigma_e, side_a_.location_line_norm[index_a]);
+    if (!(*d_prime <= bands->in_image2)) return false;
+    bands->in_image1 = PoseBand(sigma_e, side_b_.location_line_norm[index_b]);
+  } else {
+    *bands = BandsOf(index_a, index_b);
+    if (!(*d_prime <= bands->in_image2)) return false;
+  }
+  *d = DistanceToLine(side_b_.location_line[index_b], side_a_.location[index_a]);
   if (!(*d <= bands->in_image1)) return false;
   return PassesCheirality(index_a, index_b);
 }

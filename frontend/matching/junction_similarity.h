@@ -82,6 +82,10 @@ class JunctionSimilarity {
 
  private:
   std::optional<double> M(int index_a, int index_b, int shift, const Bands& bands) const;
+  // The parts of BandsOf (with geometry and use_pose_band): the pose sigma of the residual, and a
+  // band from it.
+  double PoseSigmaE(int index_a, int index_b) const;
+  double PoseBand(double sigma_e, double line_norm) const;
   // H H' of segment ia of image 1 with segment ib of image 2 (indices into the sides' segments).
   std::optional<double> SegmentPairSupport(int ia, int ib, const Bands& bands) const;
   // d, d' within the bands and the cheirality test, as Rho starts; the bands and d, d' out.
@@ -99,8 +103,10 @@ class JunctionSimilarity {
     std::vector<Eigen::Vector3d> location_line;  // epipolar line of p0 in the other image, |(a,b)| = 1
     std::vector<double> location_line_norm;      // |(a,b)| of F p0 before normalising
     std::vector<Eigen::Matrix<double, 3, 6>> deviation;  // image 1 only, with geometry: G_k p0
-    std::vector<ParallaxFrame> parallax;  // with geometry: the cheirality test of each location
-    std::vector<double> parallax_tolerance;  // band_sigmas sqrt(sigma_v^2 + 2 location_sigma^2)
+    // With geometry: the cheirality test of each location, filled on first use (ParallaxOf).
+    mutable std::vector<ParallaxFrame> parallax;
+    mutable std::vector<double> parallax_tolerance;  // band_sigmas sqrt(sigma_v^2 + 2 location_sigma^2)
+    mutable std::vector<char> parallax_known;
     std::vector<double> deviation_bound;  // image 1 only: the band of the largest sigma_d' over image 2's locations
     std::vector<OrientedSegment> segments;
     std::vector<Eigen::Vector2d> directions;      // segments[k].direction, contiguous for (36)-(37)
@@ -108,14 +114,18 @@ class JunctionSimilarity {
     std::vector<EndpointEpipolar> epipolar;       // of each end-point, into the other image
   };
   static Side MakeSide(const Junctions& junctions, const Eigen::Matrix3d& F);
+  // side.parallax[index] under pose, computed on the first call.
+  const ParallaxFrame& ParallaxOf(const Side& side, const PairGeometry& pose, int index) const;
 
   MatchingOptions options_;
   bool has_geometry_ = false;
+  PairGeometry geometry_;          // with geometry: camera 2 from camera 1
+  PairGeometry inverse_geometry_;  // and camera 1 from camera 2
   double min_sin_;  // sin(options.cyclic_order_min_angle_deg)
   Side side_a_;     // lines through F
   Side side_b_;     // lines through F^T
-  // b's locations as homogeneous columns, for PossiblePartners' scan.
-  Eigen::Matrix<double, 3, Eigen::Dynamic> locations_b_;
+  // b's locations, x and y apart, for PossiblePartners' scan.
+  std::vector<double> b_x_, b_y_;
 };
 
 }  // namespace sfm

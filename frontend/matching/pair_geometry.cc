@@ -150,10 +150,6 @@ EpipolarDistanceSigmas EpipolarSigmas(const PairGeometry& geometry, const Eigen:
   return sigmas;
 }
 
-double EpipolarBand(double pose_sigma_px, double location_sigma_px, double num_sigmas) {
-  return num_sigmas * std::sqrt(pose_sigma_px * pose_sigma_px + 2 * location_sigma_px * location_sigma_px);
-}
-
 ParallaxFrame ParallaxFrameOf(const PairGeometry& geometry, const Eigen::Vector2d& x1) {
   ParallaxFrame frame;
   const Eigen::Matrix3d& K = geometry.K;

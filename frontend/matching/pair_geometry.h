@@ -4,6 +4,7 @@
 // the cheirality test (a match must triangulate in front of camera 1 and 2).
 #pragma once
 
+#include <cmath>
 #include <Eigen/Core>
 
 #include "frontend/geometry/pose.h"
@@ -53,7 +54,10 @@ EpipolarDistanceSigmas EpipolarSigmas(const PairGeometry& geometry, const Eigen:
 
 // The search band of a pair: num_sigmas * sqrt(sigma_pose^2 + 2 location_sigma^2) in each image
 // (both locations' errors move the distance).
-double EpipolarBand(double pose_sigma_px, double location_sigma_px, double num_sigmas);
+// Inline: it runs for every pair that reaches the band test.
+inline double EpipolarBand(double pose_sigma_px, double location_sigma_px, double num_sigmas) {
+  return num_sigmas * std::sqrt(pose_sigma_px * pose_sigma_px + 2 * location_sigma_px * location_sigma_px);
+}
 
 // Cheirality (first order): as the depth of x1 falls from infinity, its image in camera 2 leaves
 // v2 = K R K^-1 x1 (the point at infinity of the ray) along the epipolar line in the direction

@@ -3,6 +3,9 @@
 #pragma once
 
 #include <functional>
+#include <memory>
+#include <new>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -16,15 +19,21 @@ class SimilarityTable {
  public:
   using Evaluator = std::function<PairSimilarity(int index_a, int index_b)>;
 
+  // values_ is left uninitialised (only known_ is cleared): a pass reads a small share of the
+  // P x Q pairs, and constructing every entry cost more than the entries it evaluates.
   SimilarityTable(int num_a, int num_b, Evaluator evaluate)
       : num_a_(num_a), num_b_(num_b), evaluate_(std::move(evaluate)),
-        values_(static_cast<size_t>(num_a) * num_b), known_(values_.size(), 0) {}
+        values_(std::allocator<PairSimilarity>().allocate(static_cast<size_t>(num_a) * num_b)),
+        known_(static_cast<size_t>(num_a) * num_b, 0) {}
+  ~SimilarityTable() { std::allocator<PairSimilarity>().deallocate(values_, known_.size()); }
+  SimilarityTable(const SimilarityTable&) = delete;
+  SimilarityTable& operator=(const SimilarityTable&) = delete;
 
   const PairSimilarity& Get(int index_a, int index_b) {
     DCHECK(index_a >= 0 && index_a < num_a_ && index_b >= 0 && index_b < num_b_);
     const size_t k = static_cast<size_t>(index_a) * num_b_ + index_b;
     if (!known_[k]) {
-      values_[k] = evaluate_(index_a, index_b);
+      new (&values_[k]) PairSimilarity(evaluate_(index_a, index_b));
       known_[k] = 1;
     }
     return values_[k];
@@ -37,7 +46,8 @@ class SimilarityTable {
   int num_a_;
   int num_b_;
   Evaluator evaluate_;
-  std::vector<PairSimilarity> values_;
+  static_assert(std::is_trivially_destructible_v<PairSimilarity>, "values_ entries are never destroyed");
+  PairSimilarity* values_;  // entry k is constructed once known_[k] is set
   std::vector<char> known_;
 };
 
