@@ -306,17 +306,22 @@ TEST(OdometryPriorCostTest, HandBuiltValues) {
   EXPECT_NEAR(r.head<2>().norm() + r.tail<3>().norm(), 0, 1e-9);
 }
 
+// An odometry measurement near the estimated motion est_i^-1 est_j (rotation off by up to 0.5 rad,
+// translation by up to 0.3 per axis), so that the rotation error stays below pi.
+Pose3 MeasurementNear(Random& random, const Pose3& est_i, const Pose3& est_j) {
+  const Pose3 perturbation(
+      Eigen::Quaterniond(Eigen::AngleAxisd(random.Uniform(0, 0.5), random.Vector(-1, 1).normalized())),
+      random.Vector(-0.3, 0.3));
+  return est_i.Inverse() * est_j * perturbation;
+}
+
 TEST(OdometryPriorCostTest, GradientCheck) {
   Random random;
   ceres::EigenQuaternionManifold quaternion;
   const std::vector<const ceres::Manifold*> manifolds = {&quaternion, nullptr, &quaternion, nullptr};
   for (int trial = 0; trial < kRandomTrials; ++trial) {
     const Pose3 est_i = random.Pose(), est_j = random.Pose();
-    // A measurement near the estimated motion, so that the rotation error stays below pi.
-    const Pose3 perturbation(
-        Eigen::Quaterniond(Eigen::AngleAxisd(random.Uniform(0, 0.5), random.Vector(-1, 1).normalized())),
-        random.Vector(-0.3, 0.3));
-    const Pose3 measured = est_i.Inverse() * est_j * perturbation;
+    const Pose3 measured = MeasurementNear(random, est_i, est_j);
     std::unique_ptr<ceres::CostFunction> cost(
         OdometryPriorCost::Create(measured, random.Uniform(0.001, 0.1), random.Uniform(0.001, 0.1),
                                   random.Uniform(0.0001, 0.1)));
@@ -448,10 +453,7 @@ TEST(OdometryPriorWithScaleCostTest, GradientCheck) {
   const std::vector<const ceres::Manifold*> manifolds = {&quaternion, nullptr, &quaternion, nullptr, nullptr};
   for (int trial = 0; trial < kRandomTrials; ++trial) {
     const Pose3 est_i = random.Pose(), est_j = random.Pose();
-    const Pose3 perturbation(
-        Eigen::Quaterniond(Eigen::AngleAxisd(random.Uniform(0, 0.5), random.Vector(-1, 1).normalized())),
-        random.Vector(-0.3, 0.3));
-    const Pose3 measured = est_i.Inverse() * est_j * perturbation;
+    const Pose3 measured = MeasurementNear(random, est_i, est_j);
     std::unique_ptr<ceres::CostFunction> cost(OdometryPriorWithScaleCost::Create(
         measured, random.Uniform(0.001, 0.1), random.Uniform(0.001, 0.1), random.Uniform(0.0001, 0.1)));
     const PoseParameters i = PoseParameters::FromPose(est_i), j = PoseParameters::FromPose(est_j);
@@ -567,10 +569,7 @@ TEST(OdometryPriorWithBiasCostTest, GradientCheck) {
                                                                     nullptr,     nullptr, nullptr};
   for (int trial = 0; trial < kRandomTrials; ++trial) {
     const Pose3 est_i = random.Pose(), est_j = random.Pose();
-    const Pose3 perturbation(
-        Eigen::Quaterniond(Eigen::AngleAxisd(random.Uniform(0, 0.5), random.Vector(-1, 1).normalized())),
-        random.Vector(-0.3, 0.3));
-    const Pose3 measured = est_i.Inverse() * est_j * perturbation;
+    const Pose3 measured = MeasurementNear(random, est_i, est_j);
     const double rotation_sigma = random.Uniform(0.001, 0.1), along = random.Uniform(0.001, 0.1),
                  across = random.Uniform(0.0001, 0.1);
     // Biases from none to 0.1 rad, the first trial exactly zero (the angle-axis conversion's
