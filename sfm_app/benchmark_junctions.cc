@@ -69,7 +69,8 @@ DEFINE_double(log10_nfa_max, sfm::SegmentDetectorOptions().fast.log10_nfa_max, "
 DEFINE_double(presmooth_sigma, sfm::SegmentDetectorOptions().fast.presmooth_sigma,
               "Fast segments: Gaussian pre-smoothing before the Sobel pass, px.");
 DEFINE_bool(corners_between_chains, sfm::SegmentDetectorOptions().fast.corners_between_chains,
-            "Fast segments: short pieces meeting a long piece of another chain at a corner are measured from the corner.");
+            "Fast segments: short pieces meeting a long piece of another chain at a corner are measured from "
+            "the corner.");
 DEFINE_double(line_tolerance, sfm::SegmentDetectorOptions().fast.line_tolerance, "Fast segments: splitting tolerance, px.");
 DEFINE_string(overlay_dir, "", "If set, write overlays there (every 10th generated frame, every VGG image), "
                                "with missed true junctions circled in white.");

@@ -18,22 +18,22 @@
 //    judged against the same ground truth, and the time of both methods per pair.
 // e. Time of MatchJunctions on the VGG pairs (about 150 junctions per frame), median of repeats.
 // Markdown tables go to stdout and to --output.
+#include <gflags/gflags.h>
+#include <glog/logging.h>
+
+#include <Eigen/SVD>
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <map>
+#include <opencv2/core.hpp>
+#include <opencv2/imgcodecs.hpp>
 #include <optional>
 #include <set>
 #include <sstream>
 #include <string>
 #include <vector>
-
-#include <Eigen/SVD>
-#include <gflags/gflags.h>
-#include <glog/logging.h>
-#include <opencv2/core.hpp>
-#include <opencv2/imgcodecs.hpp>
 
 #include "frontend/geometry/epipolar.h"
 #include "frontend/geometry/image_undistorter.h"
@@ -44,9 +44,9 @@
 #include "frontend/sequence/sequence.h"
 #include "frontend/util/atomic_file.h"
 #include "sequences/generator/ground_truth.h"
-#include "sfm_app/evaluation/table_format.h"
 #include "sfm_app/evaluation/match_overlay.h"
 #include "sfm_app/evaluation/matching_evaluation.h"
+#include "sfm_app/evaluation/table_format.h"
 
 namespace {
 const sfm::JunctionDetectorOptions kJunctionDefaults;
@@ -98,14 +98,18 @@ DEFINE_bool(match_topology, kMatchingDefaults.use_topology, "sigma (true) or rho
 DEFINE_bool(match_partial, kMatchingDefaults.match_partial,
             "With --match_refine: in the guided pass, match junctions of k and k + 1 segments left unmatched through "
             "their best common subset (partial correspondence).");
-DEFINE_bool(match_partial_rule_a, kMatchingDefaults.partial_rule_not_line_half,
-            "With --match_partial: rule (a), the left-out segment may not be half of a line through the junction.");
+DEFINE_bool(
+    match_partial_rule_a, kMatchingDefaults.partial_rule_not_line_half,
+    "With --match_partial: rule (a), the left-out segment may not be half of a line through the junction.");
 DEFINE_bool(match_partial_rule_b, kMatchingDefaults.partial_rule_same_lines,
-            "With --match_partial: rule (b), the kept segments have as many lines through the junction as the smaller "
+            "With --match_partial: rule (b), the kept segments have as many lines through the junction as "
+            "the smaller "
             "junction.");
-DEFINE_string(vgg_matches_csv, "",
-              "If set, write every match of the consecutive VGG pairs (odometry) with its diagnosis there: verdict, "
-              "junction types, distances from the true and the refined epipolar lines, the guided band, rho and sigma.");
+DEFINE_string(
+    vgg_matches_csv, "",
+    "If set, write every match of the consecutive VGG pairs (odometry) with its diagnosis there: verdict, "
+    "junction types, distances from the true and the refined epipolar lines, the guided band, rho and "
+    "sigma.");
 
 namespace sfm {
 namespace {
@@ -681,7 +685,8 @@ Status WriteVerdictPicture(const std::string& path, const LoadedFrame& a, const 
                                          JunctionLocations(b.features.junctions), F_true, FLAGS_epipolar_tolerance, same);
     correct.push_back(v.correct == 1);
   }
-  return WritePng(path, DrawMatchOverlay(a.grey, a.features.junctions, b.grey, b.features.junctions, matches, 2, correct));
+  return WritePng(path, DrawMatchOverlay(a.grey, a.features.junctions, b.grey, b.features.junctions, matches,
+                                         2, correct));
 }
 
 
@@ -734,9 +739,9 @@ std::string WrongTable(const WrongTally& t) {
 // One CSV row per match of a VGG pair, for the analysis of the wrong ones: the verdict, the two
 // junctions, their distances from the true and from the used epipolar lines, the band of the pass
 // that made the match, rho and sigma, and where the true partner of junction a was.
-void AppendVggMatchRows(const VggData& d, int i, int j, const PairInput& input, const MatchingOptions& options,
-                        const std::vector<JunctionMatch>& matches, const MatchingDiagnostics& diagnostics,
-                        std::string* csv) {
+void AppendVggMatchRows(const VggData& d, int i, int j, const PairInput& input,
+                        const MatchingOptions& options, const std::vector<JunctionMatch>& matches,
+                        const MatchingDiagnostics& diagnostics, std::string* csv) {
   const Junctions& a = d.frames[i].features.junctions;
   const Junctions& b = d.frames[j].features.junctions;
   const Eigen::Matrix3d F_true = d.TrueF(i, j);
@@ -751,8 +756,8 @@ void AppendVggMatchRows(const VggData& d, int i, int j, const PairInput& input, 
   const Eigen::Matrix3d F_used = used.Fundamental();
   MatchingOptions first_only = options;
   first_only.refine_geometry = false;
-  const std::vector<JunctionMatch> first =
-      MatchJunctions(a, d.frames[i].features.graph, b, d.frames[j].features.graph, *input.geometry, first_only);
+  const std::vector<JunctionMatch> first = MatchJunctions(
+      a, d.frames[i].features.graph, b, d.frames[j].features.graph, *input.geometry, first_only);
   std::set<std::pair<int, int>> in_first;
   for (const JunctionMatch& m : first) in_first.insert({m.index_a, m.index_b});
   std::vector<int> partner_of_b(b.size(), -1);
@@ -795,23 +800,24 @@ void AppendVggMatchRows(const VggData& d, int i, int j, const PairInput& input, 
       true_b_rho = similarity.Rho(m.index_a, true_b).rho;
     }
     out << i << "," << j << "," << m.index_a << "," << m.index_b << "," << JunctionTypeName(ja.type) << ","
-        << JunctionTypeName(jb.type) << "," << Fixed(ja.location.x(), 2) << "," << Fixed(ja.location.y(), 2) << ","
-        << Fixed(jb.location.x(), 2) << "," << Fixed(jb.location.y(), 2) << "," << Fixed(ja.score, 3) << ","
-        << Fixed(jb.score, 3) << "," << (epipolar_ok && identity != 0 ? 1 : 0) << "," << (epipolar_ok ? 1 : 0) << ","
-        << identity << "," << Fixed(true_d1, 3) << "," << Fixed(true_d2, 3) << "," << Fixed(used_d1, 3) << ","
-        << Fixed(used_d2, 3) << "," << Fixed(bands.in_image1, 3) << "," << Fixed(bands.in_image2, 3) << ","
-        << Fixed(rho.rho, 4) << "," << Fixed(m.similarity, 4) << "," << (refined ? 1 : 0) << ","
-        << (in_first.count({m.index_a, m.index_b}) ? 1 : 0) << "," << true_b << ","
-        << (true_b >= 0 ? partner_of_b[true_b] : -2) << "," << (true_b >= 0 && true_b != m.index_b && neighbours(m.index_b, true_b) ? 1 : 0)
-        << "," << Fixed(true_b_rho, 4) << "," << lengths(ja) << "," << lengths(jb);
+        << JunctionTypeName(jb.type) << "," << Fixed(ja.location.x(), 2) << "," << Fixed(ja.location.y(), 2)
+        << "," << Fixed(jb.location.x(), 2) << "," << Fixed(jb.location.y(), 2) << "," << Fixed(ja.score, 3)
+        << "," << Fixed(jb.score, 3) << "," << (epipolar_ok && identity != 0 ? 1 : 0) << ","
+        << (epipolar_ok ? 1 : 0) << "," << identity << "," << Fixed(true_d1, 3) << "," << Fixed(true_d2, 3)
+        << "," << Fixed(used_d1, 3) << "," << Fixed(used_d2, 3) << "," << Fixed(bands.in_image1, 3) << ","
+        << Fixed(bands.in_image2, 3) << "," << Fixed(rho.rho, 4) << "," << Fixed(m.similarity, 4) << ","
+        << (refined ? 1 : 0) << "," << (in_first.count({m.index_a, m.index_b}) ? 1 : 0) << "," << true_b
+        << "," << (true_b >= 0 ? partner_of_b[true_b] : -2) << ","
+        << (true_b >= 0 && true_b != m.index_b && neighbours(m.index_b, true_b) ? 1 : 0) << ","
+        << Fixed(true_b_rho, 4) << "," << lengths(ja) << "," << lengths(jb);
     const Eigen::Matrix3d F_truepose = PairInputOf(d.sequence, i, j, true).F;
     const Eigen::Matrix3d F_odometry = input.F;
     for (const Eigen::Matrix3d* F : {&F_true, &F_used, &F_truepose, &F_odometry}) {
       // The epipoles (right and left null vectors of F), pixels.
       const Eigen::JacobiSVD<Eigen::Matrix3d> svd(*F, Eigen::ComputeFullU | Eigen::ComputeFullV);
       const Eigen::Vector3d e1 = svd.matrixV().col(2), e2 = svd.matrixU().col(2);
-      out << "," << Fixed(e1.x() / e1.z(), 2) << "," << Fixed(e1.y() / e1.z(), 2) << "," << Fixed(e2.x() / e2.z(), 2)
-          << "," << Fixed(e2.y() / e2.z(), 2);
+      out << "," << Fixed(e1.x() / e1.z(), 2) << "," << Fixed(e1.y() / e1.z(), 2) << ","
+          << Fixed(e2.x() / e2.z(), 2) << "," << Fixed(e2.y() / e2.z(), 2);
     }
     out << "\n";
   }
@@ -923,28 +929,40 @@ int main(int argc, char** argv) {
   std::vector<RefinementCase> refinement_cases;  // VGG, odometry, every gap
   std::vector<std::pair<int, RefinementTally>> refinement_vgg;  // by frames apart
   if (!generated.empty()) {
-    report << "\n## a. Generated sequences: matches at true vertices\n\n"
-           << "Consecutive pairs. A junction is at a vertex when a visible wireframe vertex lies within " << FLAGS_radius
-           << " px of it (two vertices can: a poster corner 5 mm in front of a cabinet corner, far door frames). "
-           << "Precision: of the matches whose two junctions are both at vertices, those at one same vertex "
-           << "(\"nearest\": the nearest vertices are the same, stricter). Recall: of the vertices with a junction "
-           << "within " << FLAGS_radius << " px in both frames, those joined by a match between such junctions; "
-           << "\"equal counts\": of those, the ones whose junctions have the same number of segments in both frames; "
-           << "\"recall, equal counts\": of these, the ones joined by a full match (junctions of equal counts, as the "
-           << "paper's rule requires); \"matched partially\": vertices joined by partial matches only (junctions of "
-           << "k and k + 1 segments, --match_partial), part of \"matched\". F error: for the vertices visible in both frames, the larger distance of the "
-           << "true pixels from the other's epipolar line under the F used, median / 95 %.\n\n"
-           << "| sequence | F from | pairs | matches | both at vertices | same vertex | **precision** | goal | "
-           << "precision, nearest | vertices in both | equal counts | matched | **recall** | goal | recall, equal counts "
-           << "| matched partially | F error (px) |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
-    auto row = [&](const std::string& name, const char* source, const VertexMatchCounts& c, const std::string& error) {
-      report << "| " << name << " | " << source << " | " << c.pairs << " | " << c.matches << " | " << c.associated
-             << " | " << c.same_vertex << " | **" << Percent(c.same_vertex, c.associated) << "** | "
-             << Goal(c.same_vertex, c.associated, 99) << " | " << Percent(c.same_nearest, c.associated) << " | "
-             << c.seen_both << " | " << c.seen_both_same_count << " | " << c.matched << " | **"
-             << Percent(c.matched, c.seen_both) << "** | " << Goal(c.matched, c.seen_both, 90) << " | "
-             << Percent(c.matched_same_count, c.seen_both_same_count) << " | " << c.matched_partial_only << " | "
-             << error << " |\n";
+    report
+        << "\n## a. Generated sequences: matches at true vertices\n\n"
+        << "Consecutive pairs. A junction is at a vertex when a visible wireframe vertex lies within "
+        << FLAGS_radius
+        << " px of it (two vertices can: a poster corner 5 mm in front of a cabinet corner, far door "
+           "frames). "
+        << "Precision: of the matches whose two junctions are both at vertices, those at one same vertex "
+        << "(\"nearest\": the nearest vertices are the same, stricter). Recall: of the vertices with a "
+           "junction "
+        << "within " << FLAGS_radius << " px in both frames, those joined by a match between such junctions; "
+        << "\"equal counts\": of those, the ones whose junctions have the same number of segments in both "
+           "frames; "
+        << "\"recall, equal counts\": of these, the ones joined by a full match (junctions of equal counts, "
+           "as the "
+        << "paper's rule requires); \"matched partially\": vertices joined by partial matches only "
+           "(junctions of "
+        << "k and k + 1 segments, --match_partial), part of \"matched\". F error: for the vertices visible "
+           "in both frames, the larger distance of the "
+        << "true pixels from the other's epipolar line under the F used, median / 95 %.\n\n"
+        << "| sequence | F from | pairs | matches | both at vertices | same vertex | **precision** | goal | "
+        << "precision, nearest | vertices in both | equal counts | matched | **recall** | goal | recall, "
+           "equal counts "
+        << "| matched partially | F error (px) "
+           "|\n|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+    auto row = [&](const std::string& name, const char* source, const VertexMatchCounts& c,
+                   const std::string& error) {
+      report << "| " << name << " | " << source << " | " << c.pairs << " | " << c.matches << " | "
+             << c.associated << " | " << c.same_vertex << " | **" << Percent(c.same_vertex, c.associated)
+             << "** | " << Goal(c.same_vertex, c.associated, 99) << " | "
+             << Percent(c.same_nearest, c.associated) << " | " << c.seen_both << " | "
+             << c.seen_both_same_count << " | " << c.matched << " | **" << Percent(c.matched, c.seen_both)
+             << "** | " << Goal(c.matched, c.seen_both, 90) << " | "
+             << Percent(c.matched_same_count, c.seen_both_same_count) << " | " << c.matched_partial_only
+             << " | " << error << " |\n";
     };
     std::ostringstream misses;
     misses << "\nWhy vertices seen in both frames were not matched (first reason that applies, for the pair of "
@@ -1057,9 +1075,11 @@ int main(int argc, char** argv) {
                                 {"odometry", &no_t, "odometry, T junctions dropped"}};
     WrongTally wrong_vgg;
     std::string vgg_matches_csv =
-        "i,j,index_a,index_b,type_a,type_b,xa,ya,xb,yb,score_a,score_b,correct,epipolar_ok,identity,true_d1,true_d2,"
+        "i,j,index_a,index_b,type_a,type_b,xa,ya,xb,yb,score_a,score_b,correct,epipolar_ok,identity,true_d1,"
+        "true_d2,"
         "used_d1,used_d2,band1,band2,rho,similarity,refined,in_first_pass,true_b,true_b_matched_to,"
-        "true_b_neighbour_of_b,true_b_rho,lengths_a,lengths_b,e1x_true,e1y_true,e2x_true,e2y_true,e1x,e1y,e2x,e2y,e1x_tp,e1y_tp,e2x_tp,e2y_tp,e1x_od,e1y_od,e2x_od,e2y_od\n";
+        "true_b_neighbour_of_b,true_b_rho,lengths_a,lengths_b,e1x_true,e1y_true,e2x_true,e2y_true,e1x,e1y,"
+        "e2x,e2y,e1x_tp,e1y_tp,e2x_tp,e2y_tp,e1x_od,e1y_od,e2x_od,e2y_od\n";
     const int n = static_cast<int>(vgg.frames.size());
     for (int gap = 1; gap <= FLAGS_max_gap; ++gap) {
       for (const Variant& variant : variants) {
@@ -1125,7 +1145,8 @@ int main(int argc, char** argv) {
       }
     }
     if (!FLAGS_vgg_matches_csv.empty()) {
-      if (const Status s = WriteFileAtomically(FLAGS_vgg_matches_csv, vgg_matches_csv); !s.ok()) return fail(1, s.message());
+      if (const Status s = WriteFileAtomically(FLAGS_vgg_matches_csv, vgg_matches_csv); !s.ok())
+        return fail(1, s.message());
     }
     report << "\nThe wrong matches of the first row, by junction type in the first frame:\n\n" << WrongTable(wrong_vgg);
     // How many of the wrong ones are just beyond the tolerance.

@@ -42,7 +42,8 @@ DEFINE_string(output, "", "Also write the markdown report to this file.");
 DEFINE_double(min_segment_length, sfm::SegmentDetectorOptions().min_length,
               "Our detectors: shortest segment kept, px (to measure another value beside the default).");
 DEFINE_bool(corners_between_chains, sfm::SegmentDetectorOptions().fast.corners_between_chains,
-            "Fast path: short pieces meeting a long piece of another chain at a corner are measured from the corner.");
+            "Fast path: short pieces meeting a long piece of another chain at a corner are measured from the "
+            "corner.");
 DEFINE_string(overlay_dir, "", "If set, write <method>_<image>.png overlays of the segments found there.");
 
 namespace sfm {

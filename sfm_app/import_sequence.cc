@@ -44,10 +44,11 @@ DEFINE_double(odometry_rotation_bias, kDefaults.odometry.rotation_bias,
 DEFINE_bool(vgg_refit_poses, sfm::VggImportOptions().refit_poses,
             "vgg: re-estimate each pose for the sequence's one K (median of the frames' K); false keeps R, C "
             "of each P's own decomposition, which reproject worse with the shared K.");
-DEFINE_bool(vgg_warp_to_shared_k, sfm::VggImportOptions().warp_to_shared_k,
-            "vgg: resample each image to the sequence's one K (H_i = K K_i^-1, cropped to the rectangle all frames "
-            "cover) and keep each P's own pose, exact for the warped images; writes image_warps.txt. "
-            "--vgg_refit_poses is then not used.");
+DEFINE_bool(
+    vgg_warp_to_shared_k, sfm::VggImportOptions().warp_to_shared_k,
+    "vgg: resample each image to the sequence's one K (H_i = K K_i^-1, cropped to the rectangle all frames "
+    "cover) and keep each P's own pose, exact for the warped images; writes image_warps.txt. "
+    "--vgg_refit_poses is then not used.");
 DEFINE_string(tum_camera, "fr1", "tum: which Kinect's published calibration to use: fr1, fr2 or fr3.");
 DEFINE_int32(tum_stride, sfm::TumImportOptions().stride, "tum: keep every N-th image that has ground truth.");
 DEFINE_double(tum_max_groundtruth_gap, sfm::TumImportOptions().max_groundtruth_gap,

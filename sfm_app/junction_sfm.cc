@@ -63,11 +63,13 @@ DEFINE_int32(match_refine_min_inliers, kDefaults.matching.refine_min_inliers,
              "Fewest supporting first-pass matches for the refined pose; fewer: keep the first pass.");
 DEFINE_bool(match_topology, kDefaults.matching.use_topology,
             "Match on sigma (junction topology, section 4.2) rather than on plain rho (34).");
-DEFINE_bool(match_partial, kDefaults.matching.match_partial,
-            "With --match_refine: in the guided pass, match junctions of k and k + 1 segments left unmatched through "
-            "their best common subset (partial correspondence, docs/matching.md).");
-DEFINE_bool(match_partial_rule_a, kDefaults.matching.partial_rule_not_line_half,
-            "With --match_partial: rule (a), the left-out segment may not be half of a line through the junction.");
+DEFINE_bool(
+    match_partial, kDefaults.matching.match_partial,
+    "With --match_refine: in the guided pass, match junctions of k and k + 1 segments left unmatched through "
+    "their best common subset (partial correspondence, docs/matching.md).");
+DEFINE_bool(
+    match_partial_rule_a, kDefaults.matching.partial_rule_not_line_half,
+    "With --match_partial: rule (a), the left-out segment may not be half of a line through the junction.");
 
 DEFINE_bool(bundle_adjustment, kDefaults.bundle_adjustment,
             "Refine poses, points and lines with the Ceres bundle adjustment (false: outputs use the odometry).");

@@ -1,12 +1,12 @@
 #include "sfm_app/pipeline.h"
 
+#include <glog/logging.h>
+
 #include <algorithm>
 #include <chrono>
 #include <memory>
-#include <vector>
-
-#include <glog/logging.h>
 #include <opencv2/core.hpp>
+#include <vector>
 
 #include "backend/bundle_adjustment/bundle_adjuster.h"
 #include "backend/bundle_adjustment/pose_covariance.h"
@@ -141,14 +141,16 @@ Status Refine(const Sequence& sequence, const PipelineOptions& options, Pipeline
 // use (docs/tracks_and_triangulation.md, "Pose error from bundle adjustment"); null when it cannot
 // be computed (the wireframe then keeps the random-walk model). With ground truth, the log compares
 // it with the refined trajectory's actual relative pose errors.
-std::shared_ptr<const PoseCovariance> RefinedPoseCovariance(const Sequence& sequence, const PipelineOptions& options,
+std::shared_ptr<const PoseCovariance> RefinedPoseCovariance(const Sequence& sequence,
+                                                            const PipelineOptions& options,
                                                             const PipelineResult& result) {
   const WireframeOptions& wireframe = options.triangulation.wireframe;
   const Eigen::Matrix3d K = sequence.calibration.camera.K();
   const std::vector<Pose3>& poses = result.world_T_camera_refined;
-  const double sigma_px = wireframe.estimate_pixel_sigma
-                              ? std::max(wireframe.pixel_sigma_px, EstimatePixelSigma(K, poses, result.landmarks))
-                              : wireframe.pixel_sigma_px;
+  const double sigma_px =
+      wireframe.estimate_pixel_sigma
+          ? std::max(wireframe.pixel_sigma_px, EstimatePixelSigma(K, poses, result.landmarks))
+          : wireframe.pixel_sigma_px;
   std::vector<Pose3> odometry, refined;
   const Pose3 camera_T_base = sequence.calibration.base_T_camera.Inverse();
   for (const Frame& frame : sequence.frames) odometry.push_back(frame.world_T_base_odometry);
@@ -165,8 +167,8 @@ std::shared_ptr<const PoseCovariance> RefinedPoseCovariance(const Sequence& sequ
          CheckPoseCovariance(*covariance, poses, *result.world_T_camera_truth, {1, 4, 16, 32})) {
       LOG(INFO) << "pose covariance against the truth, lag " << check.lag << " (" << check.pairs
                 << " pairs): rotation RMS predicted " << check.predicted_rotation_rad << " rad, actual "
-                << check.actual_rotation_rad << "; centre predicted " << check.predicted_centre_m << " m, actual "
-                << check.actual_centre_m;
+                << check.actual_rotation_rad << "; centre predicted " << check.predicted_centre_m
+                << " m, actual " << check.actual_centre_m;
     }
   }
   return covariance;
@@ -191,14 +193,15 @@ void SelectWireframe(const Sequence& sequence, const PipelineOptions& options, P
       SelectWireframeLandmarks(K, poses, result->landmarks, result->junctions, wireframe, drift, &report);
   report.pose_error_model = drift.covariance ? "bundle_adjustment" : "random_walk";
   report.pose_covariance_seconds = covariance_seconds;
-  LOG(INFO) << "wireframe: " << report.points_kept << " of " << result->landmarks.points.size() << " points and "
-            << report.lines_kept << " of " << result->landmarks.lines.size() << " lines drawn (pixel noise "
-            << report.pixel_sigma_px << " px); not drawn: points " << report.points_untestable << " untestable, " << report.points_occlusion_untested
-            << " occlusion candidates with too few views, "
-            << report.points_inconsistent << " inconsistent, " << report.points_uncertain << " undetermined; lines "
-            << report.lines_untestable << " untestable, " << report.lines_inconsistent << " inconsistent, "
-            << report.lines_uncertain_end0 + report.lines_uncertain_end1 << " undetermined, " << report.lines_unbounded
-            << " unbounded";
+  LOG(INFO) << "wireframe: " << report.points_kept << " of " << result->landmarks.points.size()
+            << " points and " << report.lines_kept << " of " << result->landmarks.lines.size()
+            << " lines drawn (pixel noise " << report.pixel_sigma_px << " px); not drawn: points "
+            << report.points_untestable << " untestable, " << report.points_occlusion_untested
+            << " occlusion candidates with too few views, " << report.points_inconsistent << " inconsistent, "
+            << report.points_uncertain << " undetermined; lines " << report.lines_untestable
+            << " untestable, " << report.lines_inconsistent << " inconsistent, "
+            << report.lines_uncertain_end0 + report.lines_uncertain_end1 << " undetermined, "
+            << report.lines_unbounded << " unbounded";
 }
 
 }  // namespace

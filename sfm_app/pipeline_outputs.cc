@@ -104,7 +104,8 @@ std::string RotationBiasJson(const PipelineResult& result, bool refined) {
 // Not in SPEC's list: how many landmarks wireframe.ply draws and why the others are left out.
 std::string WireframeJson(const PipelineResult& result) {
   const WireframeSelectionReport& report = result.wireframe_selection;
-  return "{\"points\": " + std::to_string(report.points_kept) + ", \"lines\": " + std::to_string(report.lines_kept) +
+  return "{\"points\": " + std::to_string(report.points_kept) +
+         ", \"lines\": " + std::to_string(report.lines_kept) +
          ", \"pixel_sigma_px\": " + JsonNumber(report.pixel_sigma_px) +
          ", \"points_untestable\": " + std::to_string(report.points_untestable) +
          ", \"points_occlusion_untested\": " + std::to_string(report.points_occlusion_untested) +
@@ -112,7 +113,8 @@ std::string WireframeJson(const PipelineResult& result) {
          ", \"points_undetermined\": " + std::to_string(report.points_uncertain) +
          ", \"lines_untestable\": " + std::to_string(report.lines_untestable) +
          ", \"lines_inconsistent\": " + std::to_string(report.lines_inconsistent) +
-         ", \"lines_undetermined\": " + std::to_string(report.lines_uncertain_end0 + report.lines_uncertain_end1) +
+         ", \"lines_undetermined\": " +
+         std::to_string(report.lines_uncertain_end0 + report.lines_uncertain_end1) +
          ", \"lines_unbounded\": " + std::to_string(report.lines_unbounded) +
          ", \"pose_error_model\": " + JsonString(report.pose_error_model) +
          ", \"pose_covariance_s\": " + JsonNumber(report.pose_covariance_seconds) + "}";

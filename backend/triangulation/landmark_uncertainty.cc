@@ -150,8 +150,8 @@ Eigen::Matrix<double, 6, 6> PoseCovariance::Anchor(int i, int f0) const {
 
 Eigen::Matrix<double, 6, 6> PoseCovariance::Relative(int i, int j, int f0) const {
   const Eigen::Matrix<double, 6, 6> Oi = Own(i), Ai = Anchor(i, f0), Oj = Own(j), Aj = Anchor(j, f0);
-  return Oi * Block(i, j) * Oj.transpose() + Oi * Block(i, f0) * Aj.transpose() + Ai * Block(f0, j) * Oj.transpose() +
-         Ai * Block(f0, f0) * Aj.transpose();
+  return Oi * Block(i, j) * Oj.transpose() + Oi * Block(i, f0) * Aj.transpose() +
+         Ai * Block(f0, j) * Oj.transpose() + Ai * Block(f0, f0) * Aj.transpose();
 }
 
 double PointPositionSigma(const Eigen::Matrix3d& K, const std::vector<Pose3>& world_T_camera,

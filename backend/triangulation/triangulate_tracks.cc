@@ -52,9 +52,9 @@ Landmarks TriangulateTracks(const Eigen::Matrix3d& K, const std::vector<Pose3>& 
       for (const TrackView& view : track.views) {
         const Junction& junction = frames[view.frame][view.junction];
         const int segment = view.segments[s];
-        if (segment < 0) continue;  // this view's junction has no segment in this segment track (a partial match)
-        CHECK(segment < junction.NumSegments())
-            << "track " << track.id << " segment " << segment;
+        if (segment < 0)
+          continue;  // this view's junction has no segment in this segment track (a partial match)
+        CHECK(segment < junction.NumSegments()) << "track " << track.id << " segment " << segment;
         line_views.push_back({world_T_camera[view.frame], junction.location, junction.segments[segment].end});
         line_observations.push_back(
             {view.frame, view.junction, segment, junction.location, junction.segments[segment].end});

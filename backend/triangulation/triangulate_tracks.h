@@ -27,10 +27,10 @@ struct TriangulationReport {
 // frames[f]: the camera pose (odometry) and the junctions of frame f, one each per frame (CHECKed);
 // the tracks must index frames (CHECKed). Per junction track: TriangulatePoint on the junction
 // locations; a kOk point becomes a PointLandmark. Per segment track s: TriangulateLine on
-// (location, end of segment views[v].segments[s]) over the views where it is not -1, then BoundLine with the track's point when it
-// was triangulated; a kOk line becomes a LineLandmark with end0 at the junction end (point = end0,
-// direction towards end1) and point_landmark set when the point exists. Landmarks come in track
-// order, lines of one track in segment order. options must pass Check() (CHECKed).
+// (location, end of segment views[v].segments[s]) over the views where it is not -1, then BoundLine with the
+// track's point when it was triangulated; a kOk line becomes a LineLandmark with end0 at the junction end
+// (point = end0, direction towards end1) and point_landmark set when the point exists. Landmarks come in
+// track order, lines of one track in segment order. options must pass Check() (CHECKed).
 Landmarks TriangulateTracks(const Eigen::Matrix3d& K, const std::vector<Pose3>& world_T_camera,
                             const std::vector<Junctions>& frames, const std::vector<JunctionTrack>& tracks,
                             const TriangulationOptions& options, TriangulationReport* report = nullptr);

@@ -44,9 +44,11 @@ bool BoundOnFinalPoses(const Eigen::Matrix3d& K, const std::vector<LineView>& vi
 // a 3D vertex, in any view that sees it so.
 bool IsOcclusionCandidate(const std::vector<Junctions>& junctions, const PointLandmark& point) {
   for (const PointObservation& observation : point.observations) {
-    CHECK(observation.frame >= 0 && observation.frame < static_cast<int>(junctions.size())) << observation.frame;
+    CHECK(observation.frame >= 0 && observation.frame < static_cast<int>(junctions.size()))
+        << observation.frame;
     const Junctions& frame = junctions[observation.frame];
-    CHECK(observation.junction >= 0 && observation.junction < static_cast<int>(frame.size())) << observation.junction;
+    CHECK(observation.junction >= 0 && observation.junction < static_cast<int>(frame.size()))
+        << observation.junction;
     const JunctionType type = frame[observation.junction].type;
     if (type == JunctionType::kT || type == JunctionType::kX) return true;
   }

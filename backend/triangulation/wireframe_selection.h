@@ -72,7 +72,8 @@ Landmarks SelectWireframeLandmarks(const Eigen::Matrix3d& K, const std::vector<P
 // above) the junction types are unknown and that rule is not applied.
 Landmarks SelectWireframeLandmarks(const Eigen::Matrix3d& K, const std::vector<Pose3>& world_T_camera,
                                    const Landmarks& landmarks, const std::vector<Junctions>& junctions,
-                                   const WireframeOptions& options, WireframeSelectionReport* report = nullptr);
+                                   const WireframeOptions& options,
+                                   WireframeSelectionReport* report = nullptr);
 
 // The same with the pose error given (instead of WireframePoseDrift(options, world_T_camera)), e.g.
 // PoseDrift::covariance from bundle adjustment (backend/bundle_adjustment/pose_covariance.h).

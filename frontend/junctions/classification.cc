@@ -41,7 +41,8 @@ void SortClockwise(Junction* junction, double* angles) {
 }
 
 // ClassifyJunction with the segments' angles given (angles[i] = Angle(junction, segments[i])).
-JunctionType ClassifyWithAngles(const Junction& junction, const double* angles, double collinear_tolerance_rad) {
+JunctionType ClassifyWithAngles(const Junction& junction, const double* angles,
+                                double collinear_tolerance_rad) {
   const int n = junction.NumSegments();
   if (n <= 2) return JunctionType::kL;
   if (n == 4) return JunctionType::kX;

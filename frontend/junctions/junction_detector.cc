@@ -1,12 +1,12 @@
 #include "frontend/junctions/junction_detector.h"
 
+#include <glog/logging.h>
+
 #include <algorithm>
 #include <cmath>
 #include <set>
 #include <utility>
 #include <vector>
-
-#include <glog/logging.h>
 
 #include "frontend/junctions/classification.h"
 #include "frontend/junctions/intersection.h"

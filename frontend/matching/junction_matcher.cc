@@ -1,10 +1,10 @@
 #include "frontend/matching/junction_matcher.h"
 
+#include <glog/logging.h>
+
 #include <algorithm>
 #include <cstdlib>
 #include <optional>
-
-#include <glog/logging.h>
 
 #include "frontend/matching/depth_range.h"
 #include "frontend/matching/junction_similarity.h"
@@ -19,7 +19,8 @@ namespace {
 // topology support alike.
 std::vector<JunctionMatch> Match(const Junctions& a, const TopologyGraph& graph_a, const Junctions& b,
                                  const TopologyGraph& graph_b, const JunctionSimilarity& similarity,
-                                 const MatchingOptions& options, const LocalDepthRange* depth_range = nullptr) {
+                                 const MatchingOptions& options,
+                                 const LocalDepthRange* depth_range = nullptr) {
   const int num_a = static_cast<int>(a.size());
   const int num_b = static_cast<int>(b.size());
   SimilarityTable table(num_a, num_b, [&similarity, &b, depth_range](int i, int j) {
@@ -55,9 +56,10 @@ std::vector<JunctionMatch> Match(const Junctions& a, const TopologyGraph& graph_
 // in the full pass, a pair it rejects is no candidate, partial or competitor (an occlusion T read
 // as a Y or an L against a real L elsewhere on the epipolar line is a partner at another depth than
 // the verified matches around it). Returns the partial matches.
-std::vector<JunctionMatch> MatchPartial(const Junctions& a, const Junctions& b, const JunctionSimilarity& similarity,
-                                        const std::vector<JunctionMatch>& full, const MatchingOptions& options,
-                                        const LocalDepthRange* depth_range) {
+std::vector<JunctionMatch> MatchPartial(const Junctions& a, const Junctions& b,
+                                        const JunctionSimilarity& similarity,
+                                        const std::vector<JunctionMatch>& full,
+                                        const MatchingOptions& options, const LocalDepthRange* depth_range) {
   std::vector<char> matched_a(a.size(), 0), matched_b(b.size(), 0);
   for (const JunctionMatch& match : full) {
     matched_a[match.index_a] = 1;

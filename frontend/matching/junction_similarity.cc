@@ -39,7 +39,8 @@ int LinesThrough(const Eigen::Vector2d* directions, const int* line_segments, co
                  double min_sin) {
   int lines = 0;
   for (int i = 0; i < n; ++i) {
-    for (int j = i + 1; j < n; ++j) lines += OneLine(directions, line_segments, indices[i], indices[j], min_sin);
+    for (int j = i + 1; j < n; ++j)
+      lines += OneLine(directions, line_segments, indices[i], indices[j], min_sin);
   }
   return lines;
 }
@@ -97,7 +98,8 @@ JunctionSimilarity::JunctionSimilarity(const Junctions& a, const Junctions& b, c
   }
 }
 
-void JunctionSimilarity::PossiblePartners(int index_a, std::vector<int>* out, int max_count_difference) const {
+void JunctionSimilarity::PossiblePartners(int index_a, std::vector<int>* out,
+                                          int max_count_difference) const {
   const int n = side_a_.count[index_a];
   if (n == 0) return;
   const double bound = has_geometry_ && options_.use_pose_band ? side_a_.deviation_bound[index_a]
@@ -235,7 +237,8 @@ bool JunctionSimilarity::PassesCheirality(int index_a, int index_b) const {
   return !(backward.tested && (x1 - backward.v).dot(backward.direction) < -side_b_.parallax_tolerance[index_b]);
 }
 
-const ParallaxFrame& JunctionSimilarity::ParallaxOf(const Side& side, const PairGeometry& pose, int index) const {
+const ParallaxFrame& JunctionSimilarity::ParallaxOf(const Side& side, const PairGeometry& pose,
+                                                    int index) const {
   if (!side.parallax_known[index]) {
     side.parallax[index] = ParallaxFrameOf(pose, side.location[index]);
     side.parallax_tolerance[index] =
@@ -342,8 +345,8 @@ PairSimilarity JunctionSimilarity::PartialRho(int index_a, int index_b) const {
   const Side& smaller = a_larger ? side_b_ : side_a_;
   const int first_smaller = smaller.first[a_larger ? index_b : index_a];
   const int smaller_lines_through =
-      LinesThrough(smaller.directions.data() + first_smaller, smaller.line_segments.data() + first_smaller, all, k,
-                   min_sin_);
+      LinesThrough(smaller.directions.data() + first_smaller, smaller.line_segments.data() + first_smaller,
+                   all, k, min_sin_);
   double best = 0;
   for (int missing = 0; missing <= k; ++missing) {
     // Partial correspondence stands for a junction segment that detection missed in one frame.
@@ -353,7 +356,8 @@ PairSimilarity JunctionSimilarity::PartialRho(int index_a, int index_b) const {
     // edge does (the two image junctions are then not one 3D point).
     bool continues_another = false;
     for (int i = 0; i <= k; ++i) {
-      continues_another = continues_another || (i != missing && OneLine(larger_directions, larger_lines, missing, i, min_sin_));
+      continues_another = continues_another ||
+                          (i != missing && OneLine(larger_directions, larger_lines, missing, i, min_sin_));
     }
     if (continues_another && options_.partial_rule_not_line_half) continue;
     // The larger junction's segments without `missing`, in their (clockwise) order.

@@ -4,8 +4,8 @@
 // the cheirality test (a match must triangulate in front of camera 1 and 2).
 #pragma once
 
-#include <cmath>
 #include <Eigen/Core>
+#include <cmath>
 
 #include "frontend/geometry/pose.h"
 

@@ -2,14 +2,14 @@
 // and the topology traversals of sigma (section 4.2) ask for the same pairs many times.
 #pragma once
 
+#include <glog/logging.h>
+
 #include <functional>
 #include <memory>
 #include <new>
 #include <type_traits>
 #include <utility>
 #include <vector>
-
-#include <glog/logging.h>
 
 #include "frontend/matching/junction_similarity.h"
 
@@ -22,7 +22,9 @@ class SimilarityTable {
   // values_ is left uninitialised (only known_ is cleared): a pass reads a small share of the
   // P x Q pairs, and constructing every entry cost more than the entries it evaluates.
   SimilarityTable(int num_a, int num_b, Evaluator evaluate)
-      : num_a_(num_a), num_b_(num_b), evaluate_(std::move(evaluate)),
+      : num_a_(num_a),
+        num_b_(num_b),
+        evaluate_(std::move(evaluate)),
         values_(std::allocator<PairSimilarity>().allocate(static_cast<size_t>(num_a) * num_b)),
         known_(static_cast<size_t>(num_a) * num_b, 0) {}
   ~SimilarityTable() { std::allocator<PairSimilarity>().deallocate(values_, known_.size()); }

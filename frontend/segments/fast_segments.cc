@@ -44,8 +44,8 @@ struct Workspace {
   std::vector<Eigen::Vector2d> points;                 // sub-pixel points of chain
   std::vector<LinePiece> pieces;                       // straight pieces of all chains
   std::vector<std::pair<size_t, size_t>> ranges;       // chain points [begin, end) of the current chain's pieces
-  std::vector<FittedLine> lines;                       // their fitted lines (MarkCornerLengths, MarkContactCorners)
-  std::vector<Eigen::Vector2d> ends;                   // pieces' end-points (MarkContactCorners)
+  std::vector<FittedLine> lines;      // their fitted lines (MarkCornerLengths, MarkContactCorners)
+  std::vector<Eigen::Vector2d> ends;  // pieces' end-points (MarkContactCorners)
   std::vector<int> short_pieces, cell_begin, cell_fill, cell_ends;  // MarkContactCorners' pieces and grid
 };
 
@@ -412,7 +412,8 @@ class FastDetector {
     cell_fill_.assign(cell_begin_.begin(), cell_begin_.end() - 1);
     for (size_t k = 0; k < m; ++k) {
       if ((ends[2 * k + 1] - ends[2 * k]).norm() < options_.min_length) continue;
-      for (int e = 0; e < 2; ++e) cell_ends_[cell_fill_[cell_of(ends[2 * k + e])]++] = static_cast<int>(2 * k + e);
+      for (int e = 0; e < 2; ++e)
+        cell_ends_[cell_fill_[cell_of(ends[2 * k + e])]++] = static_cast<int>(2 * k + e);
     }
     const double gap = options_.max_gap, reach2 = 4 * gap * gap;
     for (const int s : short_pieces) {
@@ -442,7 +443,8 @@ class FastDetector {
           }
         }
       }
-      if (any) pieces_[s].corner_length = std::max(pieces_[s].corner_length, (corners[1] - corners[0]).norm());
+      if (any)
+        pieces_[s].corner_length = std::max(pieces_[s].corner_length, (corners[1] - corners[0]).norm());
     }
   }
 

@@ -50,8 +50,8 @@ struct TrackBuildReport {
   int matches = 0;                     // matches given
   int accepted = 0;                    // joined into tracks
   int rejected_junction_conflict = 0;  // would have put two junctions of one frame in one track
-  int rejected_segment_conflict = 0;   // segment pairs disagreeing with the track's: two segments of one frame
-  int skipped_partial_occlusion = 0;   // partial matches with a T or an X on either side, not joined (below)
+  int rejected_segment_conflict = 0;  // segment pairs disagreeing with the track's: two segments of one frame
+  int skipped_partial_occlusion = 0;  // partial matches with a T or an X on either side, not joined (below)
 };
 
 // The frame pairs to match so that tracks survive a junction missed in one frame: every
@@ -67,8 +67,9 @@ std::vector<std::pair<int, int>> FramePairsToMatch(int num_frames);
 // Matches are taken strongest first (decreasing similarity, ties in input order). A match is
 // accepted when it keeps every track consistent: the two junctions' tracks share no frame, and
 // none of its segment pairs (segment i of a <-> PartnerSegment(match, i, ...) of b; N pairs, or k
-// for a partial match) joins two segments of one frame; otherwise it is rejected and counted. So an inconsistent component is never formed: it is split
-// where its weakest conflicting match was. Components of a single junction are not tracks.
+// for a partial match) joins two segments of one frame; otherwise it is rejected and counted. So an
+// inconsistent component is never formed: it is split where its weakest conflicting match was. Components of
+// a single junction are not tracks.
 //
 // A partial match with a T or an X on either side is not joined (skipped_partial_occlusion): a T
 // or an X may be where a nearer edge cuts a farther one, which slides along the edges as the

@@ -1,19 +1,18 @@
 #include "sequences/importers/imported_sequence.h"
 
+#include <glog/logging.h>
 #include <unistd.h>
 
 #include <algorithm>
-#include <cstdio>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
-#include <utility>
-
-#include <glog/logging.h>
 #include <opencv2/core/eigen.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
+#include <sstream>
+#include <utility>
 
 #include "frontend/geometry/tum_io.h"
 #include "frontend/sequence/sequence.h"
@@ -111,7 +110,8 @@ std::string WarpsText(const ImportedSequence& sequence, const Camera& scaled) {
   Eigen::Matrix3d scaling;
   scaling << sx, 0, 0.5 * sx - 0.5, 0, sy, 0.5 * sy - 0.5, 0, 0, 1;
   std::string text =
-      "# image a11 a12 a13 a21 a22 a23: pixel of the image = [a11 a12 a13; a21 a22 a23] (pixel of the data set's "
+      "# image a11 a12 a13 a21 a22 a23: pixel of the image = [a11 a12 a13; a21 a22 a23] (pixel of the data "
+      "set's "
       "image; 1), OpenCV pixel-centre convention (import_sequence; docs/importers.md)\n";
   for (size_t i = 0; i < sequence.frames.size(); ++i) {
     Eigen::Matrix3d A = Eigen::Matrix3d::Identity();

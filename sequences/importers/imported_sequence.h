@@ -2,12 +2,11 @@
 // sequence directory (SPEC section 1) with simulated odometry.
 #pragma once
 
+#include <Eigen/Core>
 #include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
-
-#include <Eigen/Core>
 
 #include "frontend/geometry/camera.h"
 #include "frontend/geometry/pose.h"

@@ -1,16 +1,16 @@
 #include "sequences/importers/shared_intrinsics_warp.h"
 
-#include <algorithm>
-#include <string>
-
 #include <Eigen/Geometry>
 #include <Eigen/LU>
+#include <algorithm>
+#include <string>
 
 namespace sfm {
 namespace {
 
 bool IsIntrinsicMatrix(const Eigen::Matrix3d& K) {
-  return K.allFinite() && K(1, 0) == 0 && K(2, 0) == 0 && K(2, 1) == 0 && K(2, 2) == 1 && K(0, 0) > 0 && K(1, 1) > 0;
+  return K.allFinite() && K(1, 0) == 0 && K(2, 0) == 0 && K(2, 1) == 0 && K(2, 2) == 1 && K(0, 0) > 0 &&
+         K(1, 1) > 0;
 }
 
 struct Rectangle {
@@ -26,7 +26,8 @@ Rectangle LargestRectangle(const std::vector<char>& mask, int width, int height)
   std::vector<int> stack;
   Rectangle best;
   for (int y = 0; y < height; ++y) {
-    for (int x = 0; x < width; ++x) heights[x] = mask[static_cast<size_t>(y) * width + x] ? heights[x] + 1 : 0;
+    for (int x = 0; x < width; ++x)
+      heights[x] = mask[static_cast<size_t>(y) * width + x] ? heights[x] + 1 : 0;
     stack.clear();
     for (int x = 0; x <= width; ++x) {
       while (!stack.empty() && heights[stack.back()] >= heights[x]) {
@@ -46,14 +47,17 @@ Rectangle LargestRectangle(const std::vector<char>& mask, int width, int height)
 
 Status WarpToSharedIntrinsics(const std::vector<Eigen::Matrix3d>& frame_K, int width, int height,
                               const Eigen::Matrix3d& shared_K, SharedIntrinsicsWarp* warp) {
-  if (width < 4 || height < 4) return Status::Error("shared-K warp: images of " + std::to_string(width) + "x" +
-                                                    std::to_string(height) + " pixels are too small");
-  if (!IsIntrinsicMatrix(shared_K)) return Status::Error("shared-K warp: the shared K is not an intrinsic matrix");
+  if (width < 4 || height < 4)
+    return Status::Error("shared-K warp: images of " + std::to_string(width) + "x" + std::to_string(height) +
+                         " pixels are too small");
+  if (!IsIntrinsicMatrix(shared_K))
+    return Status::Error("shared-K warp: the shared K is not an intrinsic matrix");
   // Canvas pixel -> source pixel of each frame: K_i K^-1 (the inverse of H_i = K K_i^-1).
   std::vector<Eigen::Matrix3d> canvas_to_source;
   for (size_t i = 0; i < frame_K.size(); ++i) {
     if (!IsIntrinsicMatrix(frame_K[i])) {
-      return Status::Error("shared-K warp: frame " + std::to_string(i) + "'s K is not upper triangular with a "
+      return Status::Error("shared-K warp: frame " + std::to_string(i) +
+                           "'s K is not upper triangular with a "
                            "positive diagonal");
     }
     canvas_to_source.push_back(frame_K[i] * shared_K.inverse());
@@ -76,9 +80,10 @@ Status WarpToSharedIntrinsics(const std::vector<Eigen::Matrix3d>& frame_K, int w
   }
   const Rectangle crop = LargestRectangle(mask, width, height);
   if (4 * crop.Area() < static_cast<long>(width) * height) {
-    return Status::Error("shared-K warp: the warped images share a rectangle of only " + std::to_string(crop.width) +
-                         "x" + std::to_string(crop.height) + " pixels, less than a quarter of the " +
-                         std::to_string(width) + "x" + std::to_string(height) + " images");
+    return Status::Error("shared-K warp: the warped images share a rectangle of only " +
+                         std::to_string(crop.width) + "x" + std::to_string(crop.height) +
+                         " pixels, less than a quarter of the " + std::to_string(width) + "x" +
+                         std::to_string(height) + " images");
   }
   SharedIntrinsicsWarp result;
   result.K = shared_K;

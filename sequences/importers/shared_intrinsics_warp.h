@@ -9,17 +9,17 @@
 // warped image covers completely, so that no frame has a border of fill (which would be edges).
 #pragma once
 
-#include <vector>
-
 #include <Eigen/Core>
+#include <vector>
 
 #include "frontend/util/status.h"
 
 namespace sfm {
 
 struct SharedIntrinsicsWarp {
-  Eigen::Matrix3d K = Eigen::Matrix3d::Identity();  // of the cropped images: the shared K, principal point moved
-  int width = 0, height = 0;                         // of the cropped images, pixels
+  Eigen::Matrix3d K =
+      Eigen::Matrix3d::Identity();  // of the cropped images: the shared K, principal point moved
+  int width = 0, height = 0;        // of the cropped images, pixels
   // Per frame: sequence pixel = A (source pixel; 1), both in OpenCV's pixel-centre convention.
   std::vector<Eigen::Matrix<double, 2, 3>> source_to_image;
 };

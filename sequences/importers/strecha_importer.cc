@@ -105,7 +105,8 @@ Status ReadStrechaSequence(const std::string& input_dir, ImportedSequence* seque
       return Status::Error(camera_path + ": K or image size differs from " + camera_files[0] +
                            "'s; a sequence has one camera");
     }
-    imported.frames.push_back({static_cast<double>(i) * kFrameInterval, image_path, camera.world_T_camera, std::nullopt});
+    imported.frames.push_back(
+        {static_cast<double>(i) * kFrameInterval, image_path, camera.world_T_camera, std::nullopt});
   }
   imported.notes.push_back("format: Strecha, " + input_dir + ", " + std::to_string(imported.frames.size()) +
                            " frames " + camera_files.front() + " .. " + camera_files.back());

@@ -1,20 +1,20 @@
 #include "sequences/importers/vgg_importer.h"
 
+#include <glog/logging.h>
+
+#include <Eigen/LU>
 #include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <filesystem>
 #include <map>
-
-#include <Eigen/LU>
-#include <glog/logging.h>
 #include <opencv2/calib3d.hpp>
 #include <opencv2/core/eigen.hpp>
 #include <opencv2/imgcodecs.hpp>
 
-#include "sequences/importers/projection_decomposition.h"
 #include "frontend/util/number_text.h"
 #include "sequences/importers/input_files.h"
+#include "sequences/importers/projection_decomposition.h"
 #include "sequences/importers/shared_intrinsics_warp.h"
 
 namespace sfm {
@@ -230,15 +230,18 @@ Status ReadVggSequence(const std::string& input_dir, const VggImportOptions& opt
     imported.camera.height = warp.height;
     result.K = warp.K;
     result.source_to_image = warp.source_to_image;
-    pose_note = "poses: R, C of each P's RQ decomposition, exact for the warped images; images resampled (bicubic) "
-                "by H_i = K K_i^-1 to that K and cropped to the " + std::to_string(warp.width) + "x" +
-                std::to_string(warp.height) + " rectangle every warped frame covers (cx, cy moved by the crop to " +
-                ShortestNumberText(warp.K(0, 2)) + ", " + ShortestNumberText(warp.K(1, 2)) +
-                "); image_warps.txt maps the data set's pixels to the sequence's";
+    pose_note =
+        "poses: R, C of each P's RQ decomposition, exact for the warped images; images resampled (bicubic) "
+        "by H_i = K K_i^-1 to that K and cropped to the " +
+        std::to_string(warp.width) + "x" + std::to_string(warp.height) +
+        " rectangle every warped frame covers (cx, cy moved by the crop to " +
+        ShortestNumberText(warp.K(0, 2)) + ", " + ShortestNumberText(warp.K(1, 2)) +
+        "); image_warps.txt maps the data set's pixels to the sequence's";
     LOG(INFO) << "VGG: " << pose_note;
   } else {
-    pose_note = options.refit_poses ? "poses: re-estimated for that K (PnP on " + name + ".p3d as each P projects it)"
-                                    : "poses: R, C of each P's RQ decomposition (with its own K, not the shared one)";
+    pose_note = options.refit_poses
+                    ? "poses: re-estimated for that K (PnP on " + name + ".p3d as each P projects it)"
+                    : "poses: R, C of each P's RQ decomposition (with its own K, not the shared one)";
   }
   imported.camera.fx = result.K(0, 0);
   imported.camera.fy = result.K(1, 1);
@@ -253,11 +256,13 @@ Status ReadVggSequence(const std::string& input_dir, const VggImportOptions& opt
       LOG(INFO) << "VGG: " << view.stem << ": pose refitted for the shared K, RMS " << rms_px << " px against P";
     }
     result.refit_rms_px.push_back(rms_px);
-    ImportedFrame frame{static_cast<double>(i) * kFrameInterval, view.image_path, camera_T_world.Inverse(), std::nullopt};
+    ImportedFrame frame{static_cast<double>(i) * kFrameInterval, view.image_path, camera_T_world.Inverse(),
+                        std::nullopt};
     if (options.warp_to_shared_k) frame.source_to_image = result.source_to_image[i];
     imported.frames.push_back(frame);
   }
-  if (options.refit_poses && !options.warp_to_shared_k) pose_note += "; RMS " + RangeText(result.refit_rms_px) + " px";
+  if (options.refit_poses && !options.warp_to_shared_k)
+    pose_note += "; RMS " + RangeText(result.refit_rms_px) + " px";
   imported.notes.push_back("format: VGG multi-view, " + input_dir + ", " + std::to_string(views.size()) +
                            " frames " + views.front().stem + " .. " + views.back().stem);
   imported.notes.push_back(k_note);

@@ -89,11 +89,12 @@ cv::Mat DrawMatchOverlay(const cv::Mat& image_a, const Junctions& a, const cv::M
     // A partial match's left-out segment (missing_a or missing_b) has no partner: drawn like an
     // unmatched junction's segments, thin and grey.
     if (m.missing_a >= 0) {
-      cv::line(canvas, At(ja.location, scale, 0), At(ja.segments.at(m.missing_a).end, scale, 0), grey, 1, cv::LINE_AA, kShift);
+      cv::line(canvas, At(ja.location, scale, 0), At(ja.segments.at(m.missing_a).end, scale, 0), grey, 1,
+               cv::LINE_AA, kShift);
     }
     if (m.missing_b >= 0) {
-      cv::line(canvas, At(jb.location, scale, offset_b), At(jb.segments.at(m.missing_b).end, scale, offset_b), grey, 1,
-               cv::LINE_AA, kShift);
+      cv::line(canvas, At(jb.location, scale, offset_b), At(jb.segments.at(m.missing_b).end, scale, offset_b),
+               grey, 1, cv::LINE_AA, kShift);
     }
     for (int i = 0; i < n_a; ++i) {
       const int j = PartnerSegment(m, i, n_a, n_b);

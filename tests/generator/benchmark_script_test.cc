@@ -2,13 +2,13 @@
 // benchmark scripts (benchmark_matching.sh, benchmark_backend.sh). The script is run for real with
 // stand-ins: a `cmake` on PATH that does nothing and a benchmark_junctions in $BUILD/bin that
 // records its arguments, so the test costs milliseconds and checks what the script passes on.
+#include <gtest/gtest.h>
+
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <string>
 #include <vector>
-
-#include <gtest/gtest.h>
 
 #include "tests/test_data.h"
 

@@ -8,18 +8,18 @@
 // two edges beside it, is compared with the vertex pixel the truth file states.
 //
 // Figures and the case that prompted them: docs/generator.md, "Truth against the rendered image".
+#include <gtest/gtest.h>
+
+#include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <map>
+#include <opencv2/imgcodecs.hpp>
 #include <optional>
 #include <string>
 #include <utility>
 #include <vector>
-
-#include <Eigen/LU>
-#include <gtest/gtest.h>
-#include <opencv2/imgcodecs.hpp>
 
 #include "frontend/geometry/image_undistorter.h"
 #include "sequences/generator/ground_truth.h"

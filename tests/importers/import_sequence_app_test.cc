@@ -1,17 +1,16 @@
 // import_sequence as a user runs it: exit status, the one-line error naming the file, no output
 // on bad input, and a sequence that ReadSequence accepts on good input.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
 #include <sys/wait.h>
 
 #include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <opencv2/imgcodecs.hpp>
 #include <sstream>
 #include <string>
-
-#include <gmock/gmock.h>
-#include <gtest/gtest.h>
-#include <opencv2/imgcodecs.hpp>
 
 #include "frontend/sequence/sequence.h"
 #include "sequences/importers/imported_sequence.h"

@@ -1,11 +1,11 @@
 #include "sequences/importers/shared_intrinsics_warp.h"
 
-#include <cmath>
-#include <vector>
-
-#include <Eigen/Geometry>
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
+#include <cmath>
+#include <vector>
 
 namespace sfm {
 namespace {
@@ -24,8 +24,8 @@ Eigen::Vector2d Apply(const Eigen::Matrix<double, 2, 3>& A, const Eigen::Vector2
 
 // Intrinsics that vary as the VGG Corridor's do (fx 495-518, cx 271-359, skew up to 17 px).
 std::vector<Eigen::Matrix3d> CorridorLikeIntrinsics() {
-  return {Intrinsics(495, 497, 271, 251, 0), Intrinsics(503, 506, 295, 266, 5), Intrinsics(518, 528, 359, 280, 17),
-          Intrinsics(510, 512, 320, 259, -8)};
+  return {Intrinsics(495, 497, 271, 251, 0), Intrinsics(503, 506, 295, 266, 5),
+          Intrinsics(518, 528, 359, 280, 17), Intrinsics(510, 512, 320, 259, -8)};
 }
 
 // The point of the warp: a point seen by K_i [R | t] lands, after frame i's map, where the shared
@@ -39,7 +39,8 @@ TEST(SharedIntrinsicsWarpTest, MapsEachFramesProjectionsOntoTheSharedCamera) {
   EXPECT_DOUBLE_EQ(warp.K(0, 0), 505);
   EXPECT_DOUBLE_EQ(warp.K(1, 1), 509);
   EXPECT_EQ(warp.K(0, 1), 0);
-  const Eigen::Matrix3d R = Eigen::AngleAxisd(0.3, Eigen::Vector3d(0.2, 1, -0.1).normalized()).toRotationMatrix();
+  const Eigen::Matrix3d R =
+      Eigen::AngleAxisd(0.3, Eigen::Vector3d(0.2, 1, -0.1).normalized()).toRotationMatrix();
   const Eigen::Vector3d t(0.4, -0.2, 1.5);
   for (size_t i = 0; i < frame_K.size(); ++i) {
     for (int k = 0; k < 50; ++k) {
@@ -63,9 +64,9 @@ TEST(SharedIntrinsicsWarpTest, CropLiesInsideEveryFrameAndIsWholeWhenTheKsAgree)
   for (size_t i = 0; i < frame_K.size(); ++i) {
     const Eigen::Matrix3d A = (Eigen::Matrix3d() << warp.source_to_image[i], 0, 0, 1).finished();
     const Eigen::Matrix3d image_to_source = A.inverse();
-    for (const Eigen::Vector2d& corner : {Eigen::Vector2d(0, 0), Eigen::Vector2d(warp.width - 1, 0),
-                                         Eigen::Vector2d(0, warp.height - 1),
-                                         Eigen::Vector2d(warp.width - 1, warp.height - 1)}) {
+    for (const Eigen::Vector2d& corner :
+         {Eigen::Vector2d(0, 0), Eigen::Vector2d(warp.width - 1, 0), Eigen::Vector2d(0, warp.height - 1),
+          Eigen::Vector2d(warp.width - 1, warp.height - 1)}) {
       const Eigen::Vector2d source = (image_to_source * corner.homogeneous()).hnormalized();
       EXPECT_GE(source.minCoeff(), kWarpInterpolationMargin - 1e-9) << "frame " << i;
       EXPECT_LE(source.maxCoeff(), 511 - kWarpInterpolationMargin + 1e-9) << "frame " << i;
@@ -81,8 +82,9 @@ TEST(SharedIntrinsicsWarpTest, CropLiesInsideEveryFrameAndIsWholeWhenTheKsAgree)
 
 TEST(SharedIntrinsicsWarpTest, RefusesIntrinsicsThatShareTooLittleOfTheImage) {
   SharedIntrinsicsWarp warp;
-  const Status status = WarpToSharedIntrinsics({Intrinsics(500, 500, 50, 256, 0), Intrinsics(500, 500, 450, 256, 0)},
-                                               512, 512, Intrinsics(500, 500, 256, 256, 0), &warp);
+  const Status status =
+      WarpToSharedIntrinsics({Intrinsics(500, 500, 50, 256, 0), Intrinsics(500, 500, 450, 256, 0)}, 512, 512,
+                             Intrinsics(500, 500, 256, 256, 0), &warp);
   ASSERT_FALSE(status.ok());
   EXPECT_THAT(status.message(), HasSubstr("less than a quarter"));
   Eigen::Matrix3d not_upper = Intrinsics(500, 500, 256, 256, 0);

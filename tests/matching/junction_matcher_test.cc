@@ -319,8 +319,8 @@ TEST(JunctionMatcherTest, DepthRangeRejectsAPartnerFarNearerThanItsNeighbours) {
       MatchJunctions(scene.a, scene.graph_a, scene.b, scene.graph_b, odometry, without, &diagnostics);
   ASSERT_TRUE(diagnostics.refinement.Refined());
   ASSERT_TRUE(matched_decoy(before)) << "the test needs the guided pass to take the decoy without the test";
-  const std::vector<JunctionMatch> after =
-      MatchJunctions(scene.a, scene.graph_a, scene.b, scene.graph_b, odometry, MatchingOptions(), &diagnostics);
+  const std::vector<JunctionMatch> after = MatchJunctions(scene.a, scene.graph_a, scene.b, scene.graph_b,
+                                                          odometry, MatchingOptions(), &diagnostics);
   ASSERT_TRUE(diagnostics.refinement.Refined());
   EXPECT_FALSE(matched_decoy(after));
   // Evaluate counts the decoy as right (it stands at the partner's index). Scene 16: besides the
@@ -468,7 +468,8 @@ TEST(JunctionMatcherTest, PartialMatchRejectsAPartnerFarNearerThanItsNeighbours)
   const std::vector<JunctionMatch> before =
       MatchJunctions(scene.a, scene.graph_a, scene.b, scene.graph_b, odometry, without, &diagnostics);
   ASSERT_TRUE(diagnostics.refinement.Refined());
-  ASSERT_EQ(diagnostics.partial_matches, 1) << "the test needs the partial pass to take the decoy without the test";
+  ASSERT_EQ(diagnostics.partial_matches, 1)
+      << "the test needs the partial pass to take the decoy without the test";
   const std::vector<JunctionMatch> after =
       MatchJunctions(scene.a, scene.graph_a, scene.b, scene.graph_b, odometry, with, &diagnostics);
   ASSERT_TRUE(diagnostics.refinement.Refined());

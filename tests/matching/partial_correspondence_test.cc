@@ -2,12 +2,11 @@
 // docs/matching.md "Partial correspondence", rules (a) and (b)): only one that detection can miss
 // alone. Exact images of 3D T junctions (a straight bar through the location and a stem) in the
 // two-view rig of the matching tests.
-#include <algorithm>
-#include <random>
+#include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
-
-#include <gtest/gtest.h>
+#include <algorithm>
+#include <random>
 
 #include "frontend/matching/junction_similarity.h"
 #include "frontend/matching/matching_rule.h"
@@ -74,8 +73,8 @@ TEST(PartialCorrespondenceTest, WithRuleAHalfOfABarIsNeverTheMissedSegment) {
       EXPECT_FALSE(similarity.PartialRho(0, 0).Matched()) << trial << " " << t_in_a;
     }
     // The full T against itself still matches (rules (a) and (b) concern partial pairs only).
-    const JunctionSimilarity full({Keep(t_a, {0, 1, 2}, bar_one_segment)}, {Keep(t_b, {0, 1, 2}, bar_one_segment)},
-                                  views.F(), rule_a);
+    const JunctionSimilarity full({Keep(t_a, {0, 1, 2}, bar_one_segment)},
+                                  {Keep(t_b, {0, 1, 2}, bar_one_segment)}, views.F(), rule_a);
     EXPECT_TRUE(full.Rho(0, 0).Matched()) << trial;
   }
 }
@@ -100,7 +99,8 @@ TEST(PartialCorrespondenceTest, ByDefaultHalfOfABarMayBeTheMissedSegment) {
       const ProjectedJunction& l_image = t_in_a ? t_b : t_a;
       const Junction whole = Keep(whole_image, {0, 1, 2}, bar_one_segment);
       const Junction l = Keep(l_image, {0, 1}, bar_one_segment);  // bar half 2 missed
-      const JunctionSimilarity similarity({t_in_a ? whole : l}, {t_in_a ? l : whole}, views.F(), MatchingOptions());
+      const JunctionSimilarity similarity({t_in_a ? whole : l}, {t_in_a ? l : whole}, views.F(),
+                                          MatchingOptions());
       const PairSimilarity rho = similarity.PartialRho(0, 0);
       ASSERT_TRUE(rho.Matched()) << trial << " " << t_in_a;
       // The exact images: rho = 0.5 (1 + 2/3).
@@ -158,11 +158,13 @@ TEST(PartialCorrespondenceTest, ATWithoutItsStemIsALineNotAnL) {
     ASSERT_FALSE(testing::HasLineThrough(l, 5)) << trial;
     const JunctionSimilarity with_rule_a({whole}, {l}, views.F(), rule_a);
     EXPECT_FALSE(with_rule_a.PartialRho(0, 0).Matched()) << trial;
-    const PairSimilarity rho = JunctionSimilarity({whole}, {l}, views.F(), MatchingOptions()).PartialRho(0, 0);
+    const PairSimilarity rho =
+        JunctionSimilarity({whole}, {l}, views.F(), MatchingOptions()).PartialRho(0, 0);
     if (!rho.Matched()) continue;
     ++matched_without_rule_a;
     ASSERT_GE(rho.missing_a, 0);
-    EXPECT_NE(testing::ProjectJunction(views, 0, t).arm_of_segment[rho.missing_a], 1) << trial << ": the stem left out";
+    EXPECT_NE(testing::ProjectJunction(views, 0, t).arm_of_segment[rho.missing_a], 1)
+        << trial << ": the stem left out";
   }
   EXPECT_EQ(matched_without_rule_a, 8);
 }

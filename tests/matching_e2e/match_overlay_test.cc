@@ -45,9 +45,9 @@ TEST(MatchOverlayTest, APartialMatchColoursEachSegmentPairAlikeAndTheMissingSegm
   EXPECT_NE(MiddleColour(canvas, a[0], 0, 0), MiddleColour(canvas, a[0], 1, 0));
   // The Y's up arm: grey (drawn like an unmatched junction's segments), not a palette colour.
   EXPECT_TRUE(IsGrey(MiddleColour(canvas, b[0], 1, offset_b)));
-  EXPECT_NE(MiddleColour(canvas, b[0], 1, offset_b), cv::Vec3b(static_cast<uint8_t>(128 * 0.6 + 25),
-                                                              static_cast<uint8_t>(128 * 0.6 + 25),
-                                                              static_cast<uint8_t>(128 * 0.6 + 25)));
+  EXPECT_NE(MiddleColour(canvas, b[0], 1, offset_b),
+            cv::Vec3b(static_cast<uint8_t>(128 * 0.6 + 25), static_cast<uint8_t>(128 * 0.6 + 25),
+                      static_cast<uint8_t>(128 * 0.6 + 25)));
 }
 
 }  // namespace

@@ -140,11 +140,12 @@ TEST(MatchingEvaluationTest, PartialMatchesAreCountedApartFromTheEqualCountRecal
   const std::vector<std::vector<int>> near_a = {{1}, {3}, {5}, {5}}, near_b = {{1}, {3}, {5}, {5}};
   const std::vector<JunctionMatch> matches = {{0, 0, 1.0, 0}, {1, 1, 0.8, 0, -1, 2}, {3, 3, 0.8, 0, -1, 2}};
   ASSERT_TRUE(matches[1].Partial());
-  const VertexMatchCounts c = ScoreVertexMatches(a, b, near_a, near_b, matches, SidewaysF(), MatchingOptions());
+  const VertexMatchCounts c =
+      ScoreVertexMatches(a, b, near_a, near_b, matches, SidewaysF(), MatchingOptions());
   EXPECT_EQ(c.seen_both, 3);
   EXPECT_EQ(c.seen_both_same_count, 2);  // vertices 1 and 5
   EXPECT_EQ(c.matched, 3);
-  EXPECT_EQ(c.matched_same_count, 1);  // vertex 1
+  EXPECT_EQ(c.matched_same_count, 1);    // vertex 1
   EXPECT_EQ(c.matched_partial_only, 2);  // vertices 3 and 5
   EXPECT_LE(c.matched_same_count, c.seen_both_same_count);
 }

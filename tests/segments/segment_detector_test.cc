@@ -212,8 +212,8 @@ int ShortSidesFoundOverAFaceEdge(const SegmentDetectorOptions& options) {
     const Eigen::Vector2d centre(64.3 + 128 * (k % 2), 64.6 + 128 * (k / 2));
     // The face: a square on the -across side of a line along the box, 3 px inside its -across side.
     const Eigen::Vector2d face_origin = centre - (0.5 * widths[k] - 3) * across;
-    scene.push_back({{face_origin - 50 * along, face_origin + 50 * along, face_origin + 50 * along - 50 * across,
-                      face_origin - 50 * along - 50 * across},
+    scene.push_back({{face_origin - 50 * along, face_origin + 50 * along,
+                      face_origin + 50 * along - 50 * across, face_origin - 50 * along - 50 * across},
                      110});
     const Eigen::Vector2d half_long = 35 * along, half_short = 0.5 * widths[k] * across;
     boxes.push_back({{centre - half_long - half_short, centre + half_long - half_short,

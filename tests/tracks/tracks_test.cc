@@ -236,9 +236,11 @@ TEST(BuildTracksTest, APartialMatchThatDisagreesWithTheTrackIsRejected) {
   // (A -> C, C -> A) would put both L segments into one segment track with A.
   const std::vector<Junctions> frames = MakeOneJunctionFrames({3, 3, 2});
   TrackBuildReport report;
-  const std::vector<JunctionTrack> tracks = BuildTracks(
-      frames, {Pair(0, 1, {{0, 0, 0.9, 0}}), Pair(0, 2, {Partial(0.8, 0, 1, -1)}), Pair(1, 2, {Partial(0.7, 1, 1, -1)})},
-      &report);
+  const std::vector<JunctionTrack> tracks =
+      BuildTracks(frames,
+                  {Pair(0, 1, {{0, 0, 0.9, 0}}), Pair(0, 2, {Partial(0.8, 0, 1, -1)}),
+                   Pair(1, 2, {Partial(0.7, 1, 1, -1)})},
+                  &report);
   ASSERT_EQ(tracks.size(), 1u);
   EXPECT_EQ(report.accepted, 2);
   EXPECT_EQ(report.rejected_segment_conflict, 1);
@@ -251,8 +253,10 @@ TEST(BuildTracksDeathTest, AMatchOutsideTheFramesIsAProgrammerError) {
   EXPECT_DEATH(BuildTracks(frames, {Pair(0, 1, {{0, 0, 0.9, 2}})}), "shift 2 for 2 segments");
   // Partial matches: the larger junction must have one segment more, and the shift is over k.
   const std::vector<Junctions> l_and_y = MakeOneJunctionFrames({2, 3});
-  EXPECT_DEATH(BuildTracks(frames, {Pair(0, 1, {Partial(0.9, 0, -1, 1)})}), "partial match between junctions");
-  EXPECT_DEATH(BuildTracks(l_and_y, {Pair(0, 1, {Partial(0.9, 0, 1, -1)})}), "partial match between junctions");
+  EXPECT_DEATH(BuildTracks(frames, {Pair(0, 1, {Partial(0.9, 0, -1, 1)})}),
+               "partial match between junctions");
+  EXPECT_DEATH(BuildTracks(l_and_y, {Pair(0, 1, {Partial(0.9, 0, 1, -1)})}),
+               "partial match between junctions");
   EXPECT_DEATH(BuildTracks(l_and_y, {Pair(0, 1, {Partial(0.9, 0, 0, 1)})}), "two missing segments");
   EXPECT_DEATH(BuildTracks(l_and_y, {Pair(0, 1, {Partial(0.9, 0, -1, 3)})}), "missing segment 3 of 3");
   EXPECT_DEATH(BuildTracks(l_and_y, {Pair(0, 1, {Partial(0.9, 2, -1, 1)})}), "shift 2 for 2 segments");

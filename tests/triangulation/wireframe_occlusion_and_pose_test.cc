@@ -38,7 +38,8 @@ TEST(PoseDriftTest, PointSigmaAddsTheRelativeTranslationDrift) {
   PoseDrift drift;
   drift.translation_step_m = step;
   EXPECT_NEAR(expected, 0.0964, 0.0001);
-  EXPECT_NEAR(PointPositionSigma(TestK(), cameras, {0, k}, {0, 0, Z}, sigma, drift), expected, 0.02 * expected);
+  EXPECT_NEAR(PointPositionSigma(TestK(), cameras, {0, k}, {0, 0, Z}, sigma, drift), expected,
+              0.02 * expected);
   EXPECT_NEAR(PointPositionSigma(TestK(), cameras, {100, 100 + k}, {0, 0, Z}, sigma, drift), expected,
               0.02 * expected);
 }
@@ -56,11 +57,13 @@ TEST(PoseDriftTest, LineSigmaAddsTheRelativeTranslationDrift) {
   std::vector<LineSegmentView> views;
   for (const double x : {-B / 2, B / 2}) {
     const Pose3 camera = Forward({x, 0, 0});
-    views.push_back({camera, Project(K, camera, {0, -0.5, Z}), Project(K, camera, {0, 0.5, Z}), x < 0 ? 3 : 3 + k});
+    views.push_back(
+        {camera, Project(K, camera, {0, -0.5, Z}), Project(K, camera, {0, 0.5, Z}), x < 0 ? 3 : 3 + k});
   }
   const double shift_px = f * step / Z;
   const double translation = Z * Z / (f * B) * std::sqrt(sigma * sigma + shift_px * shift_px * k);
-  const double rotation = Z * Z / (f * B) * std::sqrt(sigma * sigma + f * f * rotation_step * rotation_step * k);
+  const double rotation =
+      Z * Z / (f * B) * std::sqrt(sigma * sigma + f * f * rotation_step * rotation_step * k);
   const double pixels = Z * Z / (f * B) * sigma;
   EXPECT_NEAR(translation, 0.0803, 0.0001);
   PoseDrift drift;
@@ -69,7 +72,8 @@ TEST(PoseDriftTest, LineSigmaAddsTheRelativeTranslationDrift) {
               0.02 * translation);
   drift.rotation_step_rad = rotation_step;
   const double both = std::sqrt(translation * translation + rotation * rotation - pixels * pixels);
-  EXPECT_NEAR(LinePositionSigma(K, views, {0, 0, Z}, Eigen::Vector3d::UnitY(), sigma, drift), both, 0.02 * both);
+  EXPECT_NEAR(LinePositionSigma(K, views, {0, 0, Z}, Eigen::Vector3d::UnitY(), sigma, drift), both,
+              0.02 * both);
 }
 
 // The selection's translation step is the option's fraction of the median camera step, so a scene in
@@ -160,7 +164,8 @@ TEST(OcclusionCandidateTest, ATwoViewTOrXIsNotDrawn) {
     line.direction = Eigen::Vector3d(0, -1, 0);
     line.point_landmark = j;
     for (int f : {0, 1}) {
-      line.observations.push_back({f, j, 0, Project(K, cameras[f], line.end0), Project(K, cameras[f], line.end1)});
+      line.observations.push_back(
+          {f, j, 0, Project(K, cameras[f], line.end0), Project(K, cameras[f], line.end1)});
     }
     landmarks.lines.push_back(line);
   }
@@ -179,7 +184,8 @@ TEST(OcclusionCandidateTest, ATwoViewTOrXIsNotDrawn) {
   EXPECT_EQ(SelectWireframeLandmarks(K, cameras, landmarks, junctions, two_views).points.size(), 3u);
 
   // Seen in a third view, the T and the X are tested with 3 degrees of freedom and drawn.
-  for (int j = 0; j < 3; ++j) landmarks.points[j].observations.push_back({4, j, Project(K, cameras[4], corners[j])});
+  for (int j = 0; j < 3; ++j)
+    landmarks.points[j].observations.push_back({4, j, Project(K, cameras[4], corners[j])});
   kept = SelectWireframeLandmarks(K, cameras, landmarks, junctions, WireframeOptions(), &report);
   EXPECT_EQ(report.points_occlusion_untested, 0);
   EXPECT_EQ(kept.points.size(), 3u);
