@@ -242,7 +242,8 @@ int ShortSidesFoundOverAFaceEdge(const SegmentDetectorOptions& options) {
 }
 
 TEST(FastSegmentsTest, FindsShortSidesWhoseCornerLiesBetweenChains) {
-  SegmentDetectorOptions options;
+  SegmentDetectorOptions options;  // the rule is off by default (segment_detector.h says why)
+  options.fast.corners_between_chains = true;
   EXPECT_GE(ShortSidesFoundOverAFaceEdge(options), 8);
   options.fast.corners_between_chains = false;
   EXPECT_LE(ShortSidesFoundOverAFaceEdge(options), 5);  // the rule is what finds them
