@@ -124,6 +124,14 @@ std::optional<double> Ate(const std::optional<DriftMetrics>& drift) {
   return drift ? std::optional<double>(drift->ate_m) : std::nullopt;
 }
 
+std::optional<double> AteSim3(const std::optional<DriftMetrics>& drift) {
+  return drift ? std::optional<double>(drift->ate_sim3_m) : std::nullopt;
+}
+
+std::optional<double> Sim3Scale(const std::optional<DriftMetrics>& drift) {
+  return drift ? std::optional<double>(drift->sim3_scale) : std::nullopt;
+}
+
 }  // namespace
 
 std::string MetricsJson(const Sequence& sequence, const PipelineResult& result) {
@@ -150,6 +158,12 @@ std::string MetricsJson(const Sequence& sequence, const PipelineResult& result) 
        << "  \"ate_refined_m\": " << JsonNumber(refined ? Ate(result.drift_refined) : std::nullopt) << ",\n"
        << "  \"rpe_odometry\": " << RpeJson(result.drift_odometry) << ",\n"
        << "  \"rpe_refined\": " << RpeJson(refined ? result.drift_refined : std::nullopt) << ",\n"
+       << "  \"ate_sim3_odometry_m\": " << JsonNumber(AteSim3(result.drift_odometry)) << ",\n"
+       << "  \"ate_sim3_refined_m\": " << JsonNumber(refined ? AteSim3(result.drift_refined) : std::nullopt)
+       << ",\n"
+       << "  \"sim3_scale_odometry\": " << JsonNumber(Sim3Scale(result.drift_odometry)) << ",\n"
+       << "  \"sim3_scale_refined\": " << JsonNumber(refined ? Sim3Scale(result.drift_refined) : std::nullopt)
+       << ",\n"
        << "  \"time_s\": {\"frontend\": " << JsonNumber(times.frontend)
        << ", \"matching\": " << JsonNumber(times.matching) << ", \"backend\": " << JsonNumber(times.backend)
        << ", \"total\": " << JsonNumber(times.total) << "},\n"

@@ -23,4 +23,22 @@ namespace sfm {
 Pose3 AlignSE3(const std::vector<Eigen::Vector3d>& estimated, const std::vector<Eigen::Vector3d>& truth,
                bool* rotation_determined = nullptr);
 
+// A similarity: x -> scale * (rotation x) + translation, with rigid = (rotation, translation).
+struct Similarity3 {
+  double scale = 1;
+  Pose3 rigid = Pose3::Identity();
+  Eigen::Vector3d operator*(const Eigen::Vector3d& x) const {
+    return scale * (rigid.rotation * x) + rigid.translation;
+  }
+};
+
+// The similarity truth_S_estimated minimising sum_i |truth_i - S * estimated_i|^2: Umeyama's
+// (1991) eq. 40-42 with the scale, c = tr(D S) / sigma_e^2 (sigma_e^2 the mean squared distance of
+// `estimated` from its centroid). It takes out what one camera cannot observe (the scale), so what
+// is left is the shape of a trajectory. Degenerate input as AlignSE3 (the rotation then is the
+// identity, the scale is still the least-squares one for that rotation); a set of one point, or of
+// coincident points, has scale 1.
+Similarity3 AlignSim3(const std::vector<Eigen::Vector3d>& estimated, const std::vector<Eigen::Vector3d>& truth,
+                      bool* rotation_determined = nullptr);
+
 }  // namespace sfm

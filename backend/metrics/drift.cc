@@ -35,6 +35,20 @@ double AbsoluteTrajectoryError(const std::vector<Pose3>& world_T_camera_estimate
   return std::sqrt(sum_squared / static_cast<double>(truth.size()));
 }
 
+SimilarityTrajectoryError AbsoluteTrajectoryErrorSim3(const std::vector<Pose3>& world_T_camera_estimated,
+                                                      const std::vector<Pose3>& world_T_camera_truth) {
+  CHECK_EQ(world_T_camera_estimated.size(), world_T_camera_truth.size());
+  if (world_T_camera_truth.empty()) return {kUndefined, kUndefined};
+  const std::vector<Eigen::Vector3d> estimated = Positions(world_T_camera_estimated);
+  const std::vector<Eigen::Vector3d> truth = Positions(world_T_camera_truth);
+  const Similarity3 truth_S_estimated = AlignSim3(estimated, truth);
+  double sum_squared = 0;
+  for (size_t i = 0; i < truth.size(); ++i) {
+    sum_squared += (truth[i] - truth_S_estimated * estimated[i]).squaredNorm();
+  }
+  return {std::sqrt(sum_squared / static_cast<double>(truth.size())), truth_S_estimated.scale};
+}
+
 RelativePoseError ComputeRelativePoseError(const std::vector<Pose3>& world_T_camera_estimated,
                                            const std::vector<Pose3>& world_T_camera_truth) {
   CHECK_EQ(world_T_camera_estimated.size(), world_T_camera_truth.size());
@@ -57,7 +71,9 @@ RelativePoseError ComputeRelativePoseError(const std::vector<Pose3>& world_T_cam
 DriftMetrics ComputeDrift(const std::vector<Pose3>& world_T_camera_estimated,
                           const std::vector<Pose3>& world_T_camera_truth) {
   const RelativePoseError rpe = ComputeRelativePoseError(world_T_camera_estimated, world_T_camera_truth);
-  return {AbsoluteTrajectoryError(world_T_camera_estimated, world_T_camera_truth), rpe.trans_m, rpe.rot_rad};
+  const SimilarityTrajectoryError sim3 = AbsoluteTrajectoryErrorSim3(world_T_camera_estimated, world_T_camera_truth);
+  return {AbsoluteTrajectoryError(world_T_camera_estimated, world_T_camera_truth), rpe.trans_m, rpe.rot_rad,
+          sim3.ate_m, sim3.scale};
 }
 
 }  // namespace sfm

@@ -16,6 +16,10 @@ struct DriftMetrics {
   double ate_m = 0;        // metres, camera positions after AlignSE3
   double rpe_trans_m = 0;  // metres per frame
   double rpe_rot_rad = 0;  // radians per frame
+  // The shape without the scale (which one camera cannot observe): camera positions after AlignSim3,
+  // and that similarity's scale (> 1: the estimate is too short). docs/metrics.md.
+  double ate_sim3_m = 0;
+  double sim3_scale = 1;
 };
 
 // Sturm et al.'s ATE: the RMSE over frames of |truth_i - T * estimated_i| (camera positions, metres),
@@ -23,6 +27,15 @@ struct DriftMetrics {
 // when degenerate). Both vectors hold world_T_camera per frame, same length (CHECKed).
 double AbsoluteTrajectoryError(const std::vector<Pose3>& world_T_camera_estimated,
                                const std::vector<Pose3>& world_T_camera_truth);
+
+// The ATE after the best similarity (AlignSim3) instead of a rigid transform, and its scale: the
+// trajectory's shape error and its length error apart. Same inputs; NaN for both with no frame.
+struct SimilarityTrajectoryError {
+  double ate_m = 0;
+  double scale = 1;
+};
+SimilarityTrajectoryError AbsoluteTrajectoryErrorSim3(const std::vector<Pose3>& world_T_camera_estimated,
+                                                      const std::vector<Pose3>& world_T_camera_truth);
 
 struct RelativePoseError {
   double trans_m = 0;  // RMSE of |translation of E_i|, metres
@@ -36,7 +49,7 @@ struct RelativePoseError {
 RelativePoseError ComputeRelativePoseError(const std::vector<Pose3>& world_T_camera_estimated,
                                            const std::vector<Pose3>& world_T_camera_truth);
 
-// ATE and RPE together (the `ate_*` and `rpe_*` figures of metrics.json).
+// ATE, RPE and the Sim(3) ATE together (the `ate_*` and `rpe_*` figures of metrics.json).
 DriftMetrics ComputeDrift(const std::vector<Pose3>& world_T_camera_estimated,
                           const std::vector<Pose3>& world_T_camera_truth);
 

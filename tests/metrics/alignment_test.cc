@@ -87,5 +87,40 @@ TEST(AlignSE3Test, CollinearPointsGiveTranslationOnly) {
   EXPECT_LT((T.translation - Eigen::Vector3d(1, 1, 1)).norm(), 1e-12);
 }
 
+TEST(AlignSim3Test, RecoversARandomSimilarityTo1e9) {
+  for (int trial = 0; trial < 20; ++trial) {
+    Similarity3 truth_S_estimated;
+    truth_S_estimated.scale = 0.5 + trial * 0.1;
+    truth_S_estimated.rigid = Pose3(Eigen::Quaterniond::UnitRandom(), Eigen::Vector3d::Random() * 50);
+    const std::vector<Eigen::Vector3d> estimated = RandomPoints(3 + trial, 10);
+    std::vector<Eigen::Vector3d> truth;
+    for (const Eigen::Vector3d& p : estimated) truth.push_back(truth_S_estimated * p);
+    bool rotation_determined = false;
+    const Similarity3 S = AlignSim3(estimated, truth, &rotation_determined);
+    EXPECT_TRUE(rotation_determined);
+    EXPECT_NEAR(S.scale, truth_S_estimated.scale, /*max=*/1e-9);
+    EXPECT_LT(RotationAngle(S.rigid.rotation, truth_S_estimated.rigid.rotation), /*max_rad=*/1e-9);
+    EXPECT_LT((S.rigid.translation - truth_S_estimated.rigid.translation).norm(), /*max_m=*/1e-9);
+  }
+}
+
+TEST(AlignSim3Test, ScaleOfAHandBuiltPairIsTheRatioOfSpreads) {
+  // Two points 2 m apart against the same two 4 m apart (rotation undetermined, translation-only
+  // case): the least-squares scale is tr(Sigma) / sigma_e^2 = 2 / 1 and maps them exactly.
+  const std::vector<Eigen::Vector3d> estimated = {{-1, 0, 0}, {1, 0, 0}};
+  const std::vector<Eigen::Vector3d> truth = {{3, 5, 0}, {7, 5, 0}};
+  const Similarity3 S = AlignSim3(estimated, truth);
+  EXPECT_NEAR(S.scale, 2.0, 1e-12);
+  EXPECT_LT((S * estimated[0] - truth[0]).norm(), 1e-12);
+  EXPECT_LT((S * estimated[1] - truth[1]).norm(), 1e-12);
+}
+
+TEST(AlignSim3Test, CoincidentPointsKeepScaleOne) {
+  const std::vector<Eigen::Vector3d> estimated = {{1, 2, 3}, {1, 2, 3}, {1, 2, 3}};
+  const std::vector<Eigen::Vector3d> truth = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+  EXPECT_EQ(AlignSim3(estimated, truth).scale, 1.0);
+  EXPECT_EQ(AlignSim3({}, {}).scale, 1.0);
+}
+
 }  // namespace
 }  // namespace sfm

@@ -109,5 +109,29 @@ TEST(DriftTest, AStraightTrajectoryIsAlignedByTranslation) {
   EXPECT_LT(AbsoluteTrajectoryError(PositionsOnly(estimated), PositionsOnly(truth)), 1e-12);
 }
 
+TEST(DriftTest, Sim3AteOfAScaledCopyIsZeroAndItsScaleIsTheInverse) {
+  // The same scaled copy as above: its shape is right, so the Sim(3) ATE is 0 where the SE(3) ATE
+  // is 0.1 sqrt(2), and the scale that maps it back is 1 / 1.1.
+  const std::vector<Eigen::Vector3d> truth = {{1, 1, 0}, {-1, 1, 0}, {-1, -1, 0}, {1, -1, 0}};
+  const Pose3 elsewhere(Eigen::Quaterniond::UnitRandom(), Eigen::Vector3d(3, 2, 1));
+  std::vector<Eigen::Vector3d> estimated;
+  for (const Eigen::Vector3d& p : truth) estimated.push_back(elsewhere * (1.1 * p));
+  const DriftMetrics drift = ComputeDrift(PositionsOnly(estimated), PositionsOnly(truth));
+  EXPECT_NEAR(drift.ate_m, 0.1 * std::sqrt(2.0), 1e-12);
+  EXPECT_LT(drift.ate_sim3_m, /*max_m=*/1e-12);
+  EXPECT_NEAR(drift.sim3_scale, 1 / 1.1, 1e-12);
+}
+
+TEST(DriftTest, Sim3AteOfASaddlePerturbationIsItsHeight) {
+  // The saddle above has the right spread in the plane (scale 1 is the best) and keeps its error d.
+  const double d = 0.03;
+  const std::vector<Eigen::Vector3d> truth = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}};
+  const std::vector<Eigen::Vector3d> estimated = {{1, 0, d}, {-1, 0, d}, {0, 1, -d}, {0, -1, -d}};
+  const SimilarityTrajectoryError sim3 = AbsoluteTrajectoryErrorSim3(PositionsOnly(estimated), PositionsOnly(truth));
+  // Scale: tr(D S) / sigma_e^2 = 1 / (1 + d^2); the residual then is d at every point to first order.
+  EXPECT_NEAR(sim3.scale, 1 / (1 + d * d), 1e-12);
+  EXPECT_NEAR(sim3.ate_m, std::sqrt(d * d / (1 + d * d)), 1e-12);
+}
+
 }  // namespace
 }  // namespace sfm
