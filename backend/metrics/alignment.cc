@@ -23,11 +23,12 @@ struct Umeyama {
   Eigen::Vector3d mean_truth = Eigen::Vector3d::Zero();
   Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();
   bool rotation_determined = false;
-  double trace_d_s = 0;              // tr(D S): the numerator of the scale (eq. 42)
-  double variance_estimated = 0;     // sigma_e^2: the denominator
+  double trace_d_s = 0;           // tr(D S): the numerator of the scale (eq. 42)
+  double variance_estimated = 0;  // sigma_e^2: the denominator
 };
 
-Umeyama SolveUmeyama(const std::vector<Eigen::Vector3d>& estimated, const std::vector<Eigen::Vector3d>& truth) {
+Umeyama SolveUmeyama(const std::vector<Eigen::Vector3d>& estimated,
+                     const std::vector<Eigen::Vector3d>& truth) {
   Umeyama result;
   const size_t n = estimated.size();
   if (n == 0) return result;
@@ -76,8 +77,8 @@ Pose3 AlignSE3(const std::vector<Eigen::Vector3d>& estimated, const std::vector<
   return Pose3(u.rotation, Eigen::Vector3d(u.mean_truth - u.rotation * u.mean_estimated));
 }
 
-Similarity3 AlignSim3(const std::vector<Eigen::Vector3d>& estimated, const std::vector<Eigen::Vector3d>& truth,
-                      bool* rotation_determined) {
+Similarity3 AlignSim3(const std::vector<Eigen::Vector3d>& estimated,
+                      const std::vector<Eigen::Vector3d>& truth, bool* rotation_determined) {
   CHECK_EQ(estimated.size(), truth.size()) << "AlignSim3 needs corresponding points";
   const Umeyama u = SolveUmeyama(estimated, truth);
   if (rotation_determined != nullptr) *rotation_determined = u.rotation_determined;
@@ -85,7 +86,8 @@ Similarity3 AlignSim3(const std::vector<Eigen::Vector3d>& estimated, const std::
   // Eq. 42; coincident estimated points leave the scale undetermined: keep 1.
   if (u.variance_estimated > 0) similarity.scale = u.trace_d_s / u.variance_estimated;
   // Eq. 41.
-  similarity.rigid = Pose3(u.rotation, Eigen::Vector3d(u.mean_truth - similarity.scale * u.rotation * u.mean_estimated));
+  similarity.rigid =
+      Pose3(u.rotation, Eigen::Vector3d(u.mean_truth - similarity.scale * u.rotation * u.mean_estimated));
   return similarity;
 }
 

@@ -38,7 +38,7 @@ struct Similarity3 {
 // is left is the shape of a trajectory. Degenerate input as AlignSE3 (the rotation then is the
 // identity, the scale is still the least-squares one for that rotation); a set of one point, or of
 // coincident points, has scale 1.
-Similarity3 AlignSim3(const std::vector<Eigen::Vector3d>& estimated, const std::vector<Eigen::Vector3d>& truth,
-                      bool* rotation_determined = nullptr);
+Similarity3 AlignSim3(const std::vector<Eigen::Vector3d>& estimated,
+                      const std::vector<Eigen::Vector3d>& truth, bool* rotation_determined = nullptr);
 
 }  // namespace sfm

@@ -71,7 +71,8 @@ RelativePoseError ComputeRelativePoseError(const std::vector<Pose3>& world_T_cam
 DriftMetrics ComputeDrift(const std::vector<Pose3>& world_T_camera_estimated,
                           const std::vector<Pose3>& world_T_camera_truth) {
   const RelativePoseError rpe = ComputeRelativePoseError(world_T_camera_estimated, world_T_camera_truth);
-  const SimilarityTrajectoryError sim3 = AbsoluteTrajectoryErrorSim3(world_T_camera_estimated, world_T_camera_truth);
+  const SimilarityTrajectoryError sim3 =
+      AbsoluteTrajectoryErrorSim3(world_T_camera_estimated, world_T_camera_truth);
   return {AbsoluteTrajectoryError(world_T_camera_estimated, world_T_camera_truth), rpe.trans_m, rpe.rot_rad,
           sim3.ate_m, sim3.scale};
 }

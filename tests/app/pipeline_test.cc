@@ -97,10 +97,10 @@ TEST_F(PipelineOnGeneratedRoom, WritesWireframeColmapModelAndEveryMetricsKey) {
     EXPECT_TRUE(fs::exists(out / "colmap" / name)) << name;
   }
   const std::string metrics = ReadText(out / "metrics.json");
-  for (const char* key : {"frames", "junctions_per_frame", "matches_per_pair", "tracks", "points3d", "lines3d",
-                          "ate_odometry_m", "ate_refined_m", "rpe_odometry", "rpe_refined", "time_s",
-                          "ate_sim3_odometry_m", "ate_sim3_refined_m", "sim3_scale_odometry",
-                          "sim3_scale_refined"}) {
+  for (const char* key :
+       {"frames", "junctions_per_frame", "matches_per_pair", "tracks", "points3d", "lines3d",
+        "ate_odometry_m", "ate_refined_m", "rpe_odometry", "rpe_refined", "time_s", "ate_sim3_odometry_m",
+        "ate_sim3_refined_m", "sim3_scale_odometry", "sim3_scale_refined"}) {
     EXPECT_THAT(metrics, HasSubstr(std::string("\"") + key + "\": ")) << key;
   }
 }

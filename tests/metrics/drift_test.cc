@@ -127,7 +127,8 @@ TEST(DriftTest, Sim3AteOfASaddlePerturbationIsItsHeight) {
   const double d = 0.03;
   const std::vector<Eigen::Vector3d> truth = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}};
   const std::vector<Eigen::Vector3d> estimated = {{1, 0, d}, {-1, 0, d}, {0, 1, -d}, {0, -1, -d}};
-  const SimilarityTrajectoryError sim3 = AbsoluteTrajectoryErrorSim3(PositionsOnly(estimated), PositionsOnly(truth));
+  const SimilarityTrajectoryError sim3 =
+      AbsoluteTrajectoryErrorSim3(PositionsOnly(estimated), PositionsOnly(truth));
   // Scale: tr(D S) / sigma_e^2 = 1 / (1 + d^2); the residual then is d at every point to first order.
   EXPECT_NEAR(sim3.scale, 1 / (1 + d * d), 1e-12);
   EXPECT_NEAR(sim3.ate_m, std::sqrt(d * d / (1 + d * d)), 1e-12);
