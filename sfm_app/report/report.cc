@@ -153,12 +153,16 @@ std::string SummarySection(const Context& c) {
   if (!c.truth || !r.drift_odometry) {
     html += Note("The sequence has no ground truth, so there is no drift to measure.");
   } else {
-    const DriftMetrics none{std::nan(""), std::nan(""), std::nan("")};
+    const DriftMetrics none{std::nan(""), std::nan(""), std::nan(""), std::nan(""), std::nan("")};
     const DriftMetrics& o = *r.drift_odometry;
     const DriftMetrics& b = r.drift_refined ? *r.drift_refined : none;
     auto rot = [](double rad) { return Num(rad, "%.4f") + " rad (" + Num(rad * 180 / kPi, "%.2f") + "&deg;)"; };
     html += "<table>\n" + Row({"", "odometry", "refined"}, true);
     html += Row({"ATE (position RMSE after SE(3) alignment)", Num(o.ate_m, "%.4f") + " m", Num(b.ate_m, "%.4f") + " m"});
+    html += Row({"ATE after a similarity (the shape without the scale one camera cannot see)",
+                 Num(o.ate_sim3_m, "%.4f") + " m", Num(b.ate_sim3_m, "%.4f") + " m"});
+    html += Row({"scale that similarity applies (above 1: the trajectory is too short)", Num(o.sim3_scale, "%.4f"),
+                 Num(b.sim3_scale, "%.4f")});
     html += Row({"RPE translation per frame (RMSE)", Num(o.rpe_trans_m, "%.4f") + " m", Num(b.rpe_trans_m, "%.4f") + " m"});
     html += Row({"RPE rotation per frame (RMSE)", rot(o.rpe_rot_rad), rot(b.rpe_rot_rad)});
     html += "</table>\n";
