@@ -125,6 +125,13 @@ for name, m, w, width, height, jpf in rows:
     print(f"| {name} | {fmt(ao)} | {fmt(ar)} | {fmt(ate_ratio, 2)} | {ate_goal} | {fmt(ro['trans_m'])} | "
           f"{fmt(rr['trans_m'])} | {fmt(ro['rot_rad'])} | {fmt(rr['rot_rad'])} | {fmt(rot_ratio, 2)} | {rot_goal} |")
 
+print("\n### Shape and scale: ATE after a similarity (metrics.json ate_sim3_*, sim3_scale_*)\n")
+print("| sequence | Sim(3) ATE odometry | Sim(3) ATE refined | scale odometry | scale refined |")
+print("|---|---|---|---|---|")
+for name, m, w, width, height, jpf in rows:
+    print(f"| {name} | {fmt(m.get('ate_sim3_odometry_m'))} | {fmt(m.get('ate_sim3_refined_m'))} | "
+          f"{fmt(m.get('sim3_scale_odometry'), 4)} | {fmt(m.get('sim3_scale_refined'), 4)} |")
+
 print("\n### Floor prior (metrics.json floor_prior)\n")
 print("| sequence | used | floor points | floor lines | plane z when found m | odometry scale | report |")
 print("|---|---|---|---|---|---|---|")

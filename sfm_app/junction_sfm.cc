@@ -81,6 +81,9 @@ DEFINE_string(floor_prior, FloorPriorName(kDefaults.bundle_adjustment_options.fl
               "Bundle adjustment: ground-plane prior that fixes the odometry's scale: 'auto' (when the rig, the "
               "odometry and the map show a ground robot with its base origin on the floor), 'on' (whenever a floor "
               "plane is found) or 'off'.");
+DEFINE_bool(floor_base_prior, kDefaults.bundle_adjustment_options.floor_base_prior,
+            "Bundle adjustment: with the floor prior applied and the odometry on the floor plane, also hold every "
+            "base pose's height and tilt there (floor sigma, and floor sigma / camera height rad).");
 DEFINE_string(
     odometry_rotation_bias,
     kDefaults.bundle_adjustment_options.estimate_odometry_rotation_bias ? "on" : "off",
@@ -127,6 +130,7 @@ bool OptionsFromFlags(sfm::PipelineOptions* options, std::string* error) {
   options->bundle_adjustment_options.robust_loss_scale_px = FLAGS_ba_loss_scale;
   options->bundle_adjustment_options.num_threads = FLAGS_threads;
   options->triangulation.wireframe.pose_error_from_bundle_adjustment = FLAGS_wireframe_ba_pose_error;
+  options->bundle_adjustment_options.floor_base_prior = FLAGS_floor_base_prior;
   if (FLAGS_floor_prior == "auto") {
     options->bundle_adjustment_options.floor_prior = sfm::FloorPriorMode::kAuto;
   } else if (FLAGS_floor_prior == "on") {

@@ -203,6 +203,8 @@ class BundleAdjuster {
       const std::string rig_problem = FloorPriorRigProblem(base_T_camera_, odometry_, sigma_m);
       // Even when forced on, a floor must be below the camera.
       if (!rig_problem.empty() && (automatic || !(camera_height_m > 0))) return skip(rig_problem);
+      // The base poses are held on the floor only where the odometry shows them there.
+      base_on_floor_ = options_.floor_base_prior && rig_problem.empty();
     }
     double camera_z_m = 0;
     for (const PoseParameters& pose : poses_) camera_z_m += (pose.ToPose() * base_T_camera_).translation.z();
@@ -231,7 +233,8 @@ class BundleAdjuster {
     summary_->floor_prior_report = "floor prior: plane at z = " + std::to_string(plane.z_m) + " m (" +
                                    std::to_string(plane.support) + " of " + std::to_string(plane.below_camera) +
                                    " landmarks below the cameras), " + std::to_string(floor_.points.size()) +
-                                   " points and " + std::to_string(floor_.lines.size()) + " lines held";
+                                   " points and " + std::to_string(floor_.lines.size()) + " lines held" +
+                                   (base_on_floor_ ? ", base poses held on it" : "");
   }
 
   void FinishFloorSummary() {
@@ -497,6 +500,14 @@ class BundleAdjuster {
             FloorLineCost::Create(floor_anchors_[k][0], floor_anchors_[k][1], options_.floor_sigma_m), &floor_loss,
             line_block(floor_.lines[k]));
       }
+      if (base_on_floor_) {
+        // The first pose is held constant; its prior would be a constant.
+        const double tilt_sigma_rad = options_.floor_sigma_m / base_T_camera_.translation.z();
+        for (size_t f = 1; f < poses_.size(); ++f) {
+          problem.AddResidualBlock(BaseOnFloorCost::Create(options_.floor_sigma_m, tilt_sigma_rad), nullptr,
+                                   poses_[f].rotation.data(), poses_[f].translation.data());
+        }
+      }
       problem.AddParameterBlock(&odometry_scale_, 1);
       ordering->AddElementToGroup(&odometry_scale_, 1);
       problem.AddResidualBlock(OdometryScalePriorCost::Create(noise_.translation_sigma), nullptr, &odometry_scale_);
@@ -663,6 +674,7 @@ class BundleAdjuster {
   // The floor prior: applied (the odometry's scale factor is a parameter) or not, the landmarks
   // it holds now, the anchors of those lines (their end-points when selected), the factor.
   bool scale_free_ = false;
+  bool base_on_floor_ = false;  // BaseOnFloorCost on every pose but the first while scale_free_
   FloorLandmarks floor_;
   std::vector<std::array<Eigen::Vector3d, 2>> floor_anchors_;
   double odometry_scale_ = 1;

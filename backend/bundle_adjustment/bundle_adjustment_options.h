@@ -77,6 +77,11 @@ struct BundleAdjustmentOptions {
   // may be from the plane of the base origin (floor flatness, wheels sinking in), also the unit
   // of every floor threshold (docs/bundle_adjustment.md, "Floor prior").
   double floor_sigma_m = 0.01;
+  // With the floor prior applied and the odometry showing the rig on the floor (every pose at z = 0,
+  // level; FloorPriorRigProblem), also hold every base pose there: z with floor_sigma_m and the
+  // tilt with floor_sigma_m / camera height (the tilt that moves the floor under the camera by one
+  // sigma, the rig check's own tolerance). docs/bundle_adjustment.md, "Floor prior".
+  bool floor_base_prior = true;
   // Landmarks a floor plane needs at least (besides being a peak of the height distribution).
   int floor_min_landmarks = 10;
 

@@ -220,6 +220,12 @@ ceres::CostFunction* FloorLineCost::Create(const Eigen::Vector3d& anchor0, const
   return new ceres::AutoDiffCostFunction<FloorLineCost, 2, 6>(new FloorLineCost(anchor0, anchor1, sigma_m));
 }
 
+ceres::CostFunction* BaseOnFloorCost::Create(double sigma_m, double tilt_sigma_rad) {
+  CHECK_GT(sigma_m, 0);
+  CHECK_GT(tilt_sigma_rad, 0);
+  return new ceres::AutoDiffCostFunction<BaseOnFloorCost, 3, 4, 3>(new BaseOnFloorCost(sigma_m, tilt_sigma_rad));
+}
+
 ceres::CostFunction* OdometryScalePriorCost::Create(double sigma) {
   CHECK_GT(sigma, 0);
   return new ceres::AutoDiffCostFunction<OdometryScalePriorCost, 1, 1>(new OdometryScalePriorCost(sigma));

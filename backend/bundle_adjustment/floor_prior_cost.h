@@ -9,6 +9,7 @@
 #include <ceres/cost_function.h>
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 
 #include "backend/bundle_adjustment/line_manifold.h"
 
@@ -63,6 +64,33 @@ struct FloorLineCost {
 
   Eigen::Vector3d anchor0, anchor1;
   double sigma_m;
+};
+
+// A ground robot's base on the floor: its origin at world z = 0 and its z axis vertical, the rig
+// that the floor prior assumes and checks on the odometry (FloorPriorRigProblem). Without it the
+// odometry priors let the base's height and tilt wander as a random walk (the per-step rotation
+// sigma holds roll and pitch as loosely as the heading), and the floor landmarks, seen from a
+// camera a few millimetres too high or tilted by a milliradian, read that as scale.
+// Parameter blocks: [0] rotation 4 (world_T_base [qx qy qz qw]), [1] translation 3.
+// Residuals (3, dimensionless): t_z / sigma_m, and the x and y of the base's z axis in the world
+// over tilt_sigma_rad (the sine of the tilt, split by the direction it leans to).
+struct BaseOnFloorCost {
+  BaseOnFloorCost(double sigma_m, double tilt_sigma_rad) : sigma_m(sigma_m), tilt_sigma_rad(tilt_sigma_rad) {}
+
+  template <typename T>
+  bool operator()(const T* rotation, const T* translation, T* residuals) const {
+    const Eigen::Map<const Eigen::Quaternion<T>> world_q_base(rotation);
+    const Eigen::Matrix<T, 3, 1> up = world_q_base * Eigen::Matrix<T, 3, 1>(T(0), T(0), T(1));
+    residuals[0] = translation[2] / sigma_m;
+    residuals[1] = up.x() / tilt_sigma_rad;
+    residuals[2] = up.y() / tilt_sigma_rad;
+    return true;
+  }
+
+  // Automatic derivatives (cost_functions.cc). Both sigmas must be > 0.
+  static ceres::CostFunction* Create(double sigma_m, double tilt_sigma_rad);
+
+  double sigma_m, tilt_sigma_rad;
 };
 
 // The odometry's scale factor: (scale - 1) / sigma. Parameter block: [0] scale 1.

@@ -33,8 +33,10 @@ ceres::NumericDiffOptions RiddersOptions() {
   return options;
 }
 
-Eigen::Vector2d Residuals(const ceres::CostFunction& cost, std::vector<const double*> parameters) {
-  Eigen::Vector2d r;
+// The residuals of `cost` (N of them) at `parameters`.
+template <int N = 2>
+Eigen::Matrix<double, N, 1> Residuals(const ceres::CostFunction& cost, std::vector<const double*> parameters) {
+  Eigen::Matrix<double, N, 1> r;
   EXPECT_TRUE(cost.Evaluate(parameters.data(), r.data(), nullptr));
   return r;
 }
@@ -518,6 +520,52 @@ TEST(FloorLineCostTest, GradientCheck) {
     ceres::GradientChecker::ProbeResults results;
     EXPECT_TRUE(checker.Probe(parameters, kGradientTolerance, &results))
         << "trial " << trial << ": " << results.error_log;
+  }
+}
+
+// A base 2 cm above the floor, tilted 0.005 rad about the world x axis: residuals 2 sigma in z, and
+// the base's z axis leans towards -y by sin(0.005), so (0, -sin(0.005)) / tilt sigma; a level base on the
+// floor, whatever its heading and position in the plane: zero. Tolerance 1e-12.
+TEST(BaseOnFloorCostTest, HandBuiltValues) {
+  std::unique_ptr<ceres::CostFunction> cost(BaseOnFloorCost::Create(0.01, 0.002));
+  const PoseParameters level = PoseParameters::FromPose(
+      Pose3(Eigen::Quaterniond(Eigen::AngleAxisd(1.2, Eigen::Vector3d::UnitZ())), Eigen::Vector3d(3, -4, 0)));
+  EXPECT_NEAR(Residuals<3>(*cost, {level.rotation.data(), level.translation.data()}).norm(), 0, 1e-12);
+  const PoseParameters tilted = PoseParameters::FromPose(
+      Pose3(Eigen::Quaterniond(Eigen::AngleAxisd(0.005, Eigen::Vector3d::UnitX())), Eigen::Vector3d(1, 2, 0.02)));
+  const Eigen::Vector3d r = Residuals<3>(*cost, {tilted.rotation.data(), tilted.translation.data()});
+  EXPECT_NEAR(r(0), 2, 1e-12);
+  EXPECT_NEAR(r(1), 0, 1e-12);
+  EXPECT_NEAR(r(2), -std::sin(0.005) / 0.002, 1e-12);
+}
+
+TEST(BaseOnFloorCostTest, GradientCheck) {
+  Random random;
+  ceres::EigenQuaternionManifold quaternion;
+  const std::vector<const ceres::Manifold*> manifolds = {&quaternion, nullptr};
+  for (int trial = 0; trial < kRandomTrials; ++trial) {
+    std::unique_ptr<ceres::CostFunction> cost(
+        BaseOnFloorCost::Create(random.Uniform(0.005, 0.05), random.Uniform(0.001, 0.05)));
+    const PoseParameters pose = PoseParameters::FromPose(random.Pose());
+    const double* parameters[] = {pose.rotation.data(), pose.translation.data()};
+    ceres::GradientChecker checker(cost.get(), &manifolds, RiddersOptions());
+    ceres::GradientChecker::ProbeResults results;
+    checker.Probe(parameters, kGradientTolerance, &results);
+    // The up vector's x does not depend on a turn about x (nor y on y): structural zeros, which
+    // Probe's relative test flags at rounding level (1e-15 against 1e-13). So: each entry of the
+    // tangent-space Jacobians within kGradientTolerance of the larger of 1 and its size.
+    ASSERT_EQ(results.local_jacobians.size(), 2u);
+    for (size_t block = 0; block < 2; ++block) {
+      const Eigen::MatrixXd& user = results.local_jacobians[block];
+      const Eigen::MatrixXd& numeric = results.local_numeric_jacobians[block];
+      for (int r = 0; r < user.rows(); ++r) {
+        for (int c = 0; c < user.cols(); ++c) {
+          const double size = std::max({1.0, std::abs(user(r, c)), std::abs(numeric(r, c))});
+          EXPECT_LE(std::abs(user(r, c) - numeric(r, c)), kGradientTolerance * size)
+              << "trial " << trial << " block " << block << " (" << r << ", " << c << ")";
+        }
+      }
+    }
   }
 }
 
