@@ -24,6 +24,18 @@ const char* FloorPriorName(sfm::FloorPriorMode mode) {
   }
   return "auto";
 }
+
+const char* RetriangulateRefinedName(sfm::RetriangulateRefined mode) {
+  switch (mode) {
+    case sfm::RetriangulateRefined::kOff:
+      return "off";
+    case sfm::RetriangulateRefined::kStructure:
+      return "structure";
+    case sfm::RetriangulateRefined::kFull:
+      return "full";
+  }
+  return "off";
+}
 }  // namespace
 
 DEFINE_string(sequence, SFM_DEFAULT_SEQUENCE,
@@ -87,12 +99,13 @@ DEFINE_string(
     "Bundle adjustment: estimate the odometry's constant rotation increment per step jointly with the "
     "poses ('on' or 'off').");
 DEFINE_int32(threads, kDefaults.bundle_adjustment_options.num_threads, "Threads for the bundle adjustment.");
-DEFINE_string(retriangulate_refined, "off",
+DEFINE_string(retriangulate_refined, RetriangulateRefinedName(kDefaults.retriangulate_refined),
               "After the bundle adjustment, triangulate every track again on the refined poses: 'off', "
               "'structure' (the landmarks refined on the refined poses, held fixed) or 'full' (then a second "
               "bundle adjustment starting from the refined poses).");
 DEFINE_string(
-    retriangulated_landmarks, "add",
+    retriangulated_landmarks,
+    kDefaults.retriangulated_landmarks == sfm::RetriangulatedLandmarks::kAddNew ? "add" : "replace",
     "With --retriangulate_refined: 'add' (only landmarks of tracks that had none) or 'replace' (every "
     "landmark re-triangulated).");
 DEFINE_bool(wireframe_ba_pose_error, kDefaults.triangulation.wireframe.pose_error_from_bundle_adjustment,
