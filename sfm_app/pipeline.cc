@@ -191,6 +191,10 @@ Status RetriangulateOnRefinedPoses(const Sequence& sequence, const PipelineOptio
   const size_t points_before = result->landmarks.points.size(), lines_before = result->landmarks.lines.size();
   LandmarkMergeReport merge;
   MergeRetriangulatedLandmarks(retriangulated, options.retriangulated_landmarks, &result->landmarks, &merge);
+  result->retriangulation.ran = true;
+  result->retriangulation.points_added = merge.points_added;
+  result->retriangulation.lines_added = merge.lines_added;
+  result->retriangulation.observations_removed = structure_summary.observations_removed;
   LOG(INFO) << "re-triangulation on the refined poses: " << triangulated_points << " points and "
             << triangulated_lines << " lines triangulated, " << retriangulated.points.size() << " and "
             << retriangulated.lines.size() << " kept after refining them on the fixed poses ("
@@ -208,6 +212,7 @@ Status RetriangulateOnRefinedPoses(const Sequence& sequence, const PipelineOptio
       calibration, world_T_base_odometry, world_T_base_refined, result->bundle_adjustment.odometry_scale,
       options.bundle_adjustment_options, &result->landmarks, &world_T_base_second, &summary));
   result->bundle_adjustment = summary;
+  result->retriangulation.second_adjustment = true;
   result->world_T_camera_refined.clear();
   for (const Pose3& world_T_base : world_T_base_second) {
     result->world_T_camera_refined.push_back(world_T_base * calibration.base_T_camera);

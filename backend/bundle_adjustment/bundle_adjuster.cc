@@ -787,7 +787,14 @@ Status BundleAdjust(const Calibration& calibration, const std::vector<Pose3>& wo
                          " odometry poses");
   }
   if (&world_T_base_start != &world_T_base_odometry) {
-    SFM_RETURN_IF_ERROR(CheckInput(calibration, world_T_base_start, Landmarks()));
+    for (size_t f = 0; f < world_T_base_start.size(); ++f) {
+      const Pose3& pose = world_T_base_start[f];
+      if (!pose.translation.allFinite() || !pose.rotation.coeffs().allFinite() ||
+          !(pose.rotation.norm() > 0)) {
+        return Status::Error("bundle adjustment: start pose " + std::to_string(f) +
+                             " is not a finite rigid transform");
+      }
+    }
     // The first pose is the gauge (SPEC section 3): it stays the odometry's.
     const Pose3& first = world_T_base_odometry[0];
     const Pose3& first_start = world_T_base_start[0];

@@ -6,7 +6,10 @@
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <set>
+#include <string>
 #include <vector>
 
 #include "backend/triangulation/triangulate_tracks.h"
@@ -24,6 +27,7 @@ class Retriangulation : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
     const fs::path scratch = testing::MakeScratchDir("pipeline_retriangulation");
+    scratch_ = scratch;
     GeneratorOptions generator;
     generator.scene.type = SceneType::kRoom;
     generator.trajectory.type = TrajectoryType::kLoop;
@@ -50,7 +54,9 @@ class Retriangulation : public ::testing::Test {
   static const PipelineResult& Result(RetriangulateRefined mode) { return results_[static_cast<int>(mode)]; }
   static PipelineResult results_[3];
   static Eigen::Matrix3d K_;
+  static fs::path scratch_;
 };
+fs::path Retriangulation::scratch_;
 PipelineResult Retriangulation::results_[3];
 Eigen::Matrix3d Retriangulation::K_;
 
@@ -120,6 +126,9 @@ TEST_F(Retriangulation, StructureBringsBackTracksThatFailedOnTheOdometry) {
       failed.size(), off.tracks.size(), recovered, median(recovered_on_truth), median(adjusted_on_truth),
       off.landmarks.points.size(), structure.landmarks.points.size());
   EXPECT_GE(recovered, 5);
+  EXPECT_EQ(structure.retriangulation.points_added,
+            static_cast<int>(structure.landmarks.points.size() - off.landmarks.points.size()));
+  EXPECT_FALSE(structure.retriangulation.second_adjustment);
   EXPECT_LT(median(recovered_on_truth), 2 * median(adjusted_on_truth));
 }
 
@@ -137,6 +146,22 @@ TEST_F(Retriangulation, FullAdjustsAgainAndKeepsTheDriftGoals) {
       off.drift_refined->rpe_rot_rad, full.drift_refined->rpe_rot_rad);
   EXPECT_LE(full.drift_refined->rpe_rot_rad, 0.5 * full.drift_odometry->rpe_rot_rad);
   EXPECT_LE(full.drift_refined->ate_m, 0.2 * full.drift_odometry->ate_m);
+  EXPECT_TRUE(full.retriangulation.second_adjustment);
+}
+
+// metrics.json says what the re-triangulation did: null when off, the counts otherwise.
+TEST_F(Retriangulation, MetricsJsonReportsIt) {
+  auto metrics = [](int mode) {
+    std::ifstream in(scratch_ / ("output" + std::to_string(mode)) / "metrics.json");
+    return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  };
+  EXPECT_NE(metrics(0).find("\"retriangulation\": null"), std::string::npos);
+  const PipelineResult& structure = Result(RetriangulateRefined::kStructure);
+  EXPECT_NE(metrics(1).find("\"retriangulation\": {\"points_added\": " +
+                            std::to_string(structure.retriangulation.points_added)),
+            std::string::npos)
+      << metrics(1);
+  EXPECT_NE(metrics(2).find("\"second_adjustment\": true"), std::string::npos);
 }
 
 }  // namespace
