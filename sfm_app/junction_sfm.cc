@@ -24,6 +24,18 @@ const char* FloorPriorName(sfm::FloorPriorMode mode) {
   }
   return "auto";
 }
+
+const char* RetriangulateRefinedName(sfm::RetriangulateRefined mode) {
+  switch (mode) {
+    case sfm::RetriangulateRefined::kOff:
+      return "off";
+    case sfm::RetriangulateRefined::kStructure:
+      return "structure";
+    case sfm::RetriangulateRefined::kFull:
+      return "full";
+  }
+  return "off";
+}
 }  // namespace
 
 DEFINE_string(sequence, SFM_DEFAULT_SEQUENCE,
@@ -90,6 +102,15 @@ DEFINE_string(
     "Bundle adjustment: estimate the odometry's constant rotation increment per step jointly with the "
     "poses ('on' or 'off').");
 DEFINE_int32(threads, kDefaults.bundle_adjustment_options.num_threads, "Threads for the bundle adjustment.");
+DEFINE_string(retriangulate_refined, RetriangulateRefinedName(kDefaults.retriangulate_refined),
+              "After the bundle adjustment, triangulate every track again on the refined poses: 'off', "
+              "'structure' (the landmarks refined on the refined poses, held fixed) or 'full' (then a second "
+              "bundle adjustment starting from the refined poses).");
+DEFINE_string(
+    retriangulated_landmarks,
+    kDefaults.retriangulated_landmarks == sfm::RetriangulatedLandmarks::kAddNew ? "add" : "replace",
+    "With --retriangulate_refined: 'add' (only landmarks of tracks that had none) or 'replace' (every "
+    "landmark re-triangulated).");
 DEFINE_bool(wireframe_ba_pose_error, kDefaults.triangulation.wireframe.pose_error_from_bundle_adjustment,
             "Wireframe selection: the pose error of the determination test from bundle adjustment's own pose "
             "covariance instead of the fixed random walk.");
@@ -145,6 +166,26 @@ bool OptionsFromFlags(sfm::PipelineOptions* options, std::string* error) {
     options->bundle_adjustment_options.estimate_odometry_rotation_bias = FLAGS_odometry_rotation_bias == "on";
   } else {
     *error = "--odometry_rotation_bias must be 'on' or 'off', not '" + FLAGS_odometry_rotation_bias + "'";
+    return false;
+  }
+  if (FLAGS_retriangulate_refined == "off") {
+    options->retriangulate_refined = sfm::RetriangulateRefined::kOff;
+  } else if (FLAGS_retriangulate_refined == "structure") {
+    options->retriangulate_refined = sfm::RetriangulateRefined::kStructure;
+  } else if (FLAGS_retriangulate_refined == "full") {
+    options->retriangulate_refined = sfm::RetriangulateRefined::kFull;
+  } else {
+    *error = "--retriangulate_refined must be 'off', 'structure' or 'full', not '" +
+             FLAGS_retriangulate_refined + "'";
+    return false;
+  }
+  if (FLAGS_retriangulated_landmarks == "add" || FLAGS_retriangulated_landmarks == "replace") {
+    options->retriangulated_landmarks = FLAGS_retriangulated_landmarks == "add"
+                                            ? sfm::RetriangulatedLandmarks::kAddNew
+                                            : sfm::RetriangulatedLandmarks::kReplace;
+  } else {
+    *error =
+        "--retriangulated_landmarks must be 'add' or 'replace', not '" + FLAGS_retriangulated_landmarks + "'";
     return false;
   }
   if (FLAGS_match_rho1 == "exponential") {

@@ -113,6 +113,34 @@ void Reconstruct(const Sequence& sequence, const PipelineOptions& options, Pipel
             << " lines unobservable: parallel to the motion)";
 }
 
+// With --v=1: every landmark the floor prior held, with its junction types, for the diagnosis of
+// the odometry scale it gives (docs/backend_results.md, "Session 4").
+void LogFloorLandmarks(const std::string& stage, const PipelineResult& result) {
+  if (!VLOG_IS_ON(1)) return;
+  const BundleAdjustmentSummary& summary = result.bundle_adjustment;
+  auto types = [&](const auto& observations) {
+    std::string text;
+    for (const auto& observation : observations) {
+      text += JunctionTypeName(result.junctions[observation.frame][observation.junction].type);
+      text += observation.frame == observations.back().frame ? "" : ",";
+    }
+    return text;
+  };
+  for (int i : summary.floor_point_indices) {
+    const PointLandmark& point = result.landmarks.points[i];
+    VLOG(1) << "floor " << stage << " point track " << point.track_id << " at " << point.position.transpose()
+            << " views " << point.observations.size() << " first " << point.observations.front().frame
+            << " types " << types(point.observations);
+  }
+  for (int i : summary.floor_line_indices) {
+    const LineLandmark& line = result.landmarks.lines[i];
+    const LineObservation& first = line.observations.front();
+    VLOG(1) << "floor " << stage << " line " << first.frame << "/" << first.junction << "/" << first.segment
+            << " from " << line.end0.transpose() << " to " << line.end1.transpose() << " views "
+            << line.observations.size() << " types " << types(line.observations);
+  }
+}
+
 // Bundle adjustment from the odometry: refined poses and landmarks.
 Status Refine(const Sequence& sequence, const PipelineOptions& options, PipelineResult* result) {
   std::vector<Pose3> world_T_base_odometry;
@@ -134,6 +162,67 @@ Status Refine(const Sequence& sequence, const PipelineOptions& options, Pipeline
             << summary.solver_report;
   LOG(INFO) << summary.floor_prior_report
             << (summary.floor_prior_used ? "; odometry scale " + std::to_string(summary.odometry_scale) : "");
+  LogFloorLandmarks("first", *result);
+  return Status::Ok();
+}
+
+// Every track triangulated again on the refined poses: tracks whose triangulation failed on the
+// drifting odometry (parallax, reprojection) can pass now. The new landmarks are refined on the
+// refined poses held fixed and pass the adjustment's outlier rules before they join the map
+// (docs/tracks_and_triangulation.md, "Re-triangulation on the refined poses"). kFull then adjusts
+// everything again, starting from the refined poses; the odometry stays the prior.
+Status RetriangulateOnRefinedPoses(const Sequence& sequence, const PipelineOptions& options,
+                                   PipelineResult* result) {
+  const Calibration& calibration = sequence.calibration;
+  const Pose3 camera_T_base = calibration.base_T_camera.Inverse();
+  std::vector<Pose3> world_T_base_refined;
+  for (const Pose3& camera : result->world_T_camera_refined)
+    world_T_base_refined.push_back(camera * camera_T_base);
+  TriangulationReport triangulation_report;
+  Landmarks retriangulated =
+      TriangulateTracks(calibration.camera.K(), result->world_T_camera_refined, result->junctions,
+                        result->tracks, options.triangulation, &triangulation_report);
+  const size_t triangulated_points = retriangulated.points.size(),
+               triangulated_lines = retriangulated.lines.size();
+  BundleAdjustmentSummary structure_summary;
+  SFM_RETURN_IF_ERROR(RefineLandmarksOnFixedPoses(calibration, world_T_base_refined,
+                                                  options.bundle_adjustment_options, &retriangulated,
+                                                  &structure_summary));
+  const size_t points_before = result->landmarks.points.size(), lines_before = result->landmarks.lines.size();
+  LandmarkMergeReport merge;
+  MergeRetriangulatedLandmarks(retriangulated, options.retriangulated_landmarks, &result->landmarks, &merge);
+  result->retriangulation.ran = true;
+  result->retriangulation.points_added = merge.points_added;
+  result->retriangulation.lines_added = merge.lines_added;
+  result->retriangulation.observations_removed = structure_summary.observations_removed;
+  LOG(INFO) << "re-triangulation on the refined poses: " << triangulated_points << " points and "
+            << triangulated_lines << " lines triangulated, " << retriangulated.points.size() << " and "
+            << retriangulated.lines.size() << " kept after refining them on the fixed poses ("
+            << structure_summary.observations_removed << " outlier observations removed); map "
+            << points_before << " -> " << result->landmarks.points.size() << " points, " << lines_before
+            << " -> " << result->landmarks.lines.size() << " lines (" << merge.lines_linked_to_existing_point
+            << " new lines at an existing point)";
+  if (options.retriangulate_refined != RetriangulateRefined::kFull) return Status::Ok();
+
+  std::vector<Pose3> world_T_base_odometry;
+  for (const Frame& frame : sequence.frames) world_T_base_odometry.push_back(frame.world_T_base_odometry);
+  std::vector<Pose3> world_T_base_second;
+  BundleAdjustmentSummary summary;
+  SFM_RETURN_IF_ERROR(BundleAdjust(
+      calibration, world_T_base_odometry, world_T_base_refined, result->bundle_adjustment.odometry_scale,
+      options.bundle_adjustment_options, &result->landmarks, &world_T_base_second, &summary));
+  result->bundle_adjustment = summary;
+  result->retriangulation.second_adjustment = true;
+  result->world_T_camera_refined.clear();
+  for (const Pose3& world_T_base : world_T_base_second) {
+    result->world_T_camera_refined.push_back(world_T_base * calibration.base_T_camera);
+  }
+  LOG(INFO) << "second bundle adjustment from the refined poses: " << summary.points << " points, "
+            << summary.lines << " lines; " << summary.observations_removed
+            << " outlier observations removed; RMS " << summary.point_rms_px << " px (points), "
+            << summary.line_rms_px << " px (lines); " << summary.floor_prior_report
+            << (summary.floor_prior_used ? "; odometry scale " + std::to_string(summary.odometry_scale) : "");
+  LogFloorLandmarks("second", *result);
   return Status::Ok();
 }
 
@@ -243,7 +332,12 @@ Status RunPipeline(const PipelineOptions& options, PipelineResult* result_out) {
   result.times.matching = SecondsSince(stage_start);
   stage_start = Clock::now();
   Reconstruct(sequence, options, &result);
-  if (options.bundle_adjustment) SFM_RETURN_IF_ERROR(Refine(sequence, options, &result));
+  if (options.bundle_adjustment) {
+    SFM_RETURN_IF_ERROR(Refine(sequence, options, &result));
+    if (options.retriangulate_refined != RetriangulateRefined::kOff) {
+      SFM_RETURN_IF_ERROR(RetriangulateOnRefinedPoses(sequence, options, &result));
+    }
+  }
   SelectWireframe(sequence, options, &result);
   result.times.backend = SecondsSince(stage_start);
   if (result.world_T_camera_truth) {

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "backend/bundle_adjustment/bundle_adjustment_options.h"
+#include "backend/triangulation/landmark_merge.h"
 #include "backend/triangulation/triangulation_options.h"
 #include "frontend/junctions/junction_options.h"
 #include "frontend/matching/matching_options.h"
@@ -13,6 +14,12 @@
 #include "sfm_app/pipeline_result.h"
 
 namespace sfm {
+
+// After the bundle adjustment, triangulate every track again on the refined poses
+// (docs/tracks_and_triangulation.md, "Re-triangulation on the refined poses"): off; structure (the
+// landmarks refined on the refined poses, which stay as they are); full (then a second bundle
+// adjustment of everything, starting from the refined poses, the odometry still its prior).
+enum class RetriangulateRefined { kOff, kStructure, kFull };
 
 struct PipelineOptions {
   std::string sequence_dir;   // a SPEC section 1 sequence directory
@@ -24,6 +31,9 @@ struct PipelineOptions {
   TriangulationOptions triangulation;
   bool bundle_adjustment = true;  // false: the outputs use the odometry poses and the first triangulation
   BundleAdjustmentOptions bundle_adjustment_options;
+  RetriangulateRefined retriangulate_refined = RetriangulateRefined::kOff;
+  // Which re-triangulated landmarks join the map (landmark_merge.h).
+  RetriangulatedLandmarks retriangulated_landmarks = RetriangulatedLandmarks::kAddNew;
 
   // OK, or a message naming the first bad setting.
   Status Check() const;

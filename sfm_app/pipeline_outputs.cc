@@ -120,6 +120,17 @@ std::string WireframeJson(const PipelineResult& result) {
          ", \"pose_covariance_s\": " + JsonNumber(report.pose_covariance_seconds) + "}";
 }
 
+// Not in SPEC's list: what the re-triangulation on the refined poses added (null when it did not
+// run, --retriangulate_refined=off); "second_adjustment": the poses are a second adjustment's.
+std::string RetriangulationJson(const PipelineResult& result) {
+  const RetriangulationSummary& summary = result.retriangulation;
+  if (!summary.ran) return "null";
+  return "{\"points_added\": " + std::to_string(summary.points_added) +
+         ", \"lines_added\": " + std::to_string(summary.lines_added) +
+         ", \"observations_removed\": " + std::to_string(summary.observations_removed) +
+         ", \"second_adjustment\": " + (summary.second_adjustment ? "true" : "false") + "}";
+}
+
 std::optional<double> Ate(const std::optional<DriftMetrics>& drift) {
   return drift ? std::optional<double>(drift->ate_m) : std::nullopt;
 }
@@ -169,6 +180,7 @@ std::string MetricsJson(const Sequence& sequence, const PipelineResult& result) 
        << ", \"total\": " << JsonNumber(times.total) << "},\n"
        << "  \"floor_prior\": " << FloorPriorJson(result, refined) << ",\n"
        << "  \"odometry_rotation_bias_rad\": " << RotationBiasJson(result, refined) << ",\n"
+       << "  \"retriangulation\": " << RetriangulationJson(result) << ",\n"
        << "  \"wireframe\": " << WireframeJson(result) << "\n"
        << "}\n";
   return json.str();

@@ -18,6 +18,14 @@ struct StageTimes {
   double frontend = 0, matching = 0, backend = 0, total = 0;  // seconds
 };
 
+// What the re-triangulation on the refined poses did (PipelineOptions::retriangulate_refined).
+struct RetriangulationSummary {
+  bool ran = false;
+  bool second_adjustment = false;  // "full": the poses are the second adjustment's
+  int points_added = 0, lines_added = 0;
+  int observations_removed = 0;  // outlier observations of the new landmarks, on the refined poses
+};
+
 struct PipelineResult {
   std::vector<Junctions> junctions;       // per frame
   std::vector<TopologyGraph> graphs;      // per frame
@@ -31,6 +39,7 @@ struct PipelineResult {
   std::vector<Pose3> world_T_camera_odometry;
   std::vector<Pose3> world_T_camera_refined;               // empty until bundle adjustment ran
   BundleAdjustmentSummary bundle_adjustment;               // when it ran (floor prior, counts)
+  RetriangulationSummary retriangulation;
   std::optional<std::vector<Pose3>> world_T_camera_truth;  // when the sequence has ground truth
   std::optional<DriftMetrics> drift_odometry, drift_refined;  // against the ground truth
   StageTimes times;

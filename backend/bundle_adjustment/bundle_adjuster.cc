@@ -86,9 +86,11 @@ Eigen::Vector3d ProjectOntoLine(const Eigen::Vector3d& point, const Eigen::Vecto
 
 class BundleAdjuster {
  public:
+  // `start`: the poses the solves start from (the odometry, or an earlier adjustment's result);
+  // `odometry`: the measurements of the odometry prior.
   BundleAdjuster(const Calibration& calibration, const std::vector<Pose3>& odometry,
-                 const BundleAdjustmentOptions& options, Landmarks* landmarks,
-                 BundleAdjustmentSummary* summary)
+                 const std::vector<Pose3>& start, double start_scale, const BundleAdjustmentOptions& options,
+                 Landmarks* landmarks, BundleAdjustmentSummary* summary)
       : camera_(calibration.base_T_camera, calibration.camera.fx, calibration.camera.fy,
                 calibration.camera.cx, calibration.camera.cy),
         base_T_camera_(calibration.base_T_camera),
@@ -97,8 +99,9 @@ class BundleAdjuster {
         odometry_(odometry),
         options_(options),
         landmarks_(landmarks),
-        summary_(summary) {
-    for (const Pose3& pose : odometry) poses_.push_back(PoseParameters::FromPose(pose));
+        summary_(summary),
+        odometry_scale_(start_scale) {
+    for (const Pose3& pose : start) poses_.push_back(PoseParameters::FromPose(pose));
   }
 
   Status Run() {
@@ -157,6 +160,43 @@ class BundleAdjuster {
     }
     ComputeRms();
     FinishFloorSummary();
+    return Status::Ok();
+  }
+
+  // The landmarks alone on the poses given (RefineLandmarksOnFixedPoses): the removals of Run's
+  // steps 3-4 with the poses held, so that a landmark is judged by the same rules as in the
+  // adjustment. No odometry or floor prior: with the poses held they constrain nothing but the
+  // floor landmarks' height, and a floor selected on one map is no evidence for another's.
+  Status RunStructureOnly() {
+    summary_->frames = static_cast<int>(poses_.size());
+    DropUnusableObservations();
+    RemoveLandmarksWithFewViews();
+    // The triangulation held every landmark to its depth floor on these very poses.
+    DropUnobservableLandmarks(/*refined=*/true);
+    summary_->points = static_cast<int>(landmarks_->points.size());
+    summary_->lines = static_cast<int>(landmarks_->lines.size());
+    summary_->observations = CountObservations();
+    if (summary_->observations == 0) {
+      summary_->solver_report = "nothing to solve: no observable landmark in two frames";
+      return Status::Ok();
+    }
+    // Triangulated on the final poses, the landmarks start within the triangulation's 4 px limit:
+    // the fine loss scale from the start, as the joint solve of Run's step 4.
+    RefineLandmarksOnFixedPoses(options_.robust_loss_scale_px);
+    for (int round = 0; round < options_.outlier_rounds; ++round) {
+      const int outliers = RemoveOutliers(options_.outlier_threshold_px);
+      RemoveLandmarksWithFewViews();
+      const int unobservable = DropUnobservableLandmarks(/*refined=*/true);
+      if (outliers + unobservable == 0) break;
+      RefineLandmarksOnFixedPoses(options_.robust_loss_scale_px);
+    }
+    // What the adjustment guarantees of its output: no observation beyond the outlier threshold.
+    RemoveOutliers(options_.outlier_threshold_px);
+    RemoveLandmarksWithFewViews();
+    DropUnobservableLandmarks(/*refined=*/true);
+    ComputeRms();
+    summary_->converged = true;
+    summary_->solver_report = "landmarks refined on fixed poses, one small solve each";
     return Status::Ok();
   }
 
@@ -241,6 +281,8 @@ class BundleAdjuster {
     summary_->floor_prior_used = scale_free_ && !(floor_.points.empty() && floor_.lines.empty());
     summary_->floor_points = static_cast<int>(floor_.points.size());
     summary_->floor_lines = static_cast<int>(floor_.lines.size());
+    summary_->floor_point_indices = floor_.points;
+    summary_->floor_line_indices = floor_.lines;
     summary_->odometry_scale = odometry_scale_;
     summary_->odometry_rotation_bias_rad = rotation_bias_;
   }
@@ -409,6 +451,30 @@ class BundleAdjuster {
     return solver_options;
   }
 
+  // Each point alone, the poses held (one small problem per point, 3 unknowns). A point whose
+  // solve fails keeps its estimate. Then each line, whose end0 follows its point.
+  void RefineLandmarksOnFixedPoses(double loss_scale_px) {
+    const std::unique_ptr<ceres::LossFunction> loss = MakeLoss(loss_scale_px);
+    ceres::Problem::Options problem_options;
+    problem_options.loss_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
+    const ceres::Solver::Options solver_options = SolverOptions(ceres::DENSE_QR);
+    for (PointLandmark& point : landmarks_->points) {
+      Eigen::Vector3d position = point.position;
+      ceres::Problem problem(problem_options);
+      for (const PointObservation& observation : point.observations) {
+        PoseParameters& pose = poses_[observation.frame];
+        problem.AddResidualBlock(PointReprojectionCost::Create(camera_, observation.pixel), loss.get(),
+                                 pose.rotation.data(), pose.translation.data(), position.data());
+        problem.SetParameterBlockConstant(pose.rotation.data());
+        problem.SetParameterBlockConstant(pose.translation.data());
+      }
+      ceres::Solver::Summary ceres_summary;
+      ceres::Solve(solver_options, &problem, &ceres_summary);
+      if (ceres_summary.IsSolutionUsable() && position.allFinite()) point.position = position;
+    }
+    RefineLinesOnFixedPoses(loss_scale_px);
+  }
+
   // Each line alone, the poses held where they are (one small problem per line, 4 unknowns). A
   // line whose solve fails keeps its estimate.
   void RefineLinesOnFixedPoses(double loss_scale_px) {
@@ -491,6 +557,15 @@ class BundleAdjuster {
     // The floor prior (whitened by floor_sigma_m; Huber at one sigma, so that a landmark selected
     // off the floor pulls with a bounded force) and the odometry's scale factor it observes.
     ceres::HuberLoss floor_loss(1.0);
+    // A start from an earlier adjustment that the floor prior rescaled (start_scale != 1) keeps
+    // that scale in the odometry priors, held, until this run's floor frees it: otherwise the
+    // first solves would pull the start back to the odometry's scale.
+    const bool scaled = scale_free_ || odometry_scale_ != 1.0;
+    if (scaled) {
+      problem.AddParameterBlock(&odometry_scale_, 1);
+      ordering->AddElementToGroup(&odometry_scale_, 1);
+      if (!scale_free_) problem.SetParameterBlockConstant(&odometry_scale_);
+    }
     if (scale_free_) {
       for (int point : floor_.points) {
         problem.AddResidualBlock(FloorPointCost::Create(options_.floor_sigma_m), &floor_loss, point_block(point));
@@ -508,8 +583,6 @@ class BundleAdjuster {
                                    poses_[f].rotation.data(), poses_[f].translation.data());
         }
       }
-      problem.AddParameterBlock(&odometry_scale_, 1);
-      ordering->AddElementToGroup(&odometry_scale_, 1);
       problem.AddResidualBlock(OdometryScalePriorCost::Create(noise_.translation_sigma), nullptr, &odometry_scale_);
       // With nothing on the floor left, the scale it gave is kept.
       if (floor_.points.empty() && (!with_lines || floor_.lines.empty())) {
@@ -532,7 +605,7 @@ class BundleAdjuster {
       const OdometryStepSigmas sigmas = OdometryStepSigmasFor(motion.translation.norm(), noise_, options_);
       double* const pose_blocks[4] = {poses_[f].rotation.data(), poses_[f].translation.data(),
                                       poses_[f + 1].rotation.data(), poses_[f + 1].translation.data()};
-      if (with_bias && scale_free_) {
+      if (with_bias && scaled) {
         problem.AddResidualBlock(OdometryPriorWithScaleAndBiasCost::Create(motion, noise_.rotation_sigma,
                                                                            sigmas.along_m, sigmas.across_m),
                                  nullptr, pose_blocks[0], pose_blocks[1], pose_blocks[2], pose_blocks[3],
@@ -541,7 +614,7 @@ class BundleAdjuster {
         problem.AddResidualBlock(
             OdometryPriorWithBiasCost::Create(motion, noise_.rotation_sigma, sigmas.along_m, sigmas.across_m),
             nullptr, pose_blocks[0], pose_blocks[1], pose_blocks[2], pose_blocks[3], bias);
-      } else if (scale_free_) {
+      } else if (scaled) {
         problem.AddResidualBlock(
             OdometryPriorWithScaleCost::Create(motion, noise_.rotation_sigma, sigmas.along_m, sigmas.across_m), nullptr,
             pose_blocks[0], pose_blocks[1], pose_blocks[2], pose_blocks[3], &odometry_scale_);
@@ -597,7 +670,7 @@ class BundleAdjuster {
       ordering->AddElementToGroup(poses_[f].rotation.data(), static_cast<int>(f % 2));
       ordering->AddElementToGroup(poses_[f].translation.data(), 2 + static_cast<int>(f % 2));
     }
-    if (scale_free_) ordering->AddElementToGroup(&odometry_scale_, 4);
+    if (scale_free_ || odometry_scale_ != 1.0) ordering->AddElementToGroup(&odometry_scale_, 4);
     // The rotation bias shares every odometry residual with the scale: a group of its own.
     if (options_.estimate_odometry_rotation_bias) ordering->AddElementToGroup(rotation_bias_.data(), 5);
     // The landmark blocks start at their sizes' offsets; walk them as Solve laid them out.
@@ -686,7 +759,31 @@ class BundleAdjuster {
 
 }  // namespace
 
+Status RefineLandmarksOnFixedPoses(const Calibration& calibration, const std::vector<Pose3>& world_T_base,
+                                   const BundleAdjustmentOptions& options, Landmarks* landmarks,
+                                   BundleAdjustmentSummary* summary) {
+  CHECK(landmarks != nullptr);
+  CHECK(summary != nullptr);
+  const auto start = std::chrono::steady_clock::now();
+  *summary = BundleAdjustmentSummary();
+  SFM_RETURN_IF_ERROR(options.Check());
+  SFM_RETURN_IF_ERROR(CheckInput(calibration, world_T_base, *landmarks));
+  BundleAdjuster adjuster(calibration, world_T_base, world_T_base, /*start_scale=*/1, options, landmarks,
+                          summary);
+  const Status status = adjuster.RunStructureOnly();
+  summary->time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return status;
+}
+
 Status BundleAdjust(const Calibration& calibration, const std::vector<Pose3>& world_T_base_odometry,
+                    const BundleAdjustmentOptions& options, Landmarks* landmarks,
+                    std::vector<Pose3>* world_T_base_refined, BundleAdjustmentSummary* summary) {
+  return BundleAdjust(calibration, world_T_base_odometry, world_T_base_odometry, /*odometry_scale_start=*/1,
+                      options, landmarks, world_T_base_refined, summary);
+}
+
+Status BundleAdjust(const Calibration& calibration, const std::vector<Pose3>& world_T_base_odometry,
+                    const std::vector<Pose3>& world_T_base_start, double odometry_scale_start,
                     const BundleAdjustmentOptions& options, Landmarks* landmarks,
                     std::vector<Pose3>* world_T_base_refined, BundleAdjustmentSummary* summary) {
   CHECK(landmarks != nullptr);
@@ -696,7 +793,34 @@ Status BundleAdjust(const Calibration& calibration, const std::vector<Pose3>& wo
   *summary = BundleAdjustmentSummary();
   SFM_RETURN_IF_ERROR(options.Check());
   SFM_RETURN_IF_ERROR(CheckInput(calibration, world_T_base_odometry, *landmarks));
-  BundleAdjuster adjuster(calibration, world_T_base_odometry, options, landmarks, summary);
+  if (world_T_base_start.size() != world_T_base_odometry.size()) {
+    return Status::Error("bundle adjustment: " + std::to_string(world_T_base_start.size()) +
+                         " start poses for " + std::to_string(world_T_base_odometry.size()) +
+                         " odometry poses");
+  }
+  if (&world_T_base_start != &world_T_base_odometry) {
+    for (size_t f = 0; f < world_T_base_start.size(); ++f) {
+      const Pose3& pose = world_T_base_start[f];
+      if (!pose.translation.allFinite() || !pose.rotation.coeffs().allFinite() ||
+          !(pose.rotation.norm() > 0)) {
+        return Status::Error("bundle adjustment: start pose " + std::to_string(f) +
+                             " is not a finite rigid transform");
+      }
+    }
+    // The first pose is the gauge (SPEC section 3): it stays the odometry's.
+    const Pose3& first = world_T_base_odometry[0];
+    const Pose3& first_start = world_T_base_start[0];
+    if (!((first_start.translation - first.translation).norm() <= 1e-9 * (1 + first.translation.norm()) &&
+          first_start.rotation.angularDistance(first.rotation) <= 1e-9)) {
+      return Status::Error(
+          "bundle adjustment: the first start pose must be the first odometry pose (the gauge)");
+    }
+  }
+  if (!(odometry_scale_start > 0 && std::isfinite(odometry_scale_start))) {
+    return Status::Error("bundle adjustment: the start odometry scale must be finite and > 0");
+  }
+  BundleAdjuster adjuster(calibration, world_T_base_odometry, world_T_base_start, odometry_scale_start,
+                          options, landmarks, summary);
   const Status status = adjuster.Run();
   summary->odometry_rotation_bias_estimated = options.estimate_odometry_rotation_bias;
   if (options.estimate_odometry_rotation_bias) {

@@ -45,4 +45,27 @@ Status BundleAdjust(const Calibration& calibration, const std::vector<Pose3>& wo
                     const BundleAdjustmentOptions& options, Landmarks* landmarks,
                     std::vector<Pose3>* world_T_base_refined, BundleAdjustmentSummary* summary);
 
+// The same, the solves starting from `world_T_base_start` and the odometry's scale factor from
+// `odometry_scale_start` (e.g. an earlier adjustment's refined poses and summary.odometry_scale)
+// instead of the odometry and 1; the odometry stays the prior's measurement, and the scale prior
+// stays at 1. A start scale other than 1 is held in the odometry priors until the floor prior
+// frees it (without a floor it stays). The start poses: as many as the odometry's, the first the
+// odometry's (the gauge); the scale > 0; else an error.
+Status BundleAdjust(const Calibration& calibration, const std::vector<Pose3>& world_T_base_odometry,
+                    const std::vector<Pose3>& world_T_base_start, double odometry_scale_start,
+                    const BundleAdjustmentOptions& options, Landmarks* landmarks,
+                    std::vector<Pose3>* world_T_base_refined, BundleAdjustmentSummary* summary);
+
+// Refines `landmarks` in place on the poses world_T_base, which are held: each point and each line
+// alone at the fine loss scale, then the outlier rounds of BundleAdjust (observations beyond
+// options.outlier_threshold_px removed, landmarks left with fewer than two views or unobservable on
+// these poses dropped, solved again), ending, as BundleAdjust does, with no observation beyond the
+// threshold. No odometry or floor prior (the poses are not solved for). `summary` counts as
+// BundleAdjust's (solves and iterations stay 0: no pose was solved). For landmarks triangulated on
+// an adjustment's refined poses (docs/tracks_and_triangulation.md, "Re-triangulation on the
+// refined poses"). Errors as BundleAdjust's.
+Status RefineLandmarksOnFixedPoses(const Calibration& calibration, const std::vector<Pose3>& world_T_base,
+                                   const BundleAdjustmentOptions& options, Landmarks* landmarks,
+                                   BundleAdjustmentSummary* summary);
+
 }  // namespace sfm

@@ -5,6 +5,7 @@
 #include <array>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "frontend/util/status.h"
 
@@ -122,6 +123,8 @@ struct BundleAdjustmentSummary {
   std::optional<double> floor_plane_z_m;  // m; none when no floor plane was found
   double odometry_scale = 1;
   std::string floor_prior_report;
+  // The landmarks it held in the last solve: indices into the returned landmarks.
+  std::vector<int> floor_point_indices, floor_line_indices;
   // rad per step, angle-axis in the base frame: the odometry's estimated rotation bias b (zero
   // when options.estimate_odometry_rotation_bias is off or nothing was solved).
   std::array<double, 3> odometry_rotation_bias_rad = {0, 0, 0};
