@@ -46,6 +46,11 @@ struct FastSegmentOptions {
   // junctions on real images cost VGG matching precision on held-out odometry seeds (99.0 / 98.4 ->
   // 96.6 / 96.2 %, under the 97 % goal) and Strecha's refined shape (docs/junction_results.md).
   bool corners_between_chains = false;
+  // At an end-point of a segment with no other segment's end-point within max_gap, look for the
+  // corner's missing side in the gradient field: a ray of aligned gradient orientation, tested
+  // a-contrario, refitted to the sub-pixel edge points across it (branch_segments.h;
+  // docs/segments.md, step 8).
+  bool branches_at_free_ends = false;
 };
 
 struct SegmentDetectorOptions {
