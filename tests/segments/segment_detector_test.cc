@@ -249,6 +249,17 @@ TEST(FastSegmentsTest, FindsShortSidesWhoseCornerLiesBetweenChains) {
   EXPECT_LE(ShortSidesFoundOverAFaceEdge(options), 5);  // the rule is what finds them
 }
 
+// The same short sides found by the branch search at free segment ends (branch_segments.h): the
+// long side's end at the cut corner is free, and the short side is a ray of aligned gradient from
+// there. Measured: 10 of the 32 with the search, 4 without. Floor: 9.
+TEST(FastSegmentsTest, FindsShortSidesOverAFaceEdgeByBranchSearch) {
+  SegmentDetectorOptions options;  // off by default (segment_detector.h)
+  options.fast.branches_at_free_ends = true;
+  EXPECT_GE(ShortSidesFoundOverAFaceEdge(options), 9);
+  options.fast.branches_at_free_ends = false;
+  EXPECT_LE(ShortSidesFoundOverAFaceEdge(options), 5);  // the search is what finds them
+}
+
 // Segments are oriented with the brighter side along Normal() (segment_detector.h).
 TEST_P(DetectorTest, OrientsSegmentsWithTheBrighterSideAlongTheNormal) {
   const std::vector<Polygon> scene = {{{{60.4, 60.2}, {190.7, 70.9}, {120.3, 190.6}}, 200}};
