@@ -1,11 +1,11 @@
 #include "frontend/segments/branch_segments.h"
 
+#include <glog/logging.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <vector>
-
-#include <glog/logging.h>
 
 #include "frontend/segments/line_fit.h"
 #include "frontend/segments/nfa.h"
@@ -62,9 +62,9 @@ struct RingPixel {
 
 // Buffers kept per thread between images (fresh ones cost page faults and the tails' lgamma calls).
 struct Workspace {
-  std::vector<RingPixel> ring;      // offsets 1.5-4.5 px from a pixel, with squared length and angle
-  std::vector<double> tail;         // log10 binomial tail of (samples, aligned), (max_sample + 1)^2
-  std::vector<uint64_t> covered;    // one bit per pixel: a segment passes through it
+  std::vector<RingPixel> ring;    // offsets 1.5-4.5 px from a pixel, with squared length and angle
+  std::vector<double> tail;       // log10 binomial tail of (samples, aligned), (max_sample + 1)^2
+  std::vector<uint64_t> covered;  // one bit per pixel: a segment passes through it
 };
 
 class BranchSearch {
@@ -97,7 +97,8 @@ class BranchSearch {
     if (tail_.size() != static_cast<size_t>(max_sample_ + 1) * (max_sample_ + 1)) {
       tail_.assign(static_cast<size_t>(max_sample_ + 1) * (max_sample_ + 1), 0);
       for (int n = 1; n <= max_sample_; ++n) {
-        for (int k = 0; k <= n; ++k) tail_[n * (max_sample_ + 1) + k] = Log10BinomialTail(n, k, kAlignedProbability);
+        for (int k = 0; k <= n; ++k)
+          tail_[n * (max_sample_ + 1) + k] = Log10BinomialTail(n, k, kAlignedProbability);
       }
     }
     // The pixels 1.5-4.5 px from a pixel, with their angles (MarkPromisingDirections).
@@ -106,7 +107,8 @@ class BranchSearch {
       for (int dy = -4; dy <= 4; ++dy) {
         for (int dx = -4; dx <= 4; ++dx) {
           const double r2 = dx * dx + dy * dy;
-          if (r2 >= kInner * kInner && r2 <= kOuter * kOuter) ring_.push_back({dx, dy, r2, std::atan2(dy, dx), 0});
+          if (r2 >= kInner * kInner && r2 <= kOuter * kOuter)
+            ring_.push_back({dx, dy, r2, std::atan2(dy, dx), 0});
         }
       }
     }
@@ -350,7 +352,8 @@ class BranchSearch {
     int polarity = 0, misses = 0, aligned = 0, aligned_at_last = 0, last = 0;
     // The ray is a segment: when both its ends are inside, every sample is.
     int x, y;
-    const bool inside = PixelAt(origin + kFirstSample * v, &x, &y) && PixelAt(origin + max_sample_ * v, &x, &y);
+    const bool inside =
+        PixelAt(origin + kFirstSample * v, &x, &y) && PixelAt(origin + max_sample_ * v, &x, &y);
     for (int r = kFirstSample; r <= max_sample_; ++r) {
       const Eigen::Vector2d p = origin + r * v;
       if (inside) {
@@ -472,7 +475,7 @@ class BranchSearch {
   std::vector<RingPixel>& ring_;
   std::vector<double>& tail_;
   std::vector<uint64_t>& covered_;
-  std::vector<double> blocked_;  // directions of one end already explained (Run)
+  std::vector<double> blocked_;             // directions of one end already explained (Run)
   std::vector<Eigen::Vector2d> rotations_;  // cosine and sine of each direction's angle from the segment
   // The edge thresholds in |gx| + |gy| units: as on a chain, every aligned sample reaches the low
   // one and the branch's strongest edge point the high one (an anchor).

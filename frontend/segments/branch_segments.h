@@ -14,9 +14,9 @@ namespace sfm {
 
 // What a branch search found, for tests and diagnostics.
 struct BranchSearchStats {
-  int free_ends = 0;     // end-points searched
+  int free_ends = 0;       // end-points searched
   double log10_tests = 0;  // log10 of the number of candidate rays the NFA counts
-  int accepted = 0;      // branches appended
+  int accepted = 0;        // branches appended
 };
 
 // Appends to `segments` the branches found at their free end-points. gx, gy: the CV_16S Sobel

@@ -149,7 +149,8 @@ class FastDetector {
     for (const LinePiece& piece : pieces_) {
       if (!piece.merged_away) Validate(piece, &segments);
     }
-    if (options_.fast.branches_at_free_ends) AppendBranchSegments(gx_, gy_, magnitude_, low_, high_, options_, &segments);
+    if (options_.fast.branches_at_free_ends)
+      AppendBranchSegments(gx_, gy_, magnitude_, low_, high_, options_, &segments);
     return segments;
   }
 

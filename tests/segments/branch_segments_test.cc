@@ -1,12 +1,12 @@
 // Tests of the branch search at free segment ends (frontend/segments/branch_segments.h).
 #include "frontend/segments/branch_segments.h"
 
+#include <gtest/gtest.h>
+
 #include <algorithm>
 #include <cmath>
-#include <random>
-
-#include <gtest/gtest.h>
 #include <opencv2/imgproc.hpp>
+#include <random>
 
 #include "tests/segments/synthetic_image.h"
 
@@ -37,7 +37,9 @@ Gradient GradientOf(const cv::Mat& grey, const SegmentDetectorOptions& options) 
   return g;
 }
 
-double LineDistance(const LineSegment& line, const Eigen::Vector2d& p) { return std::abs(line.Normal().dot(p - line.p0)); }
+double LineDistance(const LineSegment& line, const Eigen::Vector2d& p) {
+  return std::abs(line.Normal().dot(p - line.p0));
+}
 
 // A dark parallelogram on a brighter background with a long side (70 px) and a short side of
 // 12.5 px meeting it at `corner_deg` degrees. The long side's segment is given, ending 1.5 px short
@@ -72,13 +74,15 @@ TEST(BranchSegmentsTest, FindsTheMissingSideOfACorner) {
       LineSegments segments(1);
       segments[0].p0 = corner - 40 * along;  // mid-side: no corner at this end
       segments[0].p1 = corner - 1.5 * along;
-      const BranchSearchStats stats = AppendBranchSegments(g.gx, g.gy, g.magnitude, g.low, g.high, options, &segments);
+      const BranchSearchStats stats =
+          AppendBranchSegments(g.gx, g.gy, g.magnitude, g.low, g.high, options, &segments);
       ASSERT_EQ(segments.size(), 2u) << "free ends " << stats.free_ends;
       LineSegment truth;
       truth.p0 = corner;
       truth.p1 = b;
       const LineSegment& branch = segments[1];
-      const Eigen::Vector2d far = (branch.p0 - corner).norm() > (branch.p1 - corner).norm() ? branch.p0 : branch.p1;
+      const Eigen::Vector2d far =
+          (branch.p0 - corner).norm() > (branch.p1 - corner).norm() ? branch.p0 : branch.p1;
       const Eigen::Vector2d near = far == branch.p0 ? branch.p1 : branch.p0;
       EXPECT_LT(LineDistance(branch, corner), 0.3);
       EXPECT_LT(LineDistance(truth, near), 0.3);
@@ -147,7 +151,8 @@ TEST(BranchSegmentsTest, FindsAtMostOneBranchPerImageInHeavyNoise) {
       s.p1 = s.p0 + 20 * Eigen::Vector2d(std::cos(a), std::sin(a));
       segments.push_back(s);
     }
-    const BranchSearchStats stats = AppendBranchSegments(g.gx, g.gy, g.magnitude, g.low, g.high, options, &segments);
+    const BranchSearchStats stats =
+        AppendBranchSegments(g.gx, g.gy, g.magnitude, g.low, g.high, options, &segments);
     branches += stats.accepted;
   }
   EXPECT_LE(branches, 20);
