@@ -183,11 +183,12 @@ class BranchSearch {
  private:
   // End-points (2 * segment + 0 or 1) with no other segment's end-point within 2 max_gap: two ends
   // that close can meet at a corner within max_gap of each (the reach of the corner rules in
-  // fast_segments.cc), so such an end has its corner candidate already, which the junction step
-  // judges. Measured (docs/junction_results.md, "Session 4"): with max_gap instead, VGG images got
-  // 21 branches each instead of 9.5, most at corners that had a junction, and consecutive VGG
-  // matching precision fell to 97.0-97.7 % (98.1-98.8 % with 2 max_gap). Bucketed in cells of
-  // 4 max_gap.
+  // fast_segments.cc), and where ends crowd like that, a branch adds a short junction among others.
+  // The radius was chosen between max_gap and 2 max_gap on VGG matching precision, a figure of
+  // issue 4 (docs/junction_results.md, "Session 4"): with max_gap, VGG images got 21 branches each
+  // instead of 9.5 and consecutive VGG matching precision fell to 97.0-97.7 % (98.1-98.8 % with
+  // 2 max_gap); keeping free the ends whose near neighbour cannot meet them at a corner gave the
+  // 21 branches back. Bucketed in cells of 4 max_gap.
   void FreeEnds(const LineSegments& s, std::vector<int>* free_ends) const {
     const double gap = 2 * options_.max_gap, cell = 2 * gap;
     const int grid_cols = static_cast<int>(cols_ / cell) + 1, grid_rows = static_cast<int>(rows_ / cell) + 1;
