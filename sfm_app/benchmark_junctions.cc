@@ -71,6 +71,8 @@ DEFINE_double(presmooth_sigma, sfm::SegmentDetectorOptions().fast.presmooth_sigm
 DEFINE_bool(corners_between_chains, sfm::SegmentDetectorOptions().fast.corners_between_chains,
             "Fast segments: short pieces meeting a long piece of another chain at a corner are measured from "
             "the corner.");
+DEFINE_bool(branches_at_free_ends, sfm::SegmentDetectorOptions().fast.branches_at_free_ends,
+            "Fast segments: look for a corner's missing side along rays from free segment end-points.");
 DEFINE_double(line_tolerance, sfm::SegmentDetectorOptions().fast.line_tolerance, "Fast segments: splitting tolerance, px.");
 DEFINE_string(overlay_dir, "", "If set, write overlays there (every 10th generated frame, every VGG image), "
                                "with missed true junctions circled in white.");
@@ -990,6 +992,7 @@ int main(int argc, char** argv) {
     method.options.fast.log10_nfa_max = FLAGS_log10_nfa_max;
     method.options.fast.line_tolerance = FLAGS_line_tolerance;
     method.options.fast.corners_between_chains = FLAGS_corners_between_chains;
+    method.options.fast.branches_at_free_ends = FLAGS_branches_at_free_ends;
     method.options.fast.presmooth_sigma = FLAGS_presmooth_sigma;
     if (name == "fast") {
       method.options.method = SegmentMethod::kFast;

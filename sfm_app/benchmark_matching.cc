@@ -69,6 +69,8 @@ DEFINE_int32(speed_repeats, 21, "Time each pair's matching this many times and t
 DEFINE_int32(speed_junctions, 150, "e: also time the VGG pairs with only this many strongest junctions per frame.");
 DEFINE_double(lbd_min_length, sfm::SegmentDetectorOptions().min_length, "LSD segments shorter than this are dropped, px.");
 DEFINE_string(segments, "fast", "Our segment detector: 'fast' or 'reference'.");
+DEFINE_bool(branches_at_free_ends, sfm::SegmentDetectorOptions().fast.branches_at_free_ends,
+            "Fast segments: look for a corner's missing side along rays from free segment end-points.");
 DEFINE_double(endpoint_lambda, kJunctionDefaults.endpoint_model.lambda, "End-point model eq. (5), t >= 0, 1/px.");
 DEFINE_double(endpoint_mu, kJunctionDefaults.endpoint_model.mu, "End-point model eq. (5), t < 0, 1/px.");
 DEFINE_double(junction_min_probability, kJunctionDefaults.min_probability, "Junction threshold, (0, 1].");
@@ -855,6 +857,7 @@ int main(int argc, char** argv) {
   } else {
     return fail(2, "--segments must be 'fast' or 'reference', not '" + FLAGS_segments + "'");
   }
+  settings.segments.fast.branches_at_free_ends = FLAGS_branches_at_free_ends;
   const EndpointModel model{FLAGS_endpoint_lambda, FLAGS_endpoint_mu};
   settings.junctions.endpoint_model = model;
   settings.junctions.min_probability = FLAGS_junction_min_probability;

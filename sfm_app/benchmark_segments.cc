@@ -44,6 +44,8 @@ DEFINE_double(min_segment_length, sfm::SegmentDetectorOptions().min_length,
 DEFINE_bool(corners_between_chains, sfm::SegmentDetectorOptions().fast.corners_between_chains,
             "Fast path: short pieces meeting a long piece of another chain at a corner are measured from the "
             "corner.");
+DEFINE_bool(branches_at_free_ends, sfm::SegmentDetectorOptions().fast.branches_at_free_ends,
+            "Fast segments: look for a corner's missing side along rays from free segment end-points.");
 DEFINE_string(overlay_dir, "", "If set, write <method>_<image>.png overlays of the segments found there.");
 
 namespace sfm {
@@ -86,6 +88,7 @@ std::vector<Method> Methods() {
   fast.method = SegmentMethod::kFast;
   fast.min_length = FLAGS_min_segment_length;
   fast.fast.corners_between_chains = FLAGS_corners_between_chains;
+  fast.fast.branches_at_free_ends = FLAGS_branches_at_free_ends;
   methods.push_back(
       {"ours: fast (Sobel + chaining)", [fast](const cv::Mat& grey) { return DetectLineSegments(grey, fast); }});
   // The speed goal is for segments and junctions together, in the same run as cv::Canny.

@@ -46,6 +46,8 @@ DEFINE_bool(progress, true, "Show a progress line on stderr (only when stderr is
 
 DEFINE_string(segments, "fast", "Line segment detector: 'fast' (anchored edge chaining) or 'reference' "
                                 "(the paper's edge filter + Hough transform + sub-pixel fit).");
+DEFINE_bool(branches_at_free_ends, kDefaults.segments.fast.branches_at_free_ends,
+            "Fast segments: look for a corner's missing side along rays from free segment end-points.");
 DEFINE_double(endpoint_lambda, kDefaults.junctions.endpoint_model.lambda,
               "End-point model eq. (5): decay, 1/px, of a detected end-point lying beyond the true one.");
 DEFINE_double(endpoint_mu, kDefaults.junctions.endpoint_model.mu,
@@ -130,6 +132,7 @@ bool OptionsFromFlags(sfm::PipelineOptions* options, std::string* error) {
     *error = "--segments must be 'fast' or 'reference', not '" + FLAGS_segments + "'";
     return false;
   }
+  options->segments.fast.branches_at_free_ends = FLAGS_branches_at_free_ends;
   const sfm::EndpointModel endpoint_model{FLAGS_endpoint_lambda, FLAGS_endpoint_mu};
   options->junctions.endpoint_model = endpoint_model;
   options->junctions.min_probability = FLAGS_junction_min_probability;

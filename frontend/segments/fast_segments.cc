@@ -10,6 +10,7 @@
 #include <glog/logging.h>
 #include <opencv2/imgproc.hpp>
 
+#include "frontend/segments/branch_segments.h"
 #include "frontend/segments/collinear_merge.h"
 #include "frontend/segments/line_fit.h"
 #include "frontend/segments/nfa.h"
@@ -148,6 +149,8 @@ class FastDetector {
     for (const LinePiece& piece : pieces_) {
       if (!piece.merged_away) Validate(piece, &segments);
     }
+    if (options_.fast.branches_at_free_ends)
+      AppendBranchSegments(gx_, gy_, magnitude_, low_, high_, options_, &segments);
     return segments;
   }
 

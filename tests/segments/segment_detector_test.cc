@@ -243,10 +243,22 @@ int ShortSidesFoundOverAFaceEdge(const SegmentDetectorOptions& options) {
 
 TEST(FastSegmentsTest, FindsShortSidesWhoseCornerLiesBetweenChains) {
   SegmentDetectorOptions options;  // the rule is off by default (segment_detector.h says why)
+  options.fast.branches_at_free_ends = false;  // which finds some of the same sides (next test)
   options.fast.corners_between_chains = true;
   EXPECT_GE(ShortSidesFoundOverAFaceEdge(options), 8);
   options.fast.corners_between_chains = false;
   EXPECT_LE(ShortSidesFoundOverAFaceEdge(options), 5);  // the rule is what finds them
+}
+
+// The same short sides found by the branch search at free segment ends (branch_segments.h): the
+// long side's end at the cut corner is free, and the short side is a ray of aligned gradient from
+// there. Measured: 10 of the 32 with the search, 4 without. Floor: 9.
+TEST(FastSegmentsTest, FindsShortSidesOverAFaceEdgeByBranchSearch) {
+  SegmentDetectorOptions options;  // on by default (segment_detector.h)
+  options.fast.branches_at_free_ends = true;
+  EXPECT_GE(ShortSidesFoundOverAFaceEdge(options), 9);
+  options.fast.branches_at_free_ends = false;
+  EXPECT_LE(ShortSidesFoundOverAFaceEdge(options), 5);  // the search is what finds them
 }
 
 // Segments are oriented with the brighter side along Normal() (segment_detector.h).

@@ -1,0 +1,500 @@
+#include "frontend/segments/branch_segments.h"
+
+#include <glog/logging.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <vector>
+
+#include "frontend/segments/line_fit.h"
+#include "frontend/segments/nfa.h"
+
+namespace sfm {
+namespace {
+
+// The NFA's angle precision, as for every segment of the fast path: a sample is aligned when its
+// gradient lies within 22.5 degrees of the ray's normal (LSD, EDLines).
+constexpr double kAlignedProbability = 1.0 / 8;
+const double kAlignedCos2 = std::pow(std::cos(M_PI * kAlignedProbability), 2);
+// A branch closer than the alignment tolerance to the segment's own direction cannot be told from
+// the segment's blurred end: its gradient there passes the alignment test for the ray's normal.
+constexpr double kMinBranchAngle = M_PI * kAlignedProbability;
+// The corner lies beyond the end-point: a sigma = 1 px edge filter stops an edge 1-2 px short of
+// its corner (docs/segments.md: 1.2 px median on synthetic polygons, fast path). Rays start 1 px
+// beyond the end-point.
+constexpr double kCornerOffset = 1.0;
+// Samples start 2 px from the ray's origin: nearer the corner the smoothed gradient mixes the two
+// edges' directions (2 sigma of the edge filter).
+constexpr int kFirstSample = 2;
+// Segments are marked as covered from this far inside their end-points, px (MarkCovered).
+constexpr double kEndMargin = 1.0;
+// A run of aligned samples ends at two misaligned ones in a row (one may be a noise outlier).
+constexpr int kMaxMisses = 2;
+// Branches of one end-point must differ by twice the alignment tolerance (a Y or an ARROW can have
+// two missing sides).
+constexpr double kMinBranchSeparation = 2 * M_PI * kAlignedProbability;
+constexpr int kMaxBranchesPerEnd = 2;
+// PromisingDirections marks the direction steps within this many of an edge pixel's: a pixel in
+// the outer ring (3-4.5 px away) places a direction to +-0.5 px / 3.75 px = +-7.6 degrees, about
+// 1.5 steps; with the rounding to the nearest step, +-1 step covers it. (+-2 steps: junction recall
+// 84.5 instead of 84.3 %, 25 % more branches on VGG and a slower search.)
+constexpr int kSpread = 1;
+// Lines closer to parallel than about 11.5 degrees give no corner (as MarkCornerLengths).
+constexpr double kMinCornerSine = 0.2;
+// Sub-pixel edge points across a ray are gathered this far from it, px; a point farther than this
+// from the fitted line is dropped before the refit.
+constexpr double kGatherDistance = 1.5;
+
+struct Candidate {
+  double log10_nfa = 0;
+  double angle = 0;  // of the ray's direction, radians
+  int end = 0;       // 2 * segment + (0: p0, 1: p1)
+  int polarity = 0;  // +1: the gradient points along the ray's normal, -1: against it
+  int last = 0;      // distance of the last aligned sample from the origin, px
+};
+
+struct RingPixel {
+  int dx, dy;
+  double r2, angle;
+  std::ptrdiff_t offset;  // dy * cols + dx, for the current image
+};
+
+// Buffers kept per thread between images (fresh ones cost page faults and the tails' lgamma calls).
+struct Workspace {
+  std::vector<RingPixel> ring;    // offsets 1.5-4.5 px from a pixel, with squared length and angle
+  std::vector<double> tail;       // log10 binomial tail of (samples, aligned), (max_sample + 1)^2
+  std::vector<uint64_t> covered;  // one bit per pixel: a segment passes through it
+};
+
+class BranchSearch {
+ public:
+  BranchSearch(const cv::Mat& gx, const cv::Mat& gy, const cv::Mat& magnitude, int low_magnitude,
+               int high_magnitude, const SegmentDetectorOptions& options, Workspace* workspace)
+      : gx_(gx.ptr<int16_t>()),
+        gy_(gy.ptr<int16_t>()),
+        mag_(magnitude.ptr<int16_t>()),
+        rows_(gx.rows),
+        cols_(gx.cols),
+        options_(options),
+        ring_(workspace->ring),
+        tail_(workspace->tail),
+        covered_(workspace->covered),
+        low_(low_magnitude),
+        high_(high_magnitude) {
+    // A branch reaches at most four minimum lengths: longer edges give chains of their own.
+    max_sample_ = static_cast<int>(std::ceil(4 * options.min_length));
+    // Directions 1 / (min_length + max_gap) rad apart: over the shortest branch (min_length from a
+    // corner up to max_gap beyond the end) a ray half a step off drifts by half a pixel.
+    step_ = 1.0 / (options.min_length + options.max_gap);
+    directions_per_side_ = static_cast<int>(std::floor((M_PI - 2 * kMinBranchAngle) / step_)) + 1;
+    CHECK_LE(directions_per_side_, 64) << "min_length + max_gap too large for the direction masks";
+    for (int k = 0; k < directions_per_side_; ++k) {
+      const double offset = kMinBranchAngle + k * step_;
+      rotations_.emplace_back(std::cos(offset), std::sin(offset));
+    }
+    // The binomial tails of every (samples, aligned) a ray can give, kept between images.
+    if (tail_.size() != static_cast<size_t>(max_sample_ + 1) * (max_sample_ + 1)) {
+      tail_.assign(static_cast<size_t>(max_sample_ + 1) * (max_sample_ + 1), 0);
+      for (int n = 1; n <= max_sample_; ++n) {
+        for (int k = 0; k <= n; ++k)
+          tail_[n * (max_sample_ + 1) + k] = Log10BinomialTail(n, k, kAlignedProbability);
+      }
+    }
+    // The pixels 1.5-4.5 px from a pixel, with their angles (MarkPromisingDirections).
+    if (ring_.empty()) {
+      constexpr double kInner = 1.5, kOuter = 4.5;
+      for (int dy = -4; dy <= 4; ++dy) {
+        for (int dx = -4; dx <= 4; ++dx) {
+          const double r2 = dx * dx + dy * dy;
+          if (r2 >= kInner * kInner && r2 <= kOuter * kOuter)
+            ring_.push_back({dx, dy, r2, std::atan2(dy, dx), 0});
+        }
+      }
+    }
+    for (RingPixel& q : ring_) q.offset = static_cast<std::ptrdiff_t>(q.dy) * cols_ + q.dx;
+  }
+
+  BranchSearchStats Run(LineSegments* segments) {
+    BranchSearchStats stats;
+    const LineSegments& s = *segments;
+    const int n = static_cast<int>(s.size());
+    std::vector<int> free_ends;
+    MarkCovered(s);
+    FreeEnds(s, &free_ends);
+    stats.free_ends = static_cast<int>(free_ends.size());
+    if (free_ends.empty()) return stats;
+    // Every (free end, direction, polarity, length) is a candidate the test could accept.
+    const double tests = static_cast<double>(free_ends.size()) * 2 * directions_per_side_ * 2 *
+                         (max_sample_ - kFirstSample + 1);
+    log10_tests_ = std::log10(tests);
+    stats.log10_tests = log10_tests_;
+    std::vector<Candidate> candidates;
+    for (const int end : free_ends) {
+      candidates.clear();
+      const LineSegment& segment = s[end / 2];
+      const Eigen::Vector2d e = end % 2 == 0 ? segment.p0 : segment.p1;
+      const Eigen::Vector2d u = end % 2 == 0 ? Eigen::Vector2d(-segment.Direction()) : segment.Direction();
+      const Eigen::Vector2d origin = e + kCornerOffset * u;
+      if (!OtherEdgeAt(origin, u)) continue;
+      const double base = std::atan2(u.y(), u.x());
+      uint64_t promising[2];
+      PromisingDirections(origin, base, promising);
+      for (int side = -1; side <= 1; side += 2) {
+        for (uint64_t bits = promising[(side + 1) / 2]; bits != 0; bits &= bits - 1) {
+          const int k = __builtin_ctzll(bits);
+          Candidate c;
+          c.angle = base + side * (kMinBranchAngle + k * step_);
+          c.end = end;
+          // u rotated by the offset, to this side.
+          const double cosine = rotations_[k].x(), sine = side * rotations_[k].y();
+          const Eigen::Vector2d v(cosine * u.x() - sine * u.y(), sine * u.x() + cosine * u.y());
+          if (Ray(origin, v, &c)) candidates.push_back(c);
+        }
+      }
+      std::sort(candidates.begin(), candidates.end(),
+                [](const Candidate& a, const Candidate& b) { return a.log10_nfa < b.log10_nfa; });
+      // Directions taken by a branch, or along an existing segment: a candidate within
+      // kMinBranchSeparation of one is the same edge.
+      blocked_.clear();
+      int taken = 0;
+      for (const Candidate& c : candidates) {
+        if (taken >= kMaxBranchesPerEnd) break;
+        const bool apart = std::all_of(blocked_.begin(), blocked_.end(), [&](double a) {
+          return std::abs(std::remainder(a - c.angle, 2 * M_PI)) >= kMinBranchSeparation;
+        });
+        if (!apart) continue;
+        if (AlongOtherSegment(origin, c)) {
+          blocked_.push_back(c.angle);
+          continue;
+        }
+        LineSegment branch;
+        if (!Branch(segment, e, origin, c, &branch)) continue;
+        blocked_.push_back(c.angle);
+        ++taken;
+        segments->push_back(branch);
+        ++stats.accepted;
+      }
+    }
+    CHECK_GE(static_cast<int>(segments->size()), n);
+    return stats;
+  }
+
+ private:
+  // End-points (2 * segment + 0 or 1) with no other segment's end-point within 2 max_gap: two ends
+  // that close can meet at a corner within max_gap of each (the reach of the corner rules in
+  // fast_segments.cc), and where ends crowd like that, a branch adds a short junction among others.
+  // The radius was chosen between max_gap and 2 max_gap on VGG matching precision, a figure of
+  // issue 4 (docs/junction_results.md, "Session 4"): with max_gap, VGG images got 21 branches each
+  // instead of 9.5 and consecutive VGG matching precision fell to 97.0-97.7 % (98.1-98.8 % with
+  // 2 max_gap); keeping free the ends whose near neighbour cannot meet them at a corner gave the
+  // 21 branches back. Bucketed in cells of 4 max_gap.
+  void FreeEnds(const LineSegments& s, std::vector<int>* free_ends) const {
+    const double gap = 2 * options_.max_gap, cell = 2 * gap;
+    const int grid_cols = static_cast<int>(cols_ / cell) + 1, grid_rows = static_cast<int>(rows_ / cell) + 1;
+    auto cell_of = [&](const Eigen::Vector2d& p, int* cx, int* cy) {
+      *cx = std::clamp(static_cast<int>(p.x() / cell), 0, grid_cols - 1);
+      *cy = std::clamp(static_cast<int>(p.y() / cell), 0, grid_rows - 1);
+    };
+    const int m = static_cast<int>(2 * s.size());
+    auto end_point = [&](int i) -> const Eigen::Vector2d& { return i % 2 == 0 ? s[i / 2].p0 : s[i / 2].p1; };
+    std::vector<int> begin(static_cast<size_t>(grid_cols) * grid_rows + 1, 0), order(m);
+    for (int i = 0; i < m; ++i) {
+      int cx, cy;
+      cell_of(end_point(i), &cx, &cy);
+      ++begin[cy * grid_cols + cx + 1];
+    }
+    for (size_t c = 1; c < begin.size(); ++c) begin[c] += begin[c - 1];
+    std::vector<int> fill(begin.begin(), begin.end() - 1);
+    for (int i = 0; i < m; ++i) {
+      int cx, cy;
+      cell_of(end_point(i), &cx, &cy);
+      order[fill[cy * grid_cols + cx]++] = i;
+    }
+    for (int i = 0; i < m; ++i) {
+      const Eigen::Vector2d& p = end_point(i);
+      if (!(s[i / 2].Length() > 0)) continue;
+      int cx, cy;
+      cell_of(p, &cx, &cy);
+      bool alone = true;
+      for (int y = std::max(cy - 1, 0); y <= std::min(cy + 1, grid_rows - 1) && alone; ++y) {
+        for (int x = std::max(cx - 1, 0); x <= std::min(cx + 1, grid_cols - 1) && alone; ++x) {
+          const int c = y * grid_cols + x;
+          for (int k = begin[c]; k < begin[c + 1] && alone; ++k) {
+            const int j = order[k];
+            alone = j / 2 == i / 2 || (end_point(j) - p).squaredNorm() > gap * gap;
+          }
+        }
+      }
+      // An end that runs into another segment's interior within max_gap (a T's stem, or an L
+      // whose other side continues past the corner) has its junction too. From 2 px on: the 3 x 3
+      // pixels around a point 1 px beyond the end could hold the segment's own last marked pixel.
+      const Eigen::Vector2d u = i % 2 == 0 ? Eigen::Vector2d(-s[i / 2].Direction()) : s[i / 2].Direction();
+      for (int r = 2; r <= static_cast<int>(options_.max_gap) && alone; ++r) {
+        int x, y;
+        alone = !PixelAt(p + r * u, &x, &y) || !Covered(x, y);
+      }
+      if (alone) free_ends->push_back(i);
+    }
+  }
+
+  // Whether an edge other than the segment's own passes the ray origin: one of the 3 x 3 pixels
+  // around it has a gradient at the low threshold and at least 22.5 degrees (the NFA's precision)
+  // from the segment's normal. The corner lies about a pixel from the origin, and there the
+  // missing side's gradient turns the field; where the segment's own edge only fades or dips, the
+  // field keeps its normal. Only a pruning, like PromisingDirections.
+  bool OtherEdgeAt(const Eigen::Vector2d& origin, const Eigen::Vector2d& u) const {
+    int cx, cy;
+    if (!PixelAt(origin, &cx, &cy)) return false;
+    for (int dy = -1; dy <= 1; ++dy) {
+      for (int dx = -1; dx <= 1; ++dx) {
+        const size_t i = static_cast<size_t>(cy + dy) * cols_ + cx + dx;
+        if (mag_[i] < low_) continue;
+        const double g_x = gx_[i], g_y = gy_[i];
+        const double across = g_y * u.x() - g_x * u.y();  // along the segment's normal (-u.y, u.x)
+        if (across * across < kAlignedCos2 * (g_x * g_x + g_y * g_y)) return true;
+      }
+    }
+    return false;
+  }
+
+  // Which directions are worth a ray, as bit k of promising[side] (side 0: clockwise offsets):
+  // those within two steps of an edge pixel (magnitude at least the low threshold) 1.5-3 px from
+  // the origin's pixel and of one 3-4.5 px from it, each with its gradient aligned with the normal
+  // of the direction from there to it. A side of a corner has edge pixels at both distances. Only
+  // a pruning: a ray whose first samples miss such pixels stops at once, and the NFA still counts
+  // every direction.
+  void PromisingDirections(const Eigen::Vector2d& origin, double base, uint64_t promising[2]) const {
+    uint64_t marks[2][2] = {{0, 0}, {0, 0}};  // [inner or outer ring][side]
+    promising[0] = promising[1] = 0;
+    int cx, cy;
+    if (!PixelAt(origin, &cx, &cy) || cx < 5 || cy < 5 || cx >= cols_ - 5 || cy >= rows_ - 5) return;
+    const size_t centre = static_cast<size_t>(cy) * cols_ + cx;
+    const double max_offset = kMinBranchAngle + (directions_per_side_ + 1) * step_;
+    for (const RingPixel& q : ring_) {
+      const size_t i = centre + q.offset;
+      if (mag_[i] < low_) continue;
+      double offset = q.angle - base;
+      if (offset > M_PI) offset -= 2 * M_PI;
+      if (offset < -M_PI) offset += 2 * M_PI;
+      const double from_min = std::abs(offset) - kMinBranchAngle;
+      if (from_min < -2.5 * step_ || std::abs(offset) > max_offset) continue;
+      const int g_x = gx_[i], g_y = gy_[i];
+      const double along = g_y * q.dx - g_x * q.dy;
+      if (along * along < kAlignedCos2 * (g_x * g_x + g_y * g_y) * q.r2) continue;
+      const int k = static_cast<int>(from_min / step_ + 2.5) - 2;  // rounded, for k >= -2
+      const int low = std::max(k - kSpread, 0), high = std::min(k + kSpread, directions_per_side_ - 1);
+      if (low > high) continue;
+      marks[q.r2 > 9 ? 1 : 0][offset < 0 ? 0 : 1] |= ((~uint64_t{0}) >> (63 - (high - low))) << low;
+    }
+    promising[0] = marks[0][0] & marks[1][0];
+    promising[1] = marks[0][1] & marks[1][1];
+  }
+
+  // Marks the pixels along every segment (one per step of the major axis), 1 px in from each end:
+  // a ray from an end-point, which starts beyond it, then never meets its own segment's marks. A
+  // bit per pixel, so that the map stays in cache (a 512 x 512 image: 32 KB).
+  void MarkCovered(const LineSegments& s) {
+    covered_.assign((static_cast<size_t>(rows_) * cols_ + 63) / 64, 0);
+    for (const LineSegment& segment : s) {
+      const double length = segment.Length();
+      if (!(length > 2 * kEndMargin)) continue;
+      const Eigen::Vector2d a = segment.p0 + kEndMargin / length * (segment.p1 - segment.p0);
+      const Eigen::Vector2d d = (length - 2 * kEndMargin) / length * (segment.p1 - segment.p0);
+      const int steps = static_cast<int>(std::max(std::abs(d.x()), std::abs(d.y()))) + 1;
+      for (int i = 0; i <= steps; ++i) {
+        int x, y;
+        if (!PixelAt(a + d * (static_cast<double>(i) / steps), &x, &y)) continue;
+        const size_t index = static_cast<size_t>(y) * cols_ + x;
+        covered_[index >> 6] |= uint64_t{1} << (index & 63);
+      }
+    }
+  }
+
+  // Whether more than half the ray's samples lie within about a pixel of a segment: the ray runs
+  // along a segment that is there already.
+  bool AlongOtherSegment(const Eigen::Vector2d& origin, const Candidate& c) const {
+    const Eigen::Vector2d v(std::cos(c.angle), std::sin(c.angle));
+    int covered = 0, samples = 0;
+    for (int r = kFirstSample; r <= c.last; ++r) {
+      int x, y;
+      if (!PixelAt(origin + r * v, &x, &y)) return true;
+      ++samples;
+      if (Covered(x, y)) ++covered;
+    }
+    return 2 * covered > samples;
+  }
+
+  // Whether a segment passes within about a pixel of pixel (x, y) (not on the border): one of its
+  // 3 x 3 pixels is marked.
+  bool Covered(int x, int y) const {
+    for (int dy = -1; dy <= 1; ++dy) {
+      for (int dx = -1; dx <= 1; ++dx) {
+        const size_t index = static_cast<size_t>(y + dy) * cols_ + x + dx;
+        if ((covered_[index >> 6] >> (index & 63)) & 1) return true;
+      }
+    }
+    return false;
+  }
+
+  // The pixel nearest p, or false when it lies within a pixel of the border.
+  bool PixelAt(const Eigen::Vector2d& p, int* x, int* y) const {
+    // Rounding as truncation of p + 0.5 (a point left of -0.5 truncates to 0 and fails the test).
+    *x = static_cast<int>(p.x() + 0.5);
+    *y = static_cast<int>(p.y() + 0.5);
+    return *x >= 1 && *y >= 1 && *x < cols_ - 1 && *y < rows_ - 1;
+  }
+
+  // The run of aligned samples along the ray from `origin` in direction v: samples every pixel from
+  // kFirstSample, the polarity set by the first aligned one, until kMaxMisses misaligned in a row.
+  // Fills c's polarity, last and log10 NFA; false when no run could be a segment.
+  bool Ray(const Eigen::Vector2d& origin, const Eigen::Vector2d& v, Candidate* c) const {
+    const Eigen::Vector2d normal(-v.y(), v.x());
+    int polarity = 0, misses = 0, aligned = 0, aligned_at_last = 0, last = 0;
+    // The ray is a segment: when both its ends are inside, every sample is.
+    int x, y;
+    const bool inside =
+        PixelAt(origin + kFirstSample * v, &x, &y) && PixelAt(origin + max_sample_ * v, &x, &y);
+    for (int r = kFirstSample; r <= max_sample_; ++r) {
+      const Eigen::Vector2d p = origin + r * v;
+      if (inside) {
+        x = static_cast<int>(p.x() + 0.5);
+        y = static_cast<int>(p.y() + 0.5);
+      } else if (!PixelAt(p, &x, &y)) {
+        break;
+      }
+      const size_t i = static_cast<size_t>(y) * cols_ + x;
+      // |gx| + |gy| from the two loads rather than a third array (the search is bound by memory).
+      const int ix = gx_[i], iy = gy_[i];
+      const double g_x = ix, g_y = iy;
+      const double along = g_x * normal.x() + g_y * normal.y();
+      const bool parallel = std::abs(ix) + std::abs(iy) >= low_ &&
+                            along * along >= kAlignedCos2 * (g_x * g_x + g_y * g_y) && along != 0;
+      if (polarity == 0 && parallel) polarity = along > 0 ? 1 : -1;
+      if (parallel && along * polarity > 0) {
+        ++aligned;
+        aligned_at_last = aligned;
+        last = r;
+        misses = 0;
+      } else if (++misses >= kMaxMisses) {
+        break;
+      }
+    }
+    // Too short to reach min_length from a corner at most max_gap behind the origin: not a branch.
+    if (last + options_.max_gap + kCornerOffset < options_.min_length) return false;
+    const int samples = last - kFirstSample + 1;
+    c->polarity = polarity;
+    c->last = last;
+    c->log10_nfa = log10_tests_ + tail_[samples * (max_sample_ + 1) + aligned_at_last];
+    return c->log10_nfa <= options_.fast.log10_nfa_max;
+  }
+
+  // The branch of candidate c: a line fitted to the sub-pixel edge points across the ray, checked
+  // for its corner with `segment` (end-point e) and its length from that corner.
+  bool Branch(const LineSegment& segment, const Eigen::Vector2d& e, const Eigen::Vector2d& origin,
+              const Candidate& c, LineSegment* branch) const {
+    const Eigen::Vector2d v(std::cos(c.angle), std::sin(c.angle)), normal(-v.y(), v.x());
+    // Across the ray: along the image axis closest to its normal (as the chains' sub-pixel points).
+    const bool across_y = std::abs(normal.y()) >= std::abs(normal.x());
+    const int step = across_y ? cols_ : 1;
+    std::vector<Eigen::Vector2d> points;
+    int samples = 0, strongest = 0;
+    for (int r = kFirstSample; r <= c.last; ++r) {
+      const Eigen::Vector2d p = origin + r * v;
+      int x, y;
+      if (!PixelAt(p, &x, &y)) return false;
+      ++samples;
+      // The magnitude maximum among the pixel and its two neighbours across the ray.
+      int best = y * cols_ + x;
+      for (int k = -1; k <= 1; k += 2) {
+        const int q = y * cols_ + x + k * step;
+        const int qx = q % cols_, qy = q / cols_;
+        if (qx >= 1 && qy >= 1 && qx < cols_ - 1 && qy < rows_ - 1 && mag_[q] > mag_[best]) best = q;
+      }
+      const double before = mag_[best - step], centre = mag_[best], after = mag_[best + step];
+      const double curvature = before - 2 * centre + after;
+      if (!(centre >= before && centre >= after && curvature < 0)) continue;
+      strongest = std::max(strongest, static_cast<int>(centre));
+      const double delta = 0.5 * (before - after) / curvature;
+      const Eigen::Vector2d point = across_y ? Eigen::Vector2d(best % cols_, best / cols_ + delta)
+                                             : Eigen::Vector2d(best % cols_ + delta, best / cols_);
+      if (std::abs(normal.dot(point - origin)) <= kGatherDistance) points.push_back(point);
+    }
+    if (points.size() < 3 || strongest < high_) return false;
+    LineFitAccumulator fit;
+    for (const Eigen::Vector2d& p : points) fit.Add(p);
+    FittedLine line = fit.Fit();
+    std::vector<Eigen::Vector2d> kept;
+    for (const Eigen::Vector2d& p : points) {
+      if (std::abs(line.Distance(p)) <= options_.fast.line_tolerance) kept.push_back(p);
+    }
+    // Most samples must give an edge point on one line (a ray across texture gives scattered ones).
+    if (3 * kept.size() < 2 * static_cast<size_t>(samples) || kept.size() < 3) return false;
+    LineFitAccumulator refit;
+    for (const Eigen::Vector2d& p : kept) refit.Add(p);
+    line = refit.Fit();
+    // As the chains' pieces (fast_segments.cc, SplitChain): the line is refitted without the end
+    // points farther than half the tolerance from it, the corner's arc, which tilts a short line;
+    // the end-points stay the projections of the outermost points.
+    const double seed_tolerance = 0.5 * options_.fast.line_tolerance;
+    for (size_t first = 0, last = kept.size(); last - first > 3;) {
+      if (std::abs(line.Distance(kept[first])) > seed_tolerance) {
+        refit.Remove(kept[first++]);
+      } else if (std::abs(line.Distance(kept[last - 1])) > seed_tolerance) {
+        refit.Remove(kept[--last]);
+      } else {
+        break;
+      }
+      line = refit.Fit();
+    }
+    fit = refit;
+    if (line.direction.dot(v) < 0) line.direction = -line.direction;
+    if (line.direction.dot(v) < std::cos(M_PI * kAlignedProbability)) return false;
+    // The corner: the branch's line meets the segment's line near the end-point.
+    const Eigen::Vector2d d = segment.Direction();
+    const double sine = d.x() * line.direction.y() - d.y() * line.direction.x();
+    if (std::abs(sine) < kMinCornerSine) return false;
+    const Eigen::Vector2d q = segment.Normal();
+    const double s = -q.dot(line.centroid - segment.p0) / q.dot(line.direction);
+    const Eigen::Vector2d corner = line.centroid + s * line.direction;
+    if ((corner - e).norm() > options_.max_gap) return false;
+    *branch = SegmentOnLine(line, kept.front(), kept.back(), fit.count());
+    const Eigen::Vector2d far = line.Project(kept.back());
+    if ((far - corner).dot(line.direction) < options_.min_length) return false;
+    // Brighter side along Normal() (segment_detector.h): the gradient's polarity across the ray.
+    if (branch->Normal().dot(c.polarity * normal) < 0) std::swap(branch->p0, branch->p1);
+    return true;
+  }
+
+  const int16_t* gx_;
+  const int16_t* gy_;
+  const int16_t* mag_;
+  const int rows_, cols_;
+  const SegmentDetectorOptions& options_;
+  int max_sample_ = 0, directions_per_side_ = 0;
+  double step_ = 0, log10_tests_ = 0;
+  std::vector<RingPixel>& ring_;
+  std::vector<double>& tail_;
+  std::vector<uint64_t>& covered_;
+  std::vector<double> blocked_;             // directions of one end already explained (Run)
+  std::vector<Eigen::Vector2d> rotations_;  // cosine and sine of each direction's angle from the segment
+  // The edge thresholds in |gx| + |gy| units: as on a chain, every aligned sample reaches the low
+  // one and the branch's strongest edge point the high one (an anchor).
+  int low_ = 0, high_ = 0;
+};
+
+}  // namespace
+
+BranchSearchStats AppendBranchSegments(const cv::Mat& gx, const cv::Mat& gy, const cv::Mat& magnitude,
+                                       int low_magnitude, int high_magnitude,
+                                       const SegmentDetectorOptions& options, LineSegments* segments) {
+  CHECK_EQ(gx.type(), CV_16S);
+  CHECK_EQ(gy.type(), CV_16S);
+  CHECK_EQ(magnitude.type(), CV_16S);
+  CHECK(gx.isContinuous() && gy.isContinuous() && magnitude.isContinuous());
+  if (gx.rows < 3 || gx.cols < 3) return {};
+  thread_local Workspace workspace;
+  return BranchSearch(gx, gy, magnitude, low_magnitude, high_magnitude, options, &workspace).Run(segments);
+}
+
+}  // namespace sfm
