@@ -250,8 +250,10 @@ class BundleAdjuster {
     for (const PoseParameters& pose : poses_) camera_z_m += (pose.ToPose() * base_T_camera_).translation.z();
     camera_z_m /= poses_.size();
     const double half_width_m = 3 * sigma_m;
-    const FloorPlane plane =
-        FindFloorPlane(*landmarks_, camera_z_m, half_width_m, options_.floor_min_landmarks);
+    // After the first selection the prior has pulled the floor it chose to z = 0: look for it
+    // there, not again from below (stray landmarks under the floor may then gather in a slab).
+    const FloorPlane plane = FindFloorPlane(*landmarks_, camera_z_m, half_width_m, options_.floor_min_landmarks,
+                                            first ? std::nullopt : std::optional<double>(0.0));
     if (!plane.found) return skip(plane.why);
     if (first) summary_->floor_plane_z_m = plane.z_m;
     // The floor of a map whose trajectory is s times too long is at (1 - s) * camera height

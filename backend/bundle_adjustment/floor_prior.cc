@@ -49,7 +49,26 @@ std::string FloorPriorRigProblem(const Pose3& base_T_camera, const std::vector<P
   return "";
 }
 
-FloorPlane FindFloorPlane(const Landmarks& landmarks, double camera_z_m, double half_width_m, int min_support) {
+namespace {
+
+// The slab's centre moved from `centre` to the median of the heights it holds until it stays (at
+// most 20 moves); nullopt when it holds none.
+std::optional<double> SettleSlab(const std::vector<double>& sorted_heights, double centre, double half_width_m) {
+  for (int iteration = 0; iteration < 20; ++iteration) {
+    const auto first = std::lower_bound(sorted_heights.begin(), sorted_heights.end(), centre - half_width_m);
+    const auto last = std::upper_bound(sorted_heights.begin(), sorted_heights.end(), centre + half_width_m);
+    if (first == last) return std::nullopt;
+    const double median = *(first + (last - first) / 2);
+    if (median == centre) break;
+    centre = median;
+  }
+  return centre;
+}
+
+}  // namespace
+
+FloorPlane FindFloorPlane(const Landmarks& landmarks, double camera_z_m, double half_width_m, int min_support,
+                          std::optional<double> around_z_m) {
   std::vector<double> heights;
   for (const PointLandmark& point : landmarks.points) {
     if (point.position.z() < camera_z_m) heights.push_back(point.position.z());
@@ -66,22 +85,30 @@ FloorPlane FindFloorPlane(const Landmarks& landmarks, double camera_z_m, double 
   // The lowest window [heights[i], heights[i] + width] holding enough; then the slab is moved to
   // the median of what it holds until it stays (a window that starts on a few stray landmarks
   // below the floor holds only the floor's lower part, and its own median is too low).
+  auto support = [&](double centre) {
+    return static_cast<int>(
+        std::count_if(heights.begin(), heights.end(), [&](double z) { return InSlab(z, centre, half_width_m); }));
+  };
+  if (around_z_m) {
+    const std::optional<double> centre = SettleSlab(heights, *around_z_m, half_width_m);
+    if (centre && support(*centre) >= needed) {
+      plane.z_m = *centre;
+      plane.support = support(*centre);
+      plane.found = true;
+      return plane;
+    }
+    plane.why = "fewer than " + std::to_string(needed) + " landmarks within " + Format(half_width_m) + " m of z = " +
+                Format(*around_z_m) + " m";
+    return plane;
+  }
   size_t end = 0;
   for (size_t i = 0; i < heights.size(); ++i) {
     end = std::max(end, i);
     while (end < heights.size() && heights[end] <= heights[i] + width_m) ++end;
     if (static_cast<int>(end - i) < needed) continue;
-    double centre = heights[i + (end - i) / 2];
-    for (int iteration = 0; iteration < 20; ++iteration) {
-      const auto first = std::lower_bound(heights.begin(), heights.end(), centre - half_width_m);
-      const auto last = std::upper_bound(heights.begin(), heights.end(), centre + half_width_m);
-      const double median = *(first + (last - first) / 2);
-      if (median == centre) break;
-      centre = median;
-    }
+    const double centre = *SettleSlab(heights, heights[i + (end - i) / 2], half_width_m);
     plane.z_m = centre;
-    plane.support = static_cast<int>(std::count_if(heights.begin(), heights.end(),
-                                                   [&](double z) { return InSlab(z, centre, half_width_m); }));
+    plane.support = support(centre);
     plane.found = true;
     return plane;
   }

@@ -3,6 +3,7 @@
 // adjuster calls these checks and selections between its stages.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -32,8 +33,12 @@ struct FloorPlane {
 // that holds at least `min_support` landmarks (nothing is seen below a floor, except a few
 // mis-triangulated landmarks, which do not gather in one slab). A landmark's height: a point's z;
 // a line's mean end z when its two ends differ by at most half_width_m in z (a horizontal line),
-// otherwise it is not considered.
-FloorPlane FindFloorPlane(const Landmarks& landmarks, double camera_z_m, double half_width_m, int min_support);
+// otherwise it is not considered. With `around_z_m` the slab is not searched from below but
+// started there (and moved to the median of what it holds, as above): on a map the floor prior
+// has already pulled to that height, a group of `min_support` stray landmarks further down must
+// not replace the floor it holds.
+FloorPlane FindFloorPlane(const Landmarks& landmarks, double camera_z_m, double half_width_m, int min_support,
+                          std::optional<double> around_z_m = std::nullopt);
 
 struct FloorLandmarks {
   std::vector<int> points;  // indices into Landmarks::points
