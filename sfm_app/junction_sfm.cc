@@ -116,6 +116,9 @@ DEFINE_string(
 DEFINE_bool(wireframe_ba_pose_error, kDefaults.triangulation.wireframe.pose_error_from_bundle_adjustment,
             "Wireframe selection: the pose error of the determination test from bundle adjustment's own pose "
             "covariance instead of the fixed random walk.");
+DEFINE_bool(wireframe_plane_noise, kDefaults.triangulation.wireframe.line_sigma_subtracts_plane_noise,
+            "Wireframe selection: a line vertex's sigma subtracts the information its planes' own noise "
+            "fakes (a line whose planes spread no more than that noise is undetermined).");
 
 namespace {
 
@@ -154,6 +157,7 @@ bool OptionsFromFlags(sfm::PipelineOptions* options, std::string* error) {
   options->bundle_adjustment_options.robust_loss_scale_px = FLAGS_ba_loss_scale;
   options->bundle_adjustment_options.num_threads = FLAGS_threads;
   options->triangulation.wireframe.pose_error_from_bundle_adjustment = FLAGS_wireframe_ba_pose_error;
+  options->triangulation.wireframe.line_sigma_subtracts_plane_noise = FLAGS_wireframe_plane_noise;
   options->bundle_adjustment_options.floor_base_prior = FLAGS_floor_base_prior;
   if (FLAGS_floor_prior == "auto") {
     options->bundle_adjustment_options.floor_prior = sfm::FloorPriorMode::kAuto;

@@ -194,9 +194,32 @@ double PointPositionSigma(const Eigen::Matrix3d& K, const std::vector<Pose3>& wo
   return WorstSigma<3>(covariance);
 }
 
+namespace {
+
+// The covariance of view's unit plane normal (world frame, the plane through the camera centre and
+// the image line p0 p1) when each end-point moves across the segment (along `normal`, the image
+// line's unit normal) by independent noise of sigma_px: sigma_px^2 (dn0 dn0^T + dn1 dn1^T), dnk the
+// first-order change of the normal per pixel of end k. The camera-frame normal is m / |m| with m =
+// K^T (p0~ x p1~) (BackProjectedPlane).
+Eigen::Matrix3d PlaneNormalNoise(const Eigen::Matrix3d& K, const LineSegmentView& view,
+                                 const Eigen::Vector2d& normal, double sigma_px) {
+  const Eigen::Vector3d p0 = view.p0.homogeneous(), p1 = view.p1.homogeneous();
+  const Eigen::Vector3d shift(normal.x(), normal.y(), 0);
+  const Eigen::Vector3d m = K.transpose() * p0.cross(p1);
+  const double length = m.norm();
+  const Eigen::Vector3d n = m / length;
+  const Eigen::Matrix3d project = Eigen::Matrix3d::Identity() - n * n.transpose();
+  const Eigen::Matrix3d world_R_camera = view.world_T_camera.RotationMatrix();
+  const Eigen::Vector3d dn0 = world_R_camera * project * (K.transpose() * shift.cross(p1)) / length;
+  const Eigen::Vector3d dn1 = world_R_camera * project * (K.transpose() * p0.cross(shift)) / length;
+  return sigma_px * sigma_px * (dn0 * dn0.transpose() + dn1 * dn1.transpose());
+}
+
+}  // namespace
+
 double LinePositionSigma(const Eigen::Matrix3d& K, const std::vector<LineSegmentView>& views,
                          const Eigen::Vector3d& x, const Eigen::Vector3d& direction, double sigma_px,
-                         const PoseDrift& drift) {
+                         const PoseDrift& drift, bool subtract_plane_noise) {
   Eigen::Matrix3d information = Eigen::Matrix3d::Zero();
   // Per view: g_i / var_i (the weighted gain's direction) and m_i^T B_i (the pose's shift of the
   // image line across itself at x's projection).
@@ -215,6 +238,8 @@ double LinePositionSigma(const Eigen::Matrix3d& K, const std::vector<LineSegment
     const Eigen::Vector3d g = J.transpose() * normal;
     const double variance = (1 - t) * (1 - t) + t * t;
     information += g * g.transpose() / variance;
+    if (subtract_plane_noise)
+      information -= g.squaredNorm() * PlaneNormalNoise(K, view, normal, sigma_px) / variance;
     weighted_gradient.push_back(g / variance);
     line_by_pose.push_back(normal.transpose() * PixelByPose(K, J, p));
   }

@@ -100,9 +100,19 @@ double PointPositionSigma(const Eigen::Matrix3d& K, const std::vector<Pose3>& wo
 // normal) restricted to the plane normal to the line gives a 2x2 covariance. +infinity when the
 // planes do not fix both directions (fewer than two views, or all planes one: a line parallel to
 // the motion) or x is not in front of every camera.
+//
+// With `subtract_plane_noise`: the g_i are measured, not true, and their directions (the planes'
+// normals) carry the end-points' noise too. For a line whose true planes nearly coincide (a line in
+// a plane through the path, a short segment), the measured normals spread by that noise alone, and
+// sum_i g_i g_i^T then shows a spread, hence an information, that the geometry does not have. Its
+// expected excess, sum_i |g_i|^2 sigma_px^2 (dn0_i dn0_i^T + dn1_i dn1_i^T) / var_i (dnk_i: the
+// change of view i's unit plane normal per pixel of its end-point k across the segment), is
+// subtracted (the unbiased estimate of the true information, first order); +infinity when nothing
+// is left in some direction across the line. docs/tracks_and_triangulation.md, "Plane noise in
+// the line sigma".
 double LinePositionSigma(const Eigen::Matrix3d& K, const std::vector<LineSegmentView>& views,
                          const Eigen::Vector3d& x, const Eigen::Vector3d& direction, double sigma_px,
-                         const PoseDrift& drift = PoseDrift());
+                         const PoseDrift& drift = PoseDrift(), bool subtract_plane_noise = false);
 // With `drift`: a camera's pose error d_i (rotation, centre) moves view i's image line across
 // itself, at x's projection, by m_i^T B_i d_i; that reaches x through the same weighted least
 // squares as the pixel noise (weights 1 / var_i), and the views' poses are correlated by `drift`

@@ -125,6 +125,11 @@ struct WireframeOptions {
   // SelectWireframeLandmarks is given the junctions. >= 2 (2: no extra rule).
   // docs/tracks_and_triangulation.md, "Occlusion candidates".
   int occlusion_candidate_min_views = 3;
+  // The line vertex sigma subtracts the plane normals' own noise from the information it measures
+  // (LinePositionSigma's subtract_plane_noise): a line whose planes' spread is no more than the
+  // end-points' noise makes is undetermined, however its noisy estimate happens to look.
+  // docs/tracks_and_triangulation.md, "Plane noise in the line sigma".
+  bool line_sigma_subtracts_plane_noise = true;
 
   Status Check() const {
     auto bad = [](const std::string& what) { return Status::Error("WireframeOptions: " + what); };

@@ -206,12 +206,15 @@ Landmarks SelectWireframeLandmarks(const Eigen::Matrix3d& K, const std::vector<P
     kept.direction = (segment.end1 - segment.end0).normalized();
     kept.end0 = kept.point_landmark >= 0 ? line.end0 : segment.end0;
     kept.end1 = segment.end1;
-    if (kept.point_landmark < 0 && !determined(LinePositionSigma(K, views, kept.end0, kept.direction, sigma_px, drift),
-                                               SmallestDepth(cameras, kept.end0))) {
+    if (kept.point_landmark < 0 &&
+        !determined(LinePositionSigma(K, views, kept.end0, kept.direction, sigma_px, drift,
+                                      options.line_sigma_subtracts_plane_noise),
+                    SmallestDepth(cameras, kept.end0))) {
       ++counts.lines_uncertain_end0;
       continue;
     }
-    if (!determined(LinePositionSigma(K, views, kept.end1, kept.direction, sigma_px, drift),
+    if (!determined(LinePositionSigma(K, views, kept.end1, kept.direction, sigma_px, drift,
+                                      options.line_sigma_subtracts_plane_noise),
                     SmallestDepth(cameras, kept.end1))) {
       ++counts.lines_uncertain_end1;
       continue;
