@@ -252,15 +252,26 @@ class BundleAdjuster {
     const double half_width_m = 3 * sigma_m;
     // After the first selection the prior has pulled the floor it chose to z = 0: look for it
     // there, not again from below (stray landmarks under the floor may then gather in a slab).
-    const FloorPlane plane = FindFloorPlane(*landmarks_, camera_z_m, half_width_m, options_.floor_min_landmarks,
-                                            first ? std::nullopt : std::optional<double>(0.0));
+    FloorPlane plane = FindFloorPlane(*landmarks_, camera_z_m, half_width_m, options_.floor_min_landmarks,
+                                      first ? std::nullopt : std::optional<double>(0.0));
     if (!plane.found) return skip(plane.why);
-    if (first) summary_->floor_plane_z_m = plane.z_m;
     // The floor of a map whose trajectory is s times too long is at (1 - s) * camera height
     // (the map scaled about the cameras, which the rig holds at their height); the noise model
     // allows |s - 1| up to 3 translation sigmas, and the slab's half width is the plane's own
     // resolution.
     const double allowed_m = 3 * noise_.translation_sigma * camera_height_m + half_width_m;
+    if (automatic && plane.z_m < -allowed_m) {
+      // Mis-triangulated landmarks under the floor can gather in a slab, but not outnumber the
+      // floor: a plane where the noise model allows it, holding more, is the floor.
+      const FloorPlane allowed = FindFloorPlane(*landmarks_, camera_z_m, half_width_m, options_.floor_min_landmarks,
+                                                std::nullopt, -allowed_m);
+      if (allowed.found && std::abs(allowed.z_m) <= allowed_m && allowed.support > plane.support) {
+        stray_slab_note_ = "; a slab of " + std::to_string(plane.support) + " landmarks at z = " +
+                           std::to_string(plane.z_m) + " m below it taken for stray";
+        plane = allowed;
+      }
+    }
+    if (first) summary_->floor_plane_z_m = plane.z_m;
     if (automatic && !(std::abs(plane.z_m) <= allowed_m)) {
       return skip("the lowest horizontal plane (" + std::to_string(plane.support) + " landmarks) is at z = " +
                   std::to_string(plane.z_m) + " m, beyond the " + std::to_string(allowed_m) +
@@ -276,7 +287,7 @@ class BundleAdjuster {
                                    std::to_string(plane.support) + " of " + std::to_string(plane.below_camera) +
                                    " landmarks below the cameras), " + std::to_string(floor_.points.size()) +
                                    " points and " + std::to_string(floor_.lines.size()) + " lines held" +
-                                   (base_on_floor_ ? ", base poses held on it" : "");
+                                   (base_on_floor_ ? ", base poses held on it" : "") + stray_slab_note_;
   }
 
   void FinishFloorSummary() {
@@ -749,7 +760,8 @@ class BundleAdjuster {
   // The floor prior: applied (the odometry's scale factor is a parameter) or not, the landmarks
   // it holds now, the anchors of those lines (their end-points when selected), the factor.
   bool scale_free_ = false;
-  bool base_on_floor_ = false;  // BaseOnFloorCost on every pose but the first while scale_free_
+  bool base_on_floor_ = false;
+  std::string stray_slab_note_;  // the report's note when the first selection passed over a stray slab  // BaseOnFloorCost on every pose but the first while scale_free_
   FloorLandmarks floor_;
   std::vector<std::array<Eigen::Vector3d, 2>> floor_anchors_;
   double odometry_scale_ = 1;

@@ -68,7 +68,7 @@ std::optional<double> SettleSlab(const std::vector<double>& sorted_heights, doub
 }  // namespace
 
 FloorPlane FindFloorPlane(const Landmarks& landmarks, double camera_z_m, double half_width_m, int min_support,
-                          std::optional<double> around_z_m) {
+                          std::optional<double> around_z_m, std::optional<double> lowest_z_m) {
   std::vector<double> heights;
   for (const PointLandmark& point : landmarks.points) {
     if (point.position.z() < camera_z_m) heights.push_back(point.position.z());
@@ -76,6 +76,10 @@ FloorPlane FindFloorPlane(const Landmarks& landmarks, double camera_z_m, double 
   for (const LineLandmark& line : landmarks.lines) {
     const double z = LineHeight(line, half_width_m);
     if (z < camera_z_m) heights.push_back(z);  // false for NaN
+  }
+  if (lowest_z_m) {
+    heights.erase(std::remove_if(heights.begin(), heights.end(), [&](double z) { return z < *lowest_z_m; }),
+                  heights.end());
   }
   std::sort(heights.begin(), heights.end());
   FloorPlane plane;

@@ -37,8 +37,10 @@ struct FloorPlane {
 // started there (and moved to the median of what it holds, as above): on a map the floor prior
 // has already pulled to that height, a group of `min_support` stray landmarks further down must
 // not replace the floor it holds.
+// With `lowest_z_m`, heights below it are not considered (the search from below starts there).
 FloorPlane FindFloorPlane(const Landmarks& landmarks, double camera_z_m, double half_width_m, int min_support,
-                          std::optional<double> around_z_m = std::nullopt);
+                          std::optional<double> around_z_m = std::nullopt,
+                          std::optional<double> lowest_z_m = std::nullopt);
 
 struct FloorLandmarks {
   std::vector<int> points;  // indices into Landmarks::points

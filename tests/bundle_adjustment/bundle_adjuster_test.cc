@@ -557,13 +557,15 @@ struct FloorRun {
 // A 60-frame lap of the room with rugs with 3 % too long odometry and a little heading drift
 // (0.004 rad/frame: the scale error dominates), the scene moved to floor_z and the camera
 // `camera_height` m above the base origin.
-FloorRun RunFloorLoop(double floor_z, double camera_height, FloorPriorMode mode, bool base_prior = true) {
+FloorRun RunFloorLoop(double floor_z, double camera_height, FloorPriorMode mode, bool base_prior = true,
+                      const std::vector<Eigen::Vector3d>& extra_points = {}) {
   Calibration calibration = RoomCalibration(kSmallDriftRad);
   calibration.base_T_camera.translation.z() = camera_height;
   const std::vector<Pose3> truth = testing::LoopTrajectory(60);
   const std::vector<Pose3> odometry = MakeOdometry(truth, kScaleError, kSmallDriftRad, kHeadingNoiseRad, 7);
-  Observed observed =
-      Observe(testing::BoxRoomWithRugs(floor_z), calibration, truth, odometry, kPixelNoisePx, 11);
+  testing::Scene scene = testing::BoxRoomWithRugs(floor_z);
+  scene.points.insert(scene.points.end(), extra_points.begin(), extra_points.end());
+  Observed observed = Observe(scene, calibration, truth, odometry, kPixelNoisePx, 11);
   BundleAdjustmentOptions options;
   options.floor_prior = mode;
   options.floor_base_prior = base_prior;
@@ -712,6 +714,20 @@ TEST(FloorPriorTest, FindsTheLowestSupportedPlane) {
   EXPECT_NEAR(plane.z_m, 0.75, 0.01);
   landmarks.points.erase(landmarks.points.begin() + 5, landmarks.points.begin() + 45);
   EXPECT_FALSE(FindFloorPlane(landmarks, 1.0, 0.03, 10).found);
+}
+
+// Twelve points 0.15 m under the floor (as mis-triangulated landmarks that happen to gather): the
+// lowest slab of 10 or more is theirs, beyond the 0.075 m the noise model allows (3 x 0.03 x 1 m +
+// 0.03 m), but the floor within it holds more, so the prior is applied to the floor and the scale
+// corrected as without them; a slab that outnumbered the floor would still refuse it (the test above).
+TEST(FloorPriorTest, AStraySlabUnderTheFloorIsPassedOver) {
+  std::vector<Eigen::Vector3d> stray;
+  for (int i = 0; i < 12; ++i) stray.emplace_back(-1.5 + 0.25 * i, 2.3 + 0.05 * (i % 3), -0.15);
+  const FloorRun run = RunFloorLoop(0, 1.0, FloorPriorMode::kAuto, true, stray);
+  EXPECT_TRUE(run.summary.floor_prior_used) << run.summary.floor_prior_report;
+  EXPECT_NE(run.summary.floor_prior_report.find("taken for stray"), std::string::npos)
+      << run.summary.floor_prior_report;
+  EXPECT_NEAR(run.refined_scale, 1.0, 0.005);
 }
 
 // Re-selection on a map the prior has already rescaled (found on a held-out distorted corridor
