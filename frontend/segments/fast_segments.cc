@@ -273,8 +273,8 @@ class FastDetector {
   //  - its line is refitted without the end points beyond the seed tolerance (below).
   // Returns the chain index where the first piece ended (the chain's size if there is none).
   size_t SplitChain() {
-    points_.clear();
-    for (const int index : chain_) points_.push_back(SubpixelPoint(index));
+    points_.resize(chain_.size());
+    for (size_t i = 0; i < chain_.size(); ++i) points_[i] = SubpixelPoint(chain_[i]);
     const double tolerance = options_.fast.line_tolerance, seed_tolerance = SeedTolerance(tolerance);
     const size_t n = points_.size(), window = static_cast<size_t>(min_pixels_);
     size_t start = 0, previous_end = 0, first_break = n;
