@@ -196,10 +196,10 @@ class FastDetector {
         const int16_t after = across_y ? below : right;
         marks[x] = static_cast<uint8_t>((m >= high) & (dir[x] != 0) & (m > before) & (m >= after));
       }
-      static_assert(__BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__, "the marks' bit order assumes little-endian");
-      // Each mark is a byte of 0 or 1, so a word's set bits are its anchors, lowest x first (x86 is
-      // little-endian): taking them by count-trailing-zeros spares the byte loop's mispredicted
-      // branches. Marks from cols_ - 1 on stay 0 (never written after the assign above).
+      static_assert(__BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__, "marks are read as little-endian words");
+      // Each mark is a byte of 0 or 1, so a word's set bits are its anchors, lowest x first (the
+      // bytes of a little-endian word): taking them by count-trailing-zeros spares the byte loop's
+      // mispredicted branches. Marks from cols_ - 1 on stay 0 (never written after the assign).
       const int row = y * cols_;
       for (int x = 1; x + 1 < cols_; x += 8) {
         uint64_t word;

@@ -69,6 +69,7 @@ class LineFitAccumulator {
   // check: for the tests after every added point (the fast path's chain splitting) and wherever
   // else only the line is used. There the call, the check and the RMS's square root were a
   // measurable share of the detector's time. Inline, so that the caller's next test overlaps it.
+  // (Both run the same FitImpl; the build contracts no multiply-adds, having no -march with FMA.)
   FittedLine FitWithoutRms() const { return FitImpl</*kWithRms=*/false>(); }
 
  private:
