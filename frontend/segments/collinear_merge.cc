@@ -67,8 +67,11 @@ bool TryJoin(const LinePiece& a, const FittedLine& line_a, const LinePiece& b, c
   if (a.gradient_sum.dot(b.gradient_sum) <= 0) return false;
   const std::array<Eigen::Vector2d, 4> ends = {line_a.Project(a.first), line_a.Project(a.last),
                                                line_b.Project(b.first), line_b.Project(b.last)};
-  const double gap = std::min({(ends[0] - ends[2]).norm(), (ends[0] - ends[3]).norm(), (ends[1] - ends[2]).norm(),
-                               (ends[1] - ends[3]).norm()});
+  // The smallest of the four distances, by one square root (it is monotonic, so the result is the
+  // same as the smallest of four square roots).
+  const double gap =
+      std::sqrt(std::min({(ends[0] - ends[2]).squaredNorm(), (ends[0] - ends[3]).squaredNorm(),
+                          (ends[1] - ends[2]).squaredNorm(), (ends[1] - ends[3]).squaredNorm()}));
   if (gap > max_gap) return false;
   // A cheap test first: the shorter piece's ends near the longer piece's line, which the joined
   // line cannot stray far from (the longer piece's points dominate the fit).
@@ -81,7 +84,7 @@ bool TryJoin(const LinePiece& a, const FittedLine& line_a, const LinePiece& b, c
   }
   LineFitAccumulator fit = a.fit;
   fit.Merge(b.fit);
-  const FittedLine line = fit.Fit();
+  const FittedLine line = fit.FitWithoutRms();  // the pieces' lines need no RMS
   for (const Eigen::Vector2d& e : ends) {
     if (std::abs(line.Distance(e)) > tolerance) return false;
   }
@@ -110,7 +113,7 @@ void MergeCollinearPieces(double max_gap, double tolerance, std::vector<LinePiec
   std::vector<FittedLine> lines(all.size());
   for (size_t i = 0; i < all.size(); ++i) {
     into[i] = static_cast<int>(i);
-    lines[i] = all[i].fit.Fit();
+    lines[i] = all[i].fit.FitWithoutRms();
   }
   auto find = [&into](int i) {
     while (into[i] != i) i = into[i] = into[into[i]];

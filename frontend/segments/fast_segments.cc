@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <iterator>
 #include <utility>
 #include <vector>
 
@@ -92,6 +93,10 @@ class FastDetector {
     direction_.create(rows_, cols_, CV_8U);  // every pixel written by ComputeMagnitude
     edge_.create(rows_, cols_, CV_8U);
     edge_.setTo(0);
+    // Room for the longest possible walk (Walk); a no-op after the first image of this size.
+    const size_t pixels = static_cast<size_t>(rows_) * cols_;
+    if (backward_.size() < pixels) backward_.resize(pixels);
+    if (forward_.size() < pixels) forward_.resize(pixels);
     min_pixels_ = std::max(3, static_cast<int>(std::ceil(options.min_length / M_SQRT2)));
   }
 
@@ -104,19 +109,15 @@ class FastDetector {
     for (const int anchor : anchors_) {
       if (edge[anchor]) continue;
       edge[anchor] = 1;
-      backward_.clear();
-      forward_.clear();
-      if (dir[anchor] == kAlongX) {
-        Walk(anchor, -1, 0, mag, dir, edge, &backward_);
-        Walk(anchor, +1, 0, mag, dir, edge, &forward_);
-      } else {
-        Walk(anchor, 0, -1, mag, dir, edge, &backward_);
-        Walk(anchor, 0, +1, mag, dir, edge, &forward_);
-      }
-      if (backward_.size() + forward_.size() + 1 < static_cast<size_t>(min_pixels_)) continue;
-      chain_.assign(backward_.rbegin(), backward_.rend());
+      const bool along_x = dir[anchor] == kAlongX;
+      const size_t backward =
+          Walk(anchor, along_x ? -1 : 0, along_x ? 0 : -1, mag, dir, edge, backward_.data());
+      const size_t forward =
+          Walk(anchor, along_x ? +1 : 0, along_x ? 0 : +1, mag, dir, edge, forward_.data());
+      if (backward + forward + 1 < static_cast<size_t>(min_pixels_)) continue;
+      chain_.assign(std::make_reverse_iterator(backward_.begin() + backward), backward_.rend());
       chain_.push_back(anchor);
-      chain_.insert(chain_.end(), forward_.begin(), forward_.end());
+      chain_.insert(chain_.end(), forward_.begin(), forward_.begin() + forward);
       // Every sub-run of the chain is a candidate segment: L (L + 1) / 2 tests.
       const double length = static_cast<double>(chain_.size());
       num_tests_ += 0.5 * length * (length + 1);
@@ -195,33 +196,38 @@ class FastDetector {
         const int16_t after = across_y ? below : right;
         marks[x] = static_cast<uint8_t>((m >= high) & (dir[x] != 0) & (m > before) & (m >= after));
       }
+      static_assert(__BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__, "marks are read as little-endian words");
+      // Each mark is a byte of 0 or 1, so a word's set bits are its anchors, lowest x first (the
+      // bytes of a little-endian word): taking them by count-trailing-zeros spares the byte loop's
+      // mispredicted branches. Marks from cols_ - 1 on stay 0 (never written after the assign).
       const int row = y * cols_;
       for (int x = 1; x + 1 < cols_; x += 8) {
         uint64_t word;
         std::memcpy(&word, marks + x, sizeof(word));
-        if (word == 0) continue;
-        for (int k = x; k < std::min(x + 8, cols_ - 1); ++k) {
-          if (marks[k]) anchors_.push_back(row + k);
-        }
+        for (; word != 0; word &= word - 1) anchors_.push_back(row + x + __builtin_ctzll(word) / 8);
       }
     }
   }
 
   // ED's routing: from `index`, step to the strongest of the three pixels ahead in the travel
   // direction (dx, dy) (one of them zero) while it is alive and on no chain; the travel axis follows
-  // each pixel's edge direction. Appends the pixels visited.
-  void Walk(int index, int dx, int dy, const int16_t* mag, const uint8_t* dir, uint8_t* edge,
-            std::vector<int>* out) const {
+  // each pixel's edge direction. Writes the pixels visited to out, which has room for every pixel
+  // of the image (a walk visits each at most once), and returns their number. A plain array
+  // rather than push_back: the edge map's byte stores may alias a vector's pointers, which were
+  // then reloaded at every step.
+  size_t Walk(int index, int dx, int dy, const int16_t* mag, const uint8_t* dir, uint8_t* edge,
+              int* out) const {
     const int stride = cols_;
+    size_t count = 0;
     while (true) {
       const int middle = index + dx + dy * stride;
       const int side = dx != 0 ? stride : 1;
       int next = middle, offset = 0;
       if (mag[middle - side] > mag[next]) next = middle - side, offset = -1;
       if (mag[middle + side] > mag[next]) next = middle + side, offset = +1;
-      if (dir[next] == 0 || edge[next]) return;
+      if (dir[next] == 0 || edge[next]) return count;
       edge[next] = 1;
-      out->push_back(next);
+      out[count++] = next;
       const int move_x = dx != 0 ? dx : offset;
       const int move_y = dy != 0 ? dy : offset;
       if (dir[next] == kAlongX) {
@@ -267,15 +273,15 @@ class FastDetector {
   //  - its line is refitted without the end points beyond the seed tolerance (below).
   // Returns the chain index where the first piece ended (the chain's size if there is none).
   size_t SplitChain() {
-    points_.clear();
-    for (const int index : chain_) points_.push_back(SubpixelPoint(index));
+    points_.resize(chain_.size());
+    for (size_t i = 0; i < chain_.size(); ++i) points_[i] = SubpixelPoint(chain_[i]);
     const double tolerance = options_.fast.line_tolerance, seed_tolerance = SeedTolerance(tolerance);
     const size_t n = points_.size(), window = static_cast<size_t>(min_pixels_);
     size_t start = 0, previous_end = 0, first_break = n;
     while (start + window <= n) {
       LineFitAccumulator fit;
       for (size_t i = start; i < start + window; ++i) fit.Add(points_[i]);
-      FittedLine line = fit.Fit();
+      FittedLine line = fit.FitWithoutRms();
       bool straight = true;
       for (size_t i = start; i < start + window && straight; ++i) {
         straight = std::abs(line.Distance(points_[i])) <= seed_tolerance;
@@ -288,12 +294,12 @@ class FastDetector {
       size_t end = start + window;
       while (end < n && std::abs(line.Distance(points_[end])) <= tolerance) {
         fit.Add(points_[end]);
-        line = fit.Fit();
+        line = fit.FitWithoutRms();
         ++end;
       }
       while (start > previous_end && std::abs(line.Distance(points_[start - 1])) <= seed_tolerance) {
         fit.Add(points_[--start]);
-        line = fit.Fit();
+        line = fit.FitWithoutRms();
       }
       // The growth's tolerance lets the first pixels of a corner's arc in, and they tilt a short
       // line: the line is refitted without the end points farther than the seed tolerance from it
@@ -308,7 +314,7 @@ class FastDetector {
         } else {
           break;
         }
-        line = fit.Fit();
+        line = fit.FitWithoutRms();
       }
       AddPiece(start, end, fit);
       if (first_break == n) first_break = end;
@@ -345,7 +351,7 @@ class FastDetector {
     if (count < 3) return;
     std::vector<FittedLine>& lines = lines_;  // of this chain's pieces, from `first`
     lines.clear();
-    for (size_t k = first; k < pieces_.size(); ++k) lines.push_back(pieces_[k].fit.Fit());
+    for (size_t k = first; k < pieces_.size(); ++k) lines.push_back(pieces_[k].fit.FitWithoutRms());
     auto long_enough = [&](size_t k) {
       const LinePiece& p = pieces_[first + k];
       return (lines[k].Project(p.last) - lines[k].Project(p.first)).norm() >= options_.min_length;
@@ -398,7 +404,7 @@ class FastDetector {
     // cell_ends_[cell_begin_[c] .. cell_begin_[c + 1]) (indices into ends).
     cell_begin_.assign(static_cast<size_t>(grid_cols) * grid_rows + 1, 0);
     for (size_t k = 0; k < m; ++k) {
-      lines[k] = pieces_[k].fit.Fit();
+      lines[k] = pieces_[k].fit.FitWithoutRms();
       ends[2 * k] = lines[k].Project(pieces_[k].first);
       ends[2 * k + 1] = lines[k].Project(pieces_[k].last);
       const double length = (ends[2 * k + 1] - ends[2 * k]).norm();

@@ -9,22 +9,7 @@ namespace sfm {
 
 FittedLine LineFitAccumulator::Fit() const {
   CHECK_GE(n_, 2) << "a line fit needs two points";
-  const double mx = sx_ / n_, my = sy_ / n_;
-  const double cxx = sxx_ / n_ - mx * mx;
-  const double cxy = sxy_ / n_ - mx * my;
-  const double cyy = syy_ / n_ - my * my;
-  // Principal axis of [[cxx cxy] [cxy cyy]]: with h = (cxx - cyy) / 2 and r = hypot(h, cxy), the
-  // larger eigenvalue's eigenvector is (h + r, cxy), or equivalently (cxy, r - h), whichever is the
-  // better conditioned; the smaller eigenvalue is the mean squared perpendicular distance.
-  const double h = 0.5 * (cxx - cyy);
-  const double root = std::sqrt(h * h + cxy * cxy);
-  Eigen::Vector2d axis = h >= 0 ? Eigen::Vector2d(h + root, cxy) : Eigen::Vector2d(cxy, root - h);
-  const double norm = axis.norm();
-  FittedLine line;
-  line.centroid = Eigen::Vector2d(mx + ox_, my + oy_);
-  line.direction = norm > 0 ? Eigen::Vector2d(axis / norm) : Eigen::Vector2d(1, 0);
-  line.rms = std::sqrt(std::max(0.0, 0.5 * (cxx + cyy) - root));
-  return line;
+  return FitImpl</*kWithRms=*/true>();
 }
 
 void LineFitAccumulator::Merge(const LineFitAccumulator& other) {
