@@ -143,6 +143,7 @@ void LogFloorLandmarks(const std::string& stage, const PipelineResult& result) {
 
 // Bundle adjustment from the odometry: refined poses and landmarks.
 Status Refine(const Sequence& sequence, const PipelineOptions& options, PipelineResult* result) {
+  MarkOcclusionCandidates(result->junctions, &result->landmarks);  // not floor landmarks
   std::vector<Pose3> world_T_base_odometry;
   for (const Frame& frame : sequence.frames) world_T_base_odometry.push_back(frame.world_T_base_odometry);
   std::vector<Pose3> world_T_base_refined;
@@ -208,6 +209,7 @@ Status RetriangulateOnRefinedPoses(const Sequence& sequence, const PipelineOptio
   for (const Frame& frame : sequence.frames) world_T_base_odometry.push_back(frame.world_T_base_odometry);
   std::vector<Pose3> world_T_base_second;
   BundleAdjustmentSummary summary;
+  MarkOcclusionCandidates(result->junctions, &result->landmarks);  // the merged ones too
   SFM_RETURN_IF_ERROR(BundleAdjust(
       calibration, world_T_base_odometry, world_T_base_refined, result->bundle_adjustment.odometry_scale,
       options.bundle_adjustment_options, &result->landmarks, &world_T_base_second, &summary));

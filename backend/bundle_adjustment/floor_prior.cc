@@ -71,7 +71,7 @@ FloorPlane FindFloorPlane(const Landmarks& landmarks, double camera_z_m, double 
                           std::optional<double> around_z_m, std::optional<double> lowest_z_m) {
   std::vector<double> heights;
   for (const PointLandmark& point : landmarks.points) {
-    if (point.position.z() < camera_z_m) heights.push_back(point.position.z());
+    if (!point.occlusion_candidate && point.position.z() < camera_z_m) heights.push_back(point.position.z());
   }
   for (const LineLandmark& line : landmarks.lines) {
     const double z = LineHeight(line, half_width_m);
@@ -124,6 +124,7 @@ FloorPlane FindFloorPlane(const Landmarks& landmarks, double camera_z_m, double 
 FloorLandmarks SelectFloorLandmarks(const Landmarks& landmarks, double plane_z_m, double half_width_m) {
   FloorLandmarks selected;
   for (size_t i = 0; i < landmarks.points.size(); ++i) {
+    if (landmarks.points[i].occlusion_candidate) continue;
     if (InSlab(landmarks.points[i].position.z(), plane_z_m, half_width_m)) {
       selected.points.push_back(static_cast<int>(i));
     }

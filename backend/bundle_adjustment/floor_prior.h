@@ -29,6 +29,9 @@ struct FloorPlane {
   std::string why;    // when not found: why not
 };
 
+// Points marked occlusion_candidate (seen as a T or an X: possibly where a nearer edge crosses the
+// floor's edge, a "point" between the two depths, above the floor) are never floor landmarks, here
+// or in SelectFloorLandmarks.
 // The floor: the lowest horizontal slab [z - half_width_m, z + half_width_m] below camera_z_m
 // that holds at least `min_support` landmarks (nothing is seen below a floor, except a few
 // mis-triangulated landmarks, which do not gather in one slab). A landmark's height: a point's z;

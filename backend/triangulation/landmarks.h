@@ -28,6 +28,9 @@ struct PointLandmark {
   int track_id = -1;                          // the junction track it was triangulated from
   Eigen::Vector3d position = Eigen::Vector3d::Zero();
   std::vector<PointObservation> observations;  // at most one per frame
+  // Seen as a T or an X in some view: possibly an occlusion (a nearer edge crossing a farther
+  // one), not a 3D vertex. Set by the caller that knows the junction types (the pipeline).
+  bool occlusion_candidate = false;
 };
 
 struct LineLandmark {

@@ -40,9 +40,9 @@ bool BoundOnFinalPoses(const Eigen::Matrix3d& K, const std::vector<LineView>& vi
   return BoundLine(K, views, Line3{line.point, line.direction}, junction_point, options, segment) == LineStatus::kOk;
 }
 
-// A T (a nearer edge cutting a farther one) or an X (two edges crossing) may be an occlusion, not
-// a 3D vertex, in any view that sees it so.
-bool IsOcclusionCandidate(const std::vector<Junctions>& junctions, const PointLandmark& point) {
+}  // namespace
+
+bool SeenAsTOrX(const std::vector<Junctions>& junctions, const PointLandmark& point) {
   for (const PointObservation& observation : point.observations) {
     CHECK(observation.frame >= 0 && observation.frame < static_cast<int>(junctions.size()))
         << observation.frame;
@@ -55,7 +55,9 @@ bool IsOcclusionCandidate(const std::vector<Junctions>& junctions, const PointLa
   return false;
 }
 
-}  // namespace
+void MarkOcclusionCandidates(const std::vector<Junctions>& junctions, Landmarks* landmarks) {
+  for (PointLandmark& point : landmarks->points) point.occlusion_candidate = SeenAsTOrX(junctions, point);
+}
 
 double MaxVertexSigma(const WireframeOptions& options, double fx, double depth) {
   return std::sqrt(2.0) * options.pixel_sigma_px / fx * depth /
@@ -154,7 +156,7 @@ Landmarks SelectWireframeLandmarks(const Eigen::Matrix3d& K, const std::vector<P
       ++counts.points_inconsistent;
       continue;
     }
-    if (!junctions.empty() && IsOcclusionCandidate(junctions, point) &&
+    if (!junctions.empty() && SeenAsTOrX(junctions, point) &&
         static_cast<int>(point.observations.size()) < options.occlusion_candidate_min_views) {
       ++counts.points_occlusion_untested;
       continue;

@@ -730,6 +730,30 @@ TEST(FloorPriorTest, AStraySlabUnderTheFloorIsPassedOver) {
   EXPECT_NEAR(run.refined_scale, 1.0, 0.005);
 }
 
+// Occlusion candidates (points seen as a T or an X) are not floor landmarks: 12 of them 2 cm above
+// a floor of 30 points would lift its median plane and be held at z = 0; marked, they are left out
+// of the search and of the selection.
+TEST(FloorPriorTest, OcclusionCandidatesAreNotFloorLandmarks) {
+  Landmarks landmarks;
+  auto add = [&](double x, double z, bool occlusion) {
+    landmarks.points.emplace_back();
+    landmarks.points.back().position = Eigen::Vector3d(x, 0, z);
+    landmarks.points.back().occlusion_candidate = occlusion;
+  };
+  for (int i = 0; i < 30; ++i) add(i, -0.002 + 0.001 * (i % 5), false);  // the floor, at z = 0
+  for (int i = 0; i < 40; ++i) add(i, 0.02, true);                        // T/X "points" above it
+  const FloorPlane plane = FindFloorPlane(landmarks, 1.0, 0.03, 10);
+  ASSERT_TRUE(plane.found) << plane.why;
+  EXPECT_NEAR(plane.z_m, 0.0, 0.002);
+  EXPECT_EQ(plane.support, 30);
+  const FloorLandmarks selected = SelectFloorLandmarks(landmarks, plane.z_m, 0.03);
+  EXPECT_EQ(selected.points.size(), 30u);
+  for (int index : selected.points) EXPECT_FALSE(landmarks.points[index].occlusion_candidate);
+  // Unmarked, the same 40 would carry the plane up to them.
+  for (PointLandmark& point : landmarks.points) point.occlusion_candidate = false;
+  EXPECT_GT(FindFloorPlane(landmarks, 1.0, 0.03, 10).z_m, 0.01);
+}
+
 // Re-selection on a map the prior has already rescaled (found on a held-out distorted corridor
 // with the branch search on: 11 stray landmarks gathered 4 cm under the floor and, searched from
 // below again, replaced its 100; the floor scale then went 0.4 % wrong and the ATE ratio from 0.06

@@ -191,6 +191,28 @@ TEST(OcclusionCandidateTest, ATwoViewTOrXIsNotDrawn) {
   EXPECT_EQ(kept.points.size(), 3u);
 }
 
+// MarkOcclusionCandidates: a point seen as a T or an X in any one view is marked, an L seen as an L
+// everywhere is not (and a stale mark is cleared).
+TEST(OcclusionCandidateTest, PointsSeenAsTOrXAreMarked) {
+  std::vector<Junctions> junctions(3, Junctions(3));  // every junction an L by default
+  junctions[1][1].type = JunctionType::kT;
+  junctions[2][2].type = JunctionType::kX;
+  Landmarks landmarks;
+  auto add = [&](std::vector<std::pair<int, int>> seen) {
+    PointLandmark point;
+    for (const auto& [frame, junction] : seen) point.observations.push_back({frame, junction, {}});
+    point.occlusion_candidate = true;  // stale: must be recomputed
+    landmarks.points.push_back(point);
+  };
+  add({{0, 0}, {1, 0}, {2, 0}});  // L, L, L
+  add({{0, 1}, {1, 1}});          // L, T
+  add({{1, 2}, {2, 2}});          // L, X
+  MarkOcclusionCandidates(junctions, &landmarks);
+  EXPECT_FALSE(landmarks.points[0].occlusion_candidate);
+  EXPECT_TRUE(landmarks.points[1].occlusion_candidate);
+  EXPECT_TRUE(landmarks.points[2].occlusion_candidate);
+}
+
 TEST(OcclusionCandidateTest, BadOptionsAreRejected) {
   WireframeOptions options;
   options.occlusion_candidate_min_views = 1;
