@@ -100,9 +100,12 @@ DEFINE_bool(floor_base_prior, kDefaults.bundle_adjustment_options.floor_base_pri
             "base pose's height and tilt there (floor sigma, and floor sigma / camera height rad).");
 DEFINE_string(
     odometry_rotation_bias,
-    kDefaults.bundle_adjustment_options.estimate_odometry_rotation_bias ? "on" : "off",
+    kDefaults.bundle_adjustment_options.estimate_odometry_rotation_bias            ? "on"
+    : kDefaults.bundle_adjustment_options.estimate_odometry_rotation_bias_on_floor ? "auto"
+                                                                                   : "off",
     "Bundle adjustment: estimate the odometry's constant rotation increment per step jointly with the "
-    "poses ('on' or 'off').");
+    "poses: 'on', 'off' or 'auto' (where the floor prior may apply: a ground robot's rig and planar "
+    "odometry).");
 DEFINE_int32(threads, kDefaults.bundle_adjustment_options.num_threads, "Threads for the bundle adjustment.");
 DEFINE_string(retriangulate_refined, RetriangulateRefinedName(kDefaults.retriangulate_refined),
               "After the bundle adjustment, triangulate every track again on the refined poses: 'off', "
@@ -169,10 +172,14 @@ bool OptionsFromFlags(sfm::PipelineOptions* options, std::string* error) {
     *error = "--floor_prior must be 'auto', 'on' or 'off', not '" + FLAGS_floor_prior + "'";
     return false;
   }
-  if (FLAGS_odometry_rotation_bias == "on" || FLAGS_odometry_rotation_bias == "off") {
+  if (FLAGS_odometry_rotation_bias == "on" || FLAGS_odometry_rotation_bias == "off" ||
+      FLAGS_odometry_rotation_bias == "auto") {
     options->bundle_adjustment_options.estimate_odometry_rotation_bias = FLAGS_odometry_rotation_bias == "on";
+    options->bundle_adjustment_options.estimate_odometry_rotation_bias_on_floor =
+        FLAGS_odometry_rotation_bias == "auto";
   } else {
-    *error = "--odometry_rotation_bias must be 'on' or 'off', not '" + FLAGS_odometry_rotation_bias + "'";
+    *error =
+        "--odometry_rotation_bias must be 'on', 'off' or 'auto', not '" + FLAGS_odometry_rotation_bias + "'";
     return false;
   }
   if (FLAGS_retriangulate_refined == "off") {

@@ -100,9 +100,21 @@ class BundleAdjuster {
         options_(options),
         landmarks_(landmarks),
         summary_(summary),
-        odometry_scale_(start_scale) {
+        odometry_scale_(start_scale),
+        with_bias_(EstimatesRotationBias(options, calibration.base_T_camera, odometry)) {
     for (const Pose3& pose : start) poses_.push_back(PoseParameters::FromPose(pose));
   }
+
+  // Whether the odometry's rotation bias is in the problem: asked for, or (auto) wherever the floor
+  // prior may apply, decided on the rig and the odometry before any solve (docs/bundle_adjustment.md,
+  // "Floor scale bias").
+  static bool EstimatesRotationBias(const BundleAdjustmentOptions& options, const Pose3& base_T_camera,
+                                    const std::vector<Pose3>& odometry) {
+    if (options.estimate_odometry_rotation_bias) return true;
+    return options.estimate_odometry_rotation_bias_on_floor && options.floor_prior != FloorPriorMode::kOff &&
+           FloorPriorRigProblem(base_T_camera, odometry, options.floor_sigma_m).empty();
+  }
+  bool EstimatesRotationBias() const { return with_bias_; }
 
   Status Run() {
     summary_->frames = static_cast<int>(poses_.size());
@@ -606,7 +618,7 @@ class BundleAdjuster {
     // The odometry's rotation bias: a zero-mean prior with the noise model's per-frame rotation
     // sigma (a bias larger than the whole per-frame noise the model states is outside the model;
     // the steps' vision-determined rotations pin it far tighter, about sigma / sqrt(steps)).
-    const bool with_bias = options_.estimate_odometry_rotation_bias;
+    const bool with_bias = with_bias_;
     double* const bias = rotation_bias_.data();
     if (with_bias) {
       problem.AddParameterBlock(bias, 3);
@@ -685,7 +697,7 @@ class BundleAdjuster {
     }
     if (scale_free_ || odometry_scale_ != 1.0) ordering->AddElementToGroup(&odometry_scale_, 4);
     // The rotation bias shares every odometry residual with the scale: a group of its own.
-    if (options_.estimate_odometry_rotation_bias) ordering->AddElementToGroup(rotation_bias_.data(), 5);
+    if (with_bias_) ordering->AddElementToGroup(rotation_bias_.data(), 5);
     // The landmark blocks start at their sizes' offsets; walk them as Solve laid them out.
     const size_t point_count = landmarks_->points.size();
     for (size_t i = 0; i < point_count; ++i) ordering->AddElementToGroup(landmark_values.data() + 3 * i, 6);
@@ -767,6 +779,7 @@ class BundleAdjuster {
   double odometry_scale_ = 1;
   // The odometry's rotation bias b (rad per step, angle-axis in base_i), when estimated.
   std::array<double, 3> rotation_bias_ = {0, 0, 0};
+  bool with_bias_ = false;  // EstimatesRotationBias(options, ...), fixed for the run
   ceres::EigenQuaternionManifold quaternion_manifold_;
   OrthonormalLineManifold line_manifold_;
 };
@@ -836,8 +849,8 @@ Status BundleAdjust(const Calibration& calibration, const std::vector<Pose3>& wo
   BundleAdjuster adjuster(calibration, world_T_base_odometry, world_T_base_start, odometry_scale_start,
                           options, landmarks, summary);
   const Status status = adjuster.Run();
-  summary->odometry_rotation_bias_estimated = options.estimate_odometry_rotation_bias;
-  if (options.estimate_odometry_rotation_bias) {
+  summary->odometry_rotation_bias_estimated = adjuster.EstimatesRotationBias();
+  if (summary->odometry_rotation_bias_estimated) {
     const std::array<double, 3>& b = summary->odometry_rotation_bias_rad;
     LOG(INFO) << "bundle adjustment: odometry rotation bias per step (" << b[0] << ", " << b[1] << ", "
               << b[2] << ") rad, angle-axis in the base frame";

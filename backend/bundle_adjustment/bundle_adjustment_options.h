@@ -64,6 +64,12 @@ struct BundleAdjustmentOptions {
   // shared 3-vector, zero-mean Gaussian prior with the noise model's per-frame rotation sigma;
   // docs/bundle_adjustment.md, "Odometry rotation bias").
   bool estimate_odometry_rotation_bias = false;
+  // Estimate it also (auto) where the floor prior may apply: the floor prior not off and the rig
+  // and odometry of a ground robot (FloorPriorRigProblem empty). The floor prior's free scale
+  // factor makes the map's horizontal scale soft, and the yaw drift a constant heading error
+  // leaves is paid for by sideways shifts of the cameras, radial on a loop: the floor scale then
+  // reads the trajectory too long (docs/bundle_adjustment.md, "Floor scale bias").
+  bool estimate_odometry_rotation_bias_on_floor = true;
   double min_point_triangulation_angle_deg = 1.0;  // deg, points with less are dropped before solving
   double min_line_triangulation_angle_deg = 2.0;   // deg, lines with less are dropped (unobservable)
   // m, a point less deep than this in a camera that observes it, or a line whose points seen at
@@ -128,7 +134,7 @@ struct BundleAdjustmentSummary {
   // rad per step, angle-axis in the base frame: the odometry's estimated rotation bias b (zero
   // when options.estimate_odometry_rotation_bias is off or nothing was solved).
   std::array<double, 3> odometry_rotation_bias_rad = {0, 0, 0};
-  bool odometry_rotation_bias_estimated = false;  // options.estimate_odometry_rotation_bias, as run
+  bool odometry_rotation_bias_estimated = false;  // b was in the problem (on, or auto on a ground robot)
   double time_s = 0;          // wall-clock seconds, the whole call
   std::string solver_report;  // Ceres's BriefReport of the last solve, or why nothing was solved
 };
