@@ -85,6 +85,25 @@ void MatchFramePairs(const Sequence& sequence, const PipelineOptions& options, P
   progress->Finish();
 }
 
+// world_T_base of every frame's odometry.
+std::vector<Pose3> OdometryBasePoses(const Sequence& sequence) {
+  std::vector<Pose3> poses;
+  poses.reserve(sequence.frames.size());
+  for (const Frame& frame : sequence.frames) poses.push_back(frame.world_T_base_odometry);
+  return poses;
+}
+
+// world_T_camera from world_T_base and back, with the rig's base_T_camera.
+std::vector<Pose3> CamerasFromBases(const std::vector<Pose3>& world_T_base, const Pose3& base_T_camera) {
+  std::vector<Pose3> cameras;
+  cameras.reserve(world_T_base.size());
+  for (const Pose3& pose : world_T_base) cameras.push_back(pose * base_T_camera);
+  return cameras;
+}
+std::vector<Pose3> BasesFromCameras(const std::vector<Pose3>& world_T_camera, const Pose3& base_T_camera) {
+  return CamerasFromBases(world_T_camera, base_T_camera.Inverse());
+}
+
 std::vector<Pose3> CameraPoses(const Sequence& sequence, bool groundtruth) {
   std::vector<Pose3> poses;
   poses.reserve(sequence.frames.size());
@@ -143,19 +162,14 @@ void LogFloorLandmarks(const std::string& stage, const PipelineResult& result) {
 
 // Bundle adjustment from the odometry: refined poses and landmarks.
 Status Refine(const Sequence& sequence, const PipelineOptions& options, PipelineResult* result) {
-  MarkOcclusionCandidates(result->junctions, &result->landmarks);  // not floor landmarks
-  std::vector<Pose3> world_T_base_odometry;
-  for (const Frame& frame : sequence.frames) world_T_base_odometry.push_back(frame.world_T_base_odometry);
   std::vector<Pose3> world_T_base_refined;
   BundleAdjustmentSummary summary;
-  SFM_RETURN_IF_ERROR(BundleAdjust(sequence.calibration, world_T_base_odometry, options.bundle_adjustment_options,
-                                   &result->landmarks, &world_T_base_refined, &summary));
+  SFM_RETURN_IF_ERROR(BundleAdjust(sequence.calibration, OdometryBasePoses(sequence),
+                                   options.bundle_adjustment_options, &result->landmarks, &world_T_base_refined,
+                                   &summary));
   result->unobservable_lines += summary.lines_unobservable;
   result->bundle_adjustment = summary;
-  result->world_T_camera_refined.clear();
-  for (const Pose3& world_T_base : world_T_base_refined) {
-    result->world_T_camera_refined.push_back(world_T_base * sequence.calibration.base_T_camera);
-  }
+  result->world_T_camera_refined = CamerasFromBases(world_T_base_refined, sequence.calibration.base_T_camera);
   LOG(INFO) << "bundle adjustment: " << summary.points << " points, " << summary.lines << " lines, "
             << summary.observations << " observations; " << summary.observations_removed
             << " outlier observations removed, " << summary.lines_unobservable << " more lines unobservable; "
@@ -175,10 +189,8 @@ Status Refine(const Sequence& sequence, const PipelineOptions& options, Pipeline
 Status RetriangulateOnRefinedPoses(const Sequence& sequence, const PipelineOptions& options,
                                    PipelineResult* result) {
   const Calibration& calibration = sequence.calibration;
-  const Pose3 camera_T_base = calibration.base_T_camera.Inverse();
-  std::vector<Pose3> world_T_base_refined;
-  for (const Pose3& camera : result->world_T_camera_refined)
-    world_T_base_refined.push_back(camera * camera_T_base);
+  const std::vector<Pose3> world_T_base_refined =
+      BasesFromCameras(result->world_T_camera_refined, calibration.base_T_camera);
   TriangulationReport triangulation_report;
   Landmarks retriangulated =
       TriangulateTracks(calibration.camera.K(), result->world_T_camera_refined, result->junctions,
@@ -205,20 +217,14 @@ Status RetriangulateOnRefinedPoses(const Sequence& sequence, const PipelineOptio
             << " new lines at an existing point)";
   if (options.retriangulate_refined != RetriangulateRefined::kFull) return Status::Ok();
 
-  std::vector<Pose3> world_T_base_odometry;
-  for (const Frame& frame : sequence.frames) world_T_base_odometry.push_back(frame.world_T_base_odometry);
   std::vector<Pose3> world_T_base_second;
   BundleAdjustmentSummary summary;
-  MarkOcclusionCandidates(result->junctions, &result->landmarks);  // the merged ones too
   SFM_RETURN_IF_ERROR(BundleAdjust(
-      calibration, world_T_base_odometry, world_T_base_refined, result->bundle_adjustment.odometry_scale,
+      calibration, OdometryBasePoses(sequence), world_T_base_refined, result->bundle_adjustment.odometry_scale,
       options.bundle_adjustment_options, &result->landmarks, &world_T_base_second, &summary));
   result->bundle_adjustment = summary;
   result->retriangulation.second_adjustment = true;
-  result->world_T_camera_refined.clear();
-  for (const Pose3& world_T_base : world_T_base_second) {
-    result->world_T_camera_refined.push_back(world_T_base * calibration.base_T_camera);
-  }
+  result->world_T_camera_refined = CamerasFromBases(world_T_base_second, calibration.base_T_camera);
   LOG(INFO) << "second bundle adjustment from the refined poses: " << summary.points << " points, "
             << summary.lines << " lines; " << summary.observations_removed
             << " outlier observations removed; RMS " << summary.point_rms_px << " px (points), "
@@ -242,10 +248,8 @@ std::shared_ptr<const PoseCovariance> RefinedPoseCovariance(const Sequence& sequ
       wireframe.estimate_pixel_sigma
           ? std::max(wireframe.pixel_sigma_px, EstimatePixelSigma(K, poses, result.landmarks))
           : wireframe.pixel_sigma_px;
-  std::vector<Pose3> odometry, refined;
-  const Pose3 camera_T_base = sequence.calibration.base_T_camera.Inverse();
-  for (const Frame& frame : sequence.frames) odometry.push_back(frame.world_T_base_odometry);
-  for (const Pose3& camera : poses) refined.push_back(camera * camera_T_base);
+  const std::vector<Pose3> odometry = OdometryBasePoses(sequence);
+  const std::vector<Pose3> refined = BasesFromCameras(poses, sequence.calibration.base_T_camera);
   auto covariance = std::make_shared<PoseCovariance>();
   const Status status = ComputePoseCovariance(sequence.calibration, odometry, refined, result.landmarks,
                                               options.bundle_adjustment_options, sigma_px, covariance.get());

@@ -302,6 +302,10 @@ class BundleAdjuster {
                                    (base_on_floor_ ? ", base poses held on it" : "") + stray_slab_note_;
   }
 
+  // The odometry's scale factor is a block of the problem: freed by the floor prior, or held at a
+  // start scale an earlier adjustment's floor gave.
+  bool ScaleInProblem() const { return scale_free_ || odometry_scale_ != 1.0; }
+
   void FinishFloorSummary() {
     summary_->floor_prior_used = scale_free_ && !(floor_.points.empty() && floor_.lines.empty());
     summary_->floor_points = static_cast<int>(floor_.points.size());
@@ -585,7 +589,7 @@ class BundleAdjuster {
     // A start from an earlier adjustment that the floor prior rescaled (start_scale != 1) keeps
     // that scale in the odometry priors, held, until this run's floor frees it: otherwise the
     // first solves would pull the start back to the odometry's scale.
-    const bool scaled = scale_free_ || odometry_scale_ != 1.0;
+    const bool scaled = ScaleInProblem();
     if (scaled) {
       problem.AddParameterBlock(&odometry_scale_, 1);
       ordering->AddElementToGroup(&odometry_scale_, 1);
@@ -618,9 +622,8 @@ class BundleAdjuster {
     // The odometry's rotation bias: a zero-mean prior with the noise model's per-frame rotation
     // sigma (a bias larger than the whole per-frame noise the model states is outside the model;
     // the steps' vision-determined rotations pin it far tighter, about sigma / sqrt(steps)).
-    const bool with_bias = with_bias_;
     double* const bias = rotation_bias_.data();
-    if (with_bias) {
+    if (with_bias_) {
       problem.AddParameterBlock(bias, 3);
       ordering->AddElementToGroup(bias, 1);
       problem.AddResidualBlock(OdometryRotationBiasPriorCost::Create(noise_.rotation_sigma), nullptr, bias);
@@ -630,12 +633,12 @@ class BundleAdjuster {
       const OdometryStepSigmas sigmas = OdometryStepSigmasFor(motion.translation.norm(), noise_, options_);
       double* const pose_blocks[4] = {poses_[f].rotation.data(), poses_[f].translation.data(),
                                       poses_[f + 1].rotation.data(), poses_[f + 1].translation.data()};
-      if (with_bias && scaled) {
+      if (with_bias_ && scaled) {
         problem.AddResidualBlock(OdometryPriorWithScaleAndBiasCost::Create(motion, noise_.rotation_sigma,
                                                                            sigmas.along_m, sigmas.across_m),
                                  nullptr, pose_blocks[0], pose_blocks[1], pose_blocks[2], pose_blocks[3],
                                  &odometry_scale_, bias);
-      } else if (with_bias) {
+      } else if (with_bias_) {
         problem.AddResidualBlock(
             OdometryPriorWithBiasCost::Create(motion, noise_.rotation_sigma, sigmas.along_m, sigmas.across_m),
             nullptr, pose_blocks[0], pose_blocks[1], pose_blocks[2], pose_blocks[3], bias);
@@ -695,7 +698,7 @@ class BundleAdjuster {
       ordering->AddElementToGroup(poses_[f].rotation.data(), static_cast<int>(f % 2));
       ordering->AddElementToGroup(poses_[f].translation.data(), 2 + static_cast<int>(f % 2));
     }
-    if (scale_free_ || odometry_scale_ != 1.0) ordering->AddElementToGroup(&odometry_scale_, 4);
+    if (ScaleInProblem()) ordering->AddElementToGroup(&odometry_scale_, 4);
     // The rotation bias shares every odometry residual with the scale: a group of its own.
     if (with_bias_) ordering->AddElementToGroup(rotation_bias_.data(), 5);
     // The landmark blocks start at their sizes' offsets; walk them as Solve laid them out.
@@ -772,8 +775,8 @@ class BundleAdjuster {
   // The floor prior: applied (the odometry's scale factor is a parameter) or not, the landmarks
   // it holds now, the anchors of those lines (their end-points when selected), the factor.
   bool scale_free_ = false;
-  bool base_on_floor_ = false;
-  std::string stray_slab_note_;  // the report's note when the first selection passed over a stray slab  // BaseOnFloorCost on every pose but the first while scale_free_
+  bool base_on_floor_ = false;  // BaseOnFloorCost on every pose but the first while scale_free_
+  std::string stray_slab_note_;  // the report's note when the first selection passed over a stray slab
   FloorLandmarks floor_;
   std::vector<std::array<Eigen::Vector3d, 2>> floor_anchors_;
   double odometry_scale_ = 1;

@@ -70,17 +70,13 @@ std::optional<double> SettleSlab(const std::vector<double>& sorted_heights, doub
 FloorPlane FindFloorPlane(const Landmarks& landmarks, double camera_z_m, double half_width_m, int min_support,
                           std::optional<double> around_z_m, std::optional<double> lowest_z_m) {
   std::vector<double> heights;
+  auto consider = [&](double z) {  // false for NaN
+    if (z < camera_z_m && !(lowest_z_m && z < *lowest_z_m)) heights.push_back(z);
+  };
   for (const PointLandmark& point : landmarks.points) {
-    if (!point.occlusion_candidate && point.position.z() < camera_z_m) heights.push_back(point.position.z());
+    if (!point.occlusion_candidate) consider(point.position.z());
   }
-  for (const LineLandmark& line : landmarks.lines) {
-    const double z = LineHeight(line, half_width_m);
-    if (z < camera_z_m) heights.push_back(z);  // false for NaN
-  }
-  if (lowest_z_m) {
-    heights.erase(std::remove_if(heights.begin(), heights.end(), [&](double z) { return z < *lowest_z_m; }),
-                  heights.end());
-  }
+  for (const LineLandmark& line : landmarks.lines) consider(LineHeight(line, half_width_m));
   std::sort(heights.begin(), heights.end());
   FloorPlane plane;
   plane.below_camera = static_cast<int>(heights.size());
@@ -95,9 +91,10 @@ FloorPlane FindFloorPlane(const Landmarks& landmarks, double camera_z_m, double 
   };
   if (around_z_m) {
     const std::optional<double> centre = SettleSlab(heights, *around_z_m, half_width_m);
-    if (centre && support(*centre) >= needed) {
+    const int held = centre ? support(*centre) : 0;
+    if (held >= needed) {
       plane.z_m = *centre;
-      plane.support = support(*centre);
+      plane.support = held;
       plane.found = true;
       return plane;
     }

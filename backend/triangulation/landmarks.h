@@ -29,7 +29,7 @@ struct PointLandmark {
   Eigen::Vector3d position = Eigen::Vector3d::Zero();
   std::vector<PointObservation> observations;  // at most one per frame
   // Seen as a T or an X in some view: possibly an occlusion (a nearer edge crossing a farther
-  // one), not a 3D vertex. Set by the caller that knows the junction types (the pipeline).
+  // one), not a 3D vertex. Set by TriangulateTracks (SeenAsTOrX), which knows the junction types.
   bool occlusion_candidate = false;
 };
 

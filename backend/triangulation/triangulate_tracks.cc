@@ -18,6 +18,23 @@ int TriangulationReport::Count(LineStatus status) const {
   return count;
 }
 
+bool SeenAsTOrX(const std::vector<Junctions>& junctions, const PointLandmark& point) {
+  for (const PointObservation& observation : point.observations) {
+    CHECK(observation.frame >= 0 && observation.frame < static_cast<int>(junctions.size()))
+        << observation.frame;
+    const Junctions& frame = junctions[observation.frame];
+    CHECK(observation.junction >= 0 && observation.junction < static_cast<int>(frame.size()))
+        << observation.junction;
+    const JunctionType type = frame[observation.junction].type;
+    if (type == JunctionType::kT || type == JunctionType::kX) return true;
+  }
+  return false;
+}
+
+void MarkOcclusionCandidates(const std::vector<Junctions>& junctions, Landmarks* landmarks) {
+  for (PointLandmark& point : landmarks->points) point.occlusion_candidate = SeenAsTOrX(junctions, point);
+}
+
 Landmarks TriangulateTracks(const Eigen::Matrix3d& K, const std::vector<Pose3>& world_T_camera,
                             const std::vector<Junctions>& frames, const std::vector<JunctionTrack>& tracks,
                             const TriangulationOptions& options, TriangulationReport* report) {
@@ -43,6 +60,7 @@ Landmarks TriangulateTracks(const Eigen::Matrix3d& K, const std::vector<Pose3>& 
     if (point_status == PointStatus::kOk) {
       point_index = static_cast<int>(landmarks.points.size());
       landmarks.points.push_back({track.id, position, point_observations});
+      landmarks.points.back().occlusion_candidate = SeenAsTOrX(frames, landmarks.points.back());
     }
 
     statuses.line_status.emplace_back();

@@ -23,10 +23,19 @@ struct TriangulationReport {
   int Count(LineStatus status) const;   // segment tracks with this status
 };
 
+// A T (a nearer edge cutting a farther one) or an X (two edges crossing) may be an occlusion, not
+// a 3D vertex: true when `point` is seen as one in any view (junctions[frame][junction], CHECKed).
+bool SeenAsTOrX(const std::vector<Junctions>& junctions, const PointLandmark& point);
+
+// Sets every point's occlusion_candidate by SeenAsTOrX (the floor prior does not hold such points;
+// TriangulateTracks sets it on the points it makes).
+void MarkOcclusionCandidates(const std::vector<Junctions>& junctions, Landmarks* landmarks);
+
 // Triangulates every track. K: the camera matrix (undistorted pixels); world_T_camera[f] and
 // frames[f]: the camera pose (odometry) and the junctions of frame f, one each per frame (CHECKed);
 // the tracks must index frames (CHECKed). Per junction track: TriangulatePoint on the junction
-// locations; a kOk point becomes a PointLandmark. Per segment track s: TriangulateLine on
+// locations; a kOk point becomes a PointLandmark (occlusion_candidate by SeenAsTOrX). Per segment
+// track s: TriangulateLine on
 // (location, end of segment views[v].segments[s]) over the views where it is not -1, then BoundLine with the
 // track's point when it was triangulated; a kOk line becomes a LineLandmark with end0 at the junction end
 // (point = end0, direction towards end1) and point_landmark set when the point exists. Landmarks come in

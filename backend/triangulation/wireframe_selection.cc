@@ -42,23 +42,6 @@ bool BoundOnFinalPoses(const Eigen::Matrix3d& K, const std::vector<LineView>& vi
 
 }  // namespace
 
-bool SeenAsTOrX(const std::vector<Junctions>& junctions, const PointLandmark& point) {
-  for (const PointObservation& observation : point.observations) {
-    CHECK(observation.frame >= 0 && observation.frame < static_cast<int>(junctions.size()))
-        << observation.frame;
-    const Junctions& frame = junctions[observation.frame];
-    CHECK(observation.junction >= 0 && observation.junction < static_cast<int>(frame.size()))
-        << observation.junction;
-    const JunctionType type = frame[observation.junction].type;
-    if (type == JunctionType::kT || type == JunctionType::kX) return true;
-  }
-  return false;
-}
-
-void MarkOcclusionCandidates(const std::vector<Junctions>& junctions, Landmarks* landmarks) {
-  for (PointLandmark& point : landmarks->points) point.occlusion_candidate = SeenAsTOrX(junctions, point);
-}
-
 double MaxVertexSigma(const WireframeOptions& options, double fx, double depth) {
   return std::sqrt(2.0) * options.pixel_sigma_px / fx * depth /
          std::tan(options.min_equivalent_parallax_deg * kPi / 180);

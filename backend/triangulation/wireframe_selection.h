@@ -11,6 +11,7 @@
 
 #include "backend/triangulation/landmark_uncertainty.h"
 #include "backend/triangulation/landmarks.h"
+#include "backend/triangulation/triangulate_tracks.h"
 #include "backend/triangulation/triangulation_options.h"
 #include "frontend/geometry/pose.h"
 #include "frontend/junctions/junction.h"
@@ -34,13 +35,6 @@ struct WireframeSelectionReport {
   std::string pose_error_model = "random_walk";
   double pose_covariance_seconds = 0;
 };
-
-// A T (a nearer edge cutting a farther one) or an X (two edges crossing) may be an occlusion, not
-// a 3D vertex: true when `point` is seen as one in any view (junctions[frame][junction], CHECKed).
-bool SeenAsTOrX(const std::vector<Junctions>& junctions, const PointLandmark& point);
-
-// Sets every point's occlusion_candidate by SeenAsTOrX (the floor prior does not hold such points).
-void MarkOcclusionCandidates(const std::vector<Junctions>& junctions, Landmarks* landmarks);
 
 // The largest position sigma (metres) that WireframeOptions allows for a vertex whose smallest
 // depth in a view that sees it is `depth`: sqrt(2) (pixel_sigma_px / fx) depth /

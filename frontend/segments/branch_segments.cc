@@ -5,10 +5,12 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "frontend/segments/line_fit.h"
 #include "frontend/segments/nfa.h"
+#include "frontend/segments/parabola_peak.h"
 
 namespace sfm {
 namespace {
@@ -411,13 +413,11 @@ class BranchSearch {
         const int qx = q % cols_, qy = q / cols_;
         if (qx >= 1 && qy >= 1 && qx < cols_ - 1 && qy < rows_ - 1 && mag_[q] > mag_[best]) best = q;
       }
-      const double before = mag_[best - step], centre = mag_[best], after = mag_[best + step];
-      const double curvature = before - 2 * centre + after;
-      if (!(centre >= before && centre >= after && curvature < 0)) continue;
-      strongest = std::max(strongest, static_cast<int>(centre));
-      const double delta = 0.5 * (before - after) / curvature;
-      const Eigen::Vector2d point = across_y ? Eigen::Vector2d(best % cols_, best / cols_ + delta)
-                                             : Eigen::Vector2d(best % cols_ + delta, best / cols_);
+      const std::optional<double> delta = ParabolaPeakOffset(mag_[best - step], mag_[best], mag_[best + step]);
+      if (!delta) continue;
+      strongest = std::max(strongest, static_cast<int>(mag_[best]));
+      const Eigen::Vector2d point = across_y ? Eigen::Vector2d(best % cols_, best / cols_ + *delta)
+                                             : Eigen::Vector2d(best % cols_ + *delta, best / cols_);
       if (std::abs(normal.dot(point - origin)) <= kGatherDistance) points.push_back(point);
     }
     if (points.size() < 3 || strongest < high_) return false;

@@ -15,6 +15,7 @@
 #include "frontend/segments/collinear_merge.h"
 #include "frontend/segments/line_fit.h"
 #include "frontend/segments/nfa.h"
+#include "frontend/segments/parabola_peak.h"
 
 namespace sfm {
 namespace {
@@ -247,10 +248,7 @@ class FastDetector {
     const int16_t* mag = magnitude_.ptr<int16_t>();
     const bool along_x = direction_.ptr<uint8_t>()[index] == kAlongX;
     const int step = along_x ? cols_ : 1;
-    const double before = mag[index - step], centre = mag[index], after = mag[index + step];
-    const double curvature = before - 2 * centre + after;
-    const double delta = (centre >= before && centre >= after && curvature < 0)
-                             ? 0.5 * (before - after) / curvature : 0.0;
+    const double delta = ParabolaPeakOffset(mag[index - step], mag[index], mag[index + step]).value_or(0.0);
     const int y = index / cols_, x = index % cols_;
     return along_x ? Eigen::Vector2d(x, y + delta) : Eigen::Vector2d(x + delta, y);
   }

@@ -200,7 +200,7 @@ TEST(OcclusionCandidateTest, PointsSeenAsTOrXAreMarked) {
   Landmarks landmarks;
   auto add = [&](std::vector<std::pair<int, int>> seen) {
     PointLandmark point;
-    for (const auto& [frame, junction] : seen) point.observations.push_back({frame, junction, {}});
+    for (const auto& [frame, junction] : seen) point.observations.push_back({frame, junction, Eigen::Vector2d::Zero()});
     point.occlusion_candidate = true;  // stale: must be recomputed
     landmarks.points.push_back(point);
   };
