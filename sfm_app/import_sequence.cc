@@ -42,8 +42,18 @@ DEFINE_double(odometry_rotation_sigma, kDefaults.odometry.rotation_sigma,
 DEFINE_double(odometry_rotation_bias, kDefaults.odometry.rotation_bias,
               "Odometry rotation bias per step about the camera's y axis (a heading drift), radians.");
 DEFINE_bool(vgg_refit_poses, sfm::VggImportOptions().refit_poses,
-            "vgg: re-estimate each pose for the sequence's one K (median of the frames' K); false keeps R, C "
-            "of each P's own decomposition, which reproject worse with the shared K.");
+            "vgg: re-estimate the poses for the sequence's one K (by --vgg_refit); false keeps R, C of each P's "
+            "own decomposition with the median of the frames' K, which reproject worse.");
+DEFINE_string(vgg_refit, "joint",
+              "vgg: how the poses are re-estimated: 'joint' (all poses and the data set's 3D points fitted together "
+              "to its matched corners, <name>.nview-corners, for the median K) or 'pnp' (each pose alone by PnP onto "
+              "the fixed 3D points as its P projects them; the import before session 5).");
+DEFINE_bool(vgg_refit_focal, sfm::VggImportOptions().refit_focal,
+            "vgg, --vgg_refit=joint: also estimate fx, fy (self-calibration; nearly unobservable on Corridor).");
+DEFINE_bool(vgg_refit_principal_point, sfm::VggImportOptions().refit_principal_point,
+            "vgg, --vgg_refit=joint: also estimate cx, cy (self-calibration; nearly unobservable on Corridor).");
+DEFINE_bool(vgg_refit_k1, sfm::VggImportOptions().refit_radial_k1,
+            "vgg, --vgg_refit=joint: also estimate a radial distortion term k1 (written to sequence.yaml).");
 DEFINE_bool(
     vgg_warp_to_shared_k, sfm::VggImportOptions().warp_to_shared_k,
     "vgg: resample each image to the sequence's one K (H_i = K K_i^-1, cropped to the rectangle all frames "
@@ -60,6 +70,10 @@ sfm::Status ReadDataSet(sfm::ImportedSequence* sequence) {
   if (FLAGS_format == "vgg") {
     sfm::VggImportOptions options;
     options.refit_poses = FLAGS_vgg_refit_poses;
+    options.refit = FLAGS_vgg_refit == "pnp" ? sfm::VggRefit::kPnpMedianK : sfm::VggRefit::kJoint;
+    options.refit_focal = FLAGS_vgg_refit_focal;
+    options.refit_principal_point = FLAGS_vgg_refit_principal_point;
+    options.refit_radial_k1 = FLAGS_vgg_refit_k1;
     options.warp_to_shared_k = FLAGS_vgg_warp_to_shared_k;
     sfm::VggImportSummary summary;
     return sfm::ReadVggSequence(FLAGS_input, options, sequence, &summary);
@@ -89,6 +103,11 @@ int main(int argc, char** argv) {
   }
   if (FLAGS_format != "vgg" && FLAGS_format != "strecha" && FLAGS_format != "tum") {
     std::fprintf(stderr, "import_sequence: --format must be vgg, strecha or tum (found '%s')\n", FLAGS_format.c_str());
+    return 2;
+  }
+  if (FLAGS_vgg_refit != "joint" && FLAGS_vgg_refit != "pnp") {
+    std::fprintf(stderr, "import_sequence: --vgg_refit must be joint or pnp (found '%s')\n",
+                 FLAGS_vgg_refit.c_str());
     return 2;
   }
   if (FLAGS_input.empty() || FLAGS_output.empty()) {

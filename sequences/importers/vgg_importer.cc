@@ -7,7 +7,9 @@
 #include <cctype>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <map>
+#include <sstream>
 #include <opencv2/calib3d.hpp>
 #include <opencv2/core/eigen.hpp>
 #include <opencv2/imgcodecs.hpp>
@@ -146,17 +148,81 @@ Status RefitPose(const View& view, const std::vector<Eigen::Vector3d>& points, c
   return Status::Ok();
 }
 
+// <name>.NNN.corners: 'x y' per line.
+Status ReadCorners(const std::string& path, std::vector<Eigen::Vector2d>* corners) {
+  std::vector<double> numbers;
+  SFM_RETURN_IF_ERROR(ReadNumbers(path, &numbers));
+  if (numbers.size() % 2 != 0) {
+    return Status::Error(path + ": expected 'x y' per line, found " + std::to_string(numbers.size()) +
+                         " numbers in all");
+  }
+  for (size_t i = 0; i < numbers.size(); i += 2) corners->emplace_back(numbers[i], numbers[i + 1]);
+  return Status::Ok();
+}
+
+// <name>.nview-corners (README-2D): one row per 3D point, per view the index of its corner in that
+// view's .corners or '*'; as observations of point (row) in view (column).
+Status ReadCornerTracks(const std::string& path, size_t point_count, const std::vector<std::vector<Eigen::Vector2d>>& corners,
+                        std::vector<RefitObservation>* observations) {
+  std::ifstream in(path);
+  std::error_code error;
+  if (!fs::is_regular_file(path, error)) return Status::Error(path + ": file does not exist");
+  if (!in) return Status::Error(path + ": cannot open");
+  std::string line;
+  size_t row = 0;
+  for (int line_number = 1; std::getline(in, line); ++line_number) {
+    std::istringstream fields(line);
+    std::vector<std::string> tokens;
+    for (std::string token; fields >> token;) tokens.push_back(token);
+    if (tokens.empty()) continue;
+    const std::string where = path + ":" + std::to_string(line_number);
+    if (tokens.size() != corners.size()) {
+      return Status::Error(where + ": expected one entry per view (" + std::to_string(corners.size()) + "), found " +
+                           std::to_string(tokens.size()));
+    }
+    if (row >= point_count) {
+      return Status::Error(where + ": more rows than 3D points (" + std::to_string(point_count) + ")");
+    }
+    for (size_t v = 0; v < tokens.size(); ++v) {
+      if (tokens[v] == "*") continue;
+      const std::string& token = tokens[v];
+      if (!std::all_of(token.begin(), token.end(), [](unsigned char c) { return std::isdigit(c); }) ||
+          token.size() > 9) {
+        return Status::Error(where + ": '" + token + "' is neither a corner index nor '*'");
+      }
+      const size_t index = std::stoul(token);
+      if (index >= corners[v].size()) {
+        return Status::Error(where + ": corner " + token + " of view " + std::to_string(v) + " does not exist (" +
+                             std::to_string(corners[v].size()) + " corners)");
+      }
+      observations->push_back({static_cast<int>(v), static_cast<int>(row), corners[v][index]});
+    }
+    ++row;
+  }
+  if (row != point_count) {
+    return Status::Error(path + ": " + std::to_string(row) + " rows for " + std::to_string(point_count) +
+                         " 3D points");
+  }
+  return Status::Ok();
+}
+
 double Median(std::vector<double> values) {
   std::sort(values.begin(), values.end());
   const size_t n = values.size();
   return n % 2 == 1 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
 }
 
+std::string FixedText(double value, int decimals) {
+  char text[32];
+  std::snprintf(text, sizeof(text), "%.*f", decimals, value);
+  return text;
+}
+
 // "a..b" of the values, for the log and the notes.
-std::string RangeText(const std::vector<double>& values) {
+std::string RangeText(const std::vector<double>& values, int decimals = 1) {
   const auto [low, high] = std::minmax_element(values.begin(), values.end());
   char text[64];
-  std::snprintf(text, sizeof(text), "%.1f..%.1f", *low, *high);
+  std::snprintf(text, sizeof(text), "%.*f..%.*f", decimals, *low, decimals, *high);
   return text;
 }
 
@@ -207,7 +273,7 @@ Status ReadVggSequence(const std::string& input_dir, const VggImportOptions& opt
     skew.push_back(std::abs(K(0, 1)));
   }
   result.K << Median(fx), 0, Median(cx), 0, Median(fy), Median(cy), 0, 0, 1;
-  const std::string k_note = "K: median of the " + std::to_string(views.size()) + " frames' decomposed K (fx " +
+  std::string k_note = "K: median of the " + std::to_string(views.size()) + " frames' decomposed K (fx " +
                              RangeText(fx) + ", fy " + RangeText(fy) + ", cx " + RangeText(cx) + ", cy " +
                              RangeText(cy) + ", |skew| " + RangeText(skew) + " set to 0): fx " +
                              ShortestNumberText(result.K(0, 0)) + " fy " + ShortestNumberText(result.K(1, 1)) + " cx " +
@@ -240,29 +306,79 @@ Status ReadVggSequence(const std::string& input_dir, const VggImportOptions& opt
     LOG(INFO) << "VGG: " << pose_note;
   } else {
     pose_note = options.refit_poses
-                    ? "poses: re-estimated for that K (PnP on " + name + ".p3d as each P projects it)"
+                    ? "poses: re-estimated for the median K (PnP on " + name + ".p3d as each P projects it)"
                     : "poses: R, C of each P's RQ decomposition (with its own K, not the shared one)";
+  }
+  std::vector<Pose3> camera_T_world;
+  for (const View& view : views) camera_T_world.push_back(view.decomposition.camera_T_world);
+  const bool refit = options.refit_poses && !options.warp_to_shared_k;
+  for (size_t i = 0; i < views.size(); ++i) {
+    double rms_px = 0;
+    if (refit) {
+      SFM_RETURN_IF_ERROR(RefitPose(views[i], points, size, result.K, &camera_T_world[i], &rms_px));
+      LOG(INFO) << "VGG: " << views[i].stem << ": pose refitted for the median K, RMS " << rms_px << " px against P";
+    }
+    result.refit_rms_px.push_back(rms_px);
+  }
+  if (refit) pose_note += "; RMS " + RangeText(result.refit_rms_px) + " px";
+  std::string refit_note;
+  if (refit && options.refit == VggRefit::kJoint) {
+    // Started from the median K and the PnP poses above; the P files' own centres fix the gauge.
+    std::vector<std::vector<Eigen::Vector2d>> corners(views.size());
+    for (size_t i = 0; i < views.size(); ++i) {
+      SFM_RETURN_IF_ERROR(ReadCorners((dir / (views[i].stem + ".corners")).string(), &corners[i]));
+    }
+    std::vector<RefitObservation> observations;
+    const std::string tracks_path = (dir / (name + ".nview-corners")).string();
+    SFM_RETURN_IF_ERROR(ReadCornerTracks(tracks_path, points.size(), corners, &observations));
+    std::vector<Eigen::Vector3d> reference_centres;
+    for (const View& view : views) reference_centres.push_back(view.decomposition.centre);
+    SharedCameraRefitOptions refit_options;
+    refit_options.refine_focal = options.refit_focal;
+    refit_options.refine_principal_point = options.refit_principal_point;
+    refit_options.radial_k1 = options.refit_radial_k1;
+
+    SharedCameraRefit joint;
+    const Status status = RefitSharedCamera(result.K, camera_T_world, points, observations, reference_centres,
+                                            refit_options, &joint);
+    if (!status.ok()) return Status::Error(tracks_path + ": " + status.message());
+    result.K = joint.K;
+    camera_T_world = joint.camera_T_world;
+    imported.camera.distortion[0] = joint.k1;
+    std::string held = options.refit_focal ? "" : " fx fy";
+    if (!options.refit_principal_point) held += " cx cy";
+    refit_note = "joint refit (bundle adjustment, sequences/importers/shared_camera_refit.h) of the " +
+                 std::to_string(views.size()) + " poses, the " + std::to_string(points.size()) + " " + name +
+                 ".p3d points" + (options.refit_focal ? ", fx fy" : "") +
+                 (options.refit_principal_point ? ", cx cy" : "") + (options.refit_radial_k1 ? ", k1" : "") +
+                 (held.empty() ? "" : " (K's" + held + " held at the median)") + " to the " +
+                 std::to_string(observations.size()) + " corner observations of " + name +
+                 ".nview-corners (Huber 1 px), from the median K and the PnP poses: median reprojection error " +
+                 FixedText(joint.start_median_px, 3) + " -> " + FixedText(joint.median_px, 3) + " px (per view " +
+                 RangeText(joint.view_median_px, 2) + "); gauge: the similarity (scale " +
+                 FixedText(joint.gauge_scale, 4) +
+                 ") that best maps the refit camera centres onto the P files' centres, which they then miss by " +
+                 RangeText(joint.centre_offset, 3) + " units";
+    if (options.refit_focal || options.refit_principal_point || options.refit_radial_k1) {
+      refit_note += "; K fx " + FixedText(result.K(0, 0), 2) + " fy " + FixedText(result.K(1, 1), 2) + " cx " +
+                    FixedText(result.K(0, 2), 2) + " cy " + FixedText(result.K(1, 2), 2) + " k1 " +
+                    FixedText(joint.k1, 4);
+      k_note = "K: fitted with the poses (next line), started from the " + k_note.substr(3);
+    }
+    LOG(INFO) << "VGG: " << refit_note;
+    pose_note = "poses: " + refit_note;
+    result.joint_refit = std::move(joint);
   }
   imported.camera.fx = result.K(0, 0);
   imported.camera.fy = result.K(1, 1);
   imported.camera.cx = result.K(0, 2);
   imported.camera.cy = result.K(1, 2);
   for (size_t i = 0; i < views.size(); ++i) {
-    const View& view = views[i];
-    Pose3 camera_T_world = view.decomposition.camera_T_world;
-    double rms_px = 0;
-    if (options.refit_poses && !options.warp_to_shared_k) {
-      SFM_RETURN_IF_ERROR(RefitPose(view, points, size, result.K, &camera_T_world, &rms_px));
-      LOG(INFO) << "VGG: " << view.stem << ": pose refitted for the shared K, RMS " << rms_px << " px against P";
-    }
-    result.refit_rms_px.push_back(rms_px);
-    ImportedFrame frame{static_cast<double>(i) * kFrameInterval, view.image_path, camera_T_world.Inverse(),
+    ImportedFrame frame{static_cast<double>(i) * kFrameInterval, views[i].image_path, camera_T_world[i].Inverse(),
                         std::nullopt};
     if (options.warp_to_shared_k) frame.source_to_image = result.source_to_image[i];
     imported.frames.push_back(frame);
   }
-  if (options.refit_poses && !options.warp_to_shared_k)
-    pose_note += "; RMS " + RangeText(result.refit_rms_px) + " px";
   imported.notes.push_back("format: VGG multi-view, " + input_dir + ", " + std::to_string(views.size()) +
                            " frames " + views.front().stem + " .. " + views.back().stem);
   imported.notes.push_back(k_note);
