@@ -193,6 +193,7 @@ Status RefitSharedCamera(const Eigen::Matrix3d& start_K, const std::vector<Pose3
     return Status::Error("shared camera refit: the solver failed (" + summary.message + ")");
   }
   refit.iterations = static_cast<int>(summary.iterations.size());
+  refit.observations = static_cast<int>(observations.size());
 
   // The gauge: the similarity that best maps the refit centres onto the reference.
   std::vector<Eigen::Vector3d> centres;
