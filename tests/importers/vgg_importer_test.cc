@@ -14,6 +14,8 @@
 #include <string>
 #include <vector>
 
+#include "backend/triangulation/point_triangulation.h"
+#include "frontend/geometry/camera.h"
 #include "frontend/geometry/epipolar.h"
 #include "frontend/sequence/sequence.h"
 #include "tests/test_data.h"
@@ -373,6 +375,103 @@ TEST(VggImporterTest, CorridorJointRefitTruthReprojectsOntoTheCorners) {
   std::cout << "[ figure   ] true centres at most " << largest_offset << " units from the P files' centres\n";
   EXPECT_LT(largest_offset, 0.1);
   EXPECT_NEAR((figures.centres.back() - figures.centres.front()).norm(), 8.71, 0.087);
+}
+
+// Cross-validation of the camera model on the data set's own measurements (no back-end figure):
+// the refit sees the tracks of the even rows of bt.nview-corners only; each odd row is then
+// triangulated with the refit's cameras (DLT and Gauss-Newton, K fixed) and its reprojection error
+// measured. Same for the PnP truth's cameras (median K), whose held-out points are triangulated
+// afresh too (so this is not the 1.15 px of bt.p3d). Measured, median px training / held-out:
+// K held (the default) 0.332 / 0.360; cx cy free 0.246 / 0.270 (cy 169: 82 px below every P's);
+// k1 free 0.237 / 0.248 (k1 -0.19); fx fy free 0.193 / 0.213 (fx 718, fy 1101); K and k1 free
+// 0.190 / 0.207; PnP truth held-out 0.453. Every freed parameter predicts the held-out corners
+// better, so this test does not reject them; they are held for what they become (docs/importers.md).
+// Bounds: the default's held-out error below 0.4 px, within 10 % of its training error, and below
+// the PnP truth's.
+TEST(VggImporterTest, CorridorHeldOutCornersJudgeTheCameraModel) {
+  const std::string data = testing::SharedDataDir("vgg-corridor");
+  if (data.empty()) GTEST_SKIP() << "../shared/data/vgg-corridor is absent";
+  VggImportOptions pnp;
+  pnp.refit = VggRefit::kPnpMedianK;
+  ImportedSequence imported;
+  VggImportSummary summary;
+  ASSERT_TRUE(ReadVggSequence(data, pnp, &imported, &summary).ok());
+  std::vector<Pose3> start_poses;
+  std::vector<Eigen::Vector3d> start_centres;
+  for (const ImportedFrame& frame : imported.frames) {
+    start_poses.push_back(frame.world_T_camera.Inverse());
+    start_centres.push_back(frame.world_T_camera.translation);
+  }
+  const CorridorCorners files = ReadCorridorCorners(data);
+  std::vector<Eigen::Vector3d> points;
+  std::vector<RefitObservation> training;
+  for (size_t p = 0; p < files.points.size(); ++p) {
+    points.push_back(VggFileToWorld(Eigen::Vector3d(files.points[p][0], files.points[p][1], files.points[p][2]), true));
+    for (int v = 0; v < 11; ++v) {
+      if (p % 2 == 0 && files.tracks[p][v] >= 0) training.push_back({v, static_cast<int>(p), files.Corner(p, v)});
+    }
+  }
+  // Held-out median reprojection error of the odd rows for a camera (K, k1) and poses.
+  auto held_out_px = [&](const Eigen::Matrix3d& K, double k1, const std::vector<Pose3>& camera_T_world) {
+    Camera camera;
+    camera.fx = K(0, 0);
+    camera.fy = K(1, 1);
+    camera.cx = K(0, 2);
+    camera.cy = K(1, 2);
+    camera.distortion[0] = k1;
+    std::vector<double> errors;
+    for (size_t p = 1; p < files.points.size(); p += 2) {
+      std::vector<PointView> views;
+      std::vector<int> view_index;
+      for (int v = 0; v < 11; ++v) {
+        if (files.tracks[p][v] < 0) continue;
+        views.push_back({camera_T_world[v].Inverse(), camera.UndistortPixel(files.Corner(p, v))});
+        view_index.push_back(v);
+      }
+      if (views.size() < 2) continue;
+      const Eigen::Vector4d X = TriangulateDlt(K, views);
+      bool in_front = X.w() != 0;
+      for (size_t i = 0; in_front && i < views.size(); ++i) {
+        in_front = (camera_T_world[view_index[i]] * X.hnormalized()).z() > 0;
+      }
+      if (!in_front) continue;
+      const Eigen::Vector3d refined = RefinePoint(K, views, X.hnormalized(), 20);
+      for (int v : view_index) {
+        errors.push_back((ProjectWithRadial(K, k1, camera_T_world[v] * refined) - files.Corner(p, v)).norm());
+      }
+    }
+    return Median(errors);
+  };
+  const double pnp_held_out = held_out_px(summary.K, 0, start_poses);
+  std::cout << "[ figure   ] PnP truth: held-out median reprojection error " << pnp_held_out << " px\n";
+
+  struct Model {
+    const char* name;
+    bool focal, principal_point, k1;
+  };
+  double default_training = 0, default_held_out = 0;
+  for (const Model& model : {Model{"K held (default)", false, false, false}, Model{"cx cy free", false, true, false},
+                             Model{"k1 free", false, false, true}, Model{"cx cy k1 free", false, true, true},
+                             Model{"fx fy free", true, false, false}, Model{"K free", true, true, false},
+                             Model{"K and k1 free", true, true, true}}) {
+    SharedCameraRefitOptions options;
+    options.refine_focal = model.focal;
+    options.refine_principal_point = model.principal_point;
+    options.radial_k1 = model.k1;
+    SharedCameraRefit refit;
+    ASSERT_TRUE(RefitSharedCamera(summary.K, start_poses, points, training, start_centres, options, &refit).ok());
+    const double held_out = held_out_px(refit.K, refit.k1, refit.camera_T_world);
+    std::cout << "[ figure   ] " << model.name << ": training " << refit.median_px << " px, held-out " << held_out
+              << " px; fx " << refit.K(0, 0) << " fy " << refit.K(1, 1) << " cx " << refit.K(0, 2) << " cy "
+              << refit.K(1, 2) << " k1 " << refit.k1 << "\n";
+    if (!model.focal && !model.principal_point && !model.k1) {
+      default_training = refit.median_px;
+      default_held_out = held_out;
+    }
+  }
+  EXPECT_LT(default_held_out, 0.4);
+  EXPECT_LT(default_held_out, 1.1 * default_training);
+  EXPECT_LT(default_held_out, pnp_held_out);
 }
 
 // image_warps.txt through the library's reader (failing the test on a read error).
