@@ -54,6 +54,9 @@ DEFINE_bool(vgg_refit_principal_point, sfm::VggImportOptions().refit_principal_p
             "vgg, --vgg_refit=joint: also estimate cx, cy (self-calibration; nearly unobservable on Corridor).");
 DEFINE_bool(vgg_refit_k1, sfm::VggImportOptions().refit_radial_k1,
             "vgg, --vgg_refit=joint: also estimate a radial distortion term k1 (written to sequence.yaml).");
+DEFINE_double(vgg_k1, sfm::VggImportOptions().k1,
+              "vgg, --vgg_refit=joint: the images' radial distortion k1 (OpenCV's model) when known from elsewhere, "
+              "e.g. scripts/plumb_line_k1.py; held in the refit and written to sequence.yaml. 0: none.");
 DEFINE_bool(
     vgg_warp_to_shared_k, sfm::VggImportOptions().warp_to_shared_k,
     "vgg: resample each image to the sequence's one K (H_i = K K_i^-1, cropped to the rectangle all frames "
@@ -74,6 +77,7 @@ sfm::Status ReadDataSet(sfm::ImportedSequence* sequence) {
     options.refit_focal = FLAGS_vgg_refit_focal;
     options.refit_principal_point = FLAGS_vgg_refit_principal_point;
     options.refit_radial_k1 = FLAGS_vgg_refit_k1;
+    options.k1 = FLAGS_vgg_k1;
     options.warp_to_shared_k = FLAGS_vgg_warp_to_shared_k;
     sfm::VggImportSummary summary;
     return sfm::ReadVggSequence(FLAGS_input, options, sequence, &summary);

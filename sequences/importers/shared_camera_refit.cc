@@ -154,10 +154,10 @@ Status RefitSharedCamera(const Eigen::Matrix3d& start_K, const std::vector<Pose3
   if (!(first_to_last > 0)) return Status::Error("shared camera refit: the first and last camera centres coincide");
 
   SharedCameraRefit refit;
-  ReprojectionMedians(start_K, 0, start_camera_T_world, start_points, observations, nullptr, &refit.start_median_px);
+  ReprojectionMedians(start_K, options.k1, start_camera_T_world, start_points, observations, nullptr, &refit.start_median_px);
 
   std::array<double, 4> intrinsics = {start_K(0, 0), start_K(1, 1), start_K(0, 2), start_K(1, 2)};
-  double k1 = 0;
+  double k1 = options.k1;
   std::vector<Pose6> poses;
   for (const Pose3& pose : start_camera_T_world) poses.push_back(ToPose6(pose));
   std::vector<Eigen::Vector3d> points = start_points;

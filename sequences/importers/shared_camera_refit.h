@@ -24,7 +24,9 @@ struct SharedCameraRefitOptions {
   // Which of K's parameters are estimated; the others keep their start values.
   bool refine_focal = true;            // fx, fy
   bool refine_principal_point = true;  // cx, cy
-  // Also estimate k1 of OpenCV's model (x_d = x (1 + k1 r^2), normalised coordinates).
+  // k1 of OpenCV's model (x_d = x (1 + k1 r^2), normalised coordinates): its start value, and
+  // whether it is estimated (else held there, e.g. at a value known from a separate calibration).
+  double k1 = 0;
   bool radial_k1 = false;
   // Huber loss scale, pixels. Corners that a data set's own cameras reproject to 0.28 px (median
   // distance, i.e. sigma ~0.24 px per axis for Gaussian errors) are trusted in full up to ~4 sigma;

@@ -337,6 +337,7 @@ Status ReadVggSequence(const std::string& input_dir, const VggImportOptions& opt
     refit_options.refine_focal = options.refit_focal;
     refit_options.refine_principal_point = options.refit_principal_point;
     refit_options.radial_k1 = options.refit_radial_k1;
+    refit_options.k1 = options.k1;
 
     SharedCameraRefit joint;
     const Status status = RefitSharedCamera(result.K, camera_T_world, points, observations, reference_centres,
@@ -351,7 +352,9 @@ Status ReadVggSequence(const std::string& input_dir, const VggImportOptions& opt
                  std::to_string(views.size()) + " poses, the " + std::to_string(points.size()) + " " + name +
                  ".p3d points" + (options.refit_focal ? ", fx fy" : "") +
                  (options.refit_principal_point ? ", cx cy" : "") + (options.refit_radial_k1 ? ", k1" : "") +
-                 (held.empty() ? "" : " (K's" + held + " held at the median)") + " to the " +
+                 (held.empty() ? "" : " (K's" + held + " held at the median)") +
+                 (options.k1 != 0 && !options.refit_radial_k1 ? " (k1 held at " + FixedText(options.k1, 4) + ")" : "") +
+                 " to the " +
                  std::to_string(observations.size()) + " corner observations of " + name +
                  ".nview-corners (Huber 1 px), from the median K and the PnP poses: median reprojection error " +
                  FixedText(joint.start_median_px, 3) + " -> " + FixedText(joint.median_px, 3) + " px (per view " +
@@ -359,10 +362,12 @@ Status ReadVggSequence(const std::string& input_dir, const VggImportOptions& opt
                  FixedText(joint.gauge_scale, 4) +
                  ") that best maps the refit camera centres onto the P files' centres, which they then miss by " +
                  RangeText(joint.centre_offset, 3) + " units";
-    if (options.refit_focal || options.refit_principal_point || options.refit_radial_k1) {
+    if (options.refit_focal || options.refit_principal_point || options.refit_radial_k1 || options.k1 != 0) {
       refit_note += "; K fx " + FixedText(result.K(0, 0), 2) + " fy " + FixedText(result.K(1, 1), 2) + " cx " +
                     FixedText(result.K(0, 2), 2) + " cy " + FixedText(result.K(1, 2), 2) + " k1 " +
                     FixedText(joint.k1, 4);
+    }
+    if (options.refit_focal || options.refit_principal_point) {
       k_note = "K: fitted with the poses (next line), started from the " + k_note.substr(3);
     }
     LOG(INFO) << "VGG: " << refit_note;

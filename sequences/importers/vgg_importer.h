@@ -40,6 +40,10 @@ struct VggImportOptions {
   bool refit_focal = false;
   bool refit_principal_point = false;
   bool refit_radial_k1 = false;  // written to sequence.yaml's distortion
+  // kJoint only: the images' radial distortion (OpenCV's k1) when known from elsewhere, e.g. the
+  // plumb-line check of docs/importers.md: held in the refit (the start when refit_radial_k1) and
+  // written to sequence.yaml. 0: none, as the P files assume.
+  double k1 = 0;
   bool warp_to_shared_k = false;
 };
 
