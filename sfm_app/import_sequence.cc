@@ -41,22 +41,27 @@ DEFINE_double(odometry_rotation_sigma, kDefaults.odometry.rotation_sigma,
               "(0.0052 rad = 0.3 deg).");
 DEFINE_double(odometry_rotation_bias, kDefaults.odometry.rotation_bias,
               "Odometry rotation bias per step about the camera's y axis (a heading drift), radians.");
-DEFINE_bool(vgg_refit_poses, sfm::VggImportOptions().refit_poses,
-            "vgg: re-estimate the poses for the sequence's one K (by --vgg_refit); false keeps R, C of each P's "
-            "own decomposition with the median of the frames' K, which reproject worse.");
-DEFINE_string(vgg_refit, "joint",
-              "vgg: how the poses are re-estimated: 'joint' (all poses and the data set's 3D points fitted together "
-              "to its matched corners, <name>.nview-corners, for the median K) or 'pnp' (each pose alone by PnP onto "
-              "the fixed 3D points as its P projects them; the import before session 5).");
-DEFINE_bool(vgg_refit_focal, sfm::VggImportOptions().refit_focal,
-            "vgg, --vgg_refit=joint: also estimate fx, fy (self-calibration; nearly unobservable on Corridor).");
-DEFINE_bool(vgg_refit_principal_point, sfm::VggImportOptions().refit_principal_point,
-            "vgg, --vgg_refit=joint: also estimate cx, cy (self-calibration; nearly unobservable on Corridor).");
+DEFINE_bool(
+    vgg_refit_poses, sfm::VggImportOptions().refit_poses,
+    "vgg: re-estimate the poses for the sequence's one K (by --vgg_refit); false keeps R, C of each P's "
+    "own decomposition with the median of the frames' K, which reproject worse.");
+DEFINE_string(
+    vgg_refit, "joint",
+    "vgg: how the poses are re-estimated: 'joint' (all poses and the data set's 3D points fitted together "
+    "to its matched corners, <name>.nview-corners, for the median K) or 'pnp' (each pose alone by PnP onto "
+    "the fixed 3D points as its P projects them; the import before session 5).");
+DEFINE_bool(
+    vgg_refit_focal, sfm::VggImportOptions().refit_focal,
+    "vgg, --vgg_refit=joint: also estimate fx, fy (self-calibration; nearly unobservable on Corridor).");
+DEFINE_bool(
+    vgg_refit_principal_point, sfm::VggImportOptions().refit_principal_point,
+    "vgg, --vgg_refit=joint: also estimate cx, cy (self-calibration; nearly unobservable on Corridor).");
 DEFINE_bool(vgg_refit_k1, sfm::VggImportOptions().refit_radial_k1,
             "vgg, --vgg_refit=joint: also estimate a radial distortion term k1 (written to sequence.yaml).");
-DEFINE_double(vgg_k1, sfm::VggImportOptions().k1,
-              "vgg, --vgg_refit=joint: the images' radial distortion k1 (OpenCV's model) when known from elsewhere, "
-              "e.g. scripts/plumb_line_k1.py; held in the refit and written to sequence.yaml. 0: none.");
+DEFINE_double(
+    vgg_k1, sfm::VggImportOptions().k1,
+    "vgg, --vgg_refit=joint: the images' radial distortion k1 (OpenCV's model) when known from elsewhere, "
+    "e.g. scripts/plumb_line_k1.py; held in the refit and written to sequence.yaml. 0: none.");
 DEFINE_bool(
     vgg_warp_to_shared_k, sfm::VggImportOptions().warp_to_shared_k,
     "vgg: resample each image to the sequence's one K (H_i = K K_i^-1, cropped to the rectangle all frames "

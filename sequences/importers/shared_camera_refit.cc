@@ -94,8 +94,9 @@ double Median(std::vector<double> values) {
 
 // Per-view and overall median reprojection distance.
 void ReprojectionMedians(const Eigen::Matrix3d& K, double k1, const std::vector<Pose3>& camera_T_world,
-                         const std::vector<Eigen::Vector3d>& points, const std::vector<RefitObservation>& observations,
-                         std::vector<double>* view_medians, double* median) {
+                         const std::vector<Eigen::Vector3d>& points,
+                         const std::vector<RefitObservation>& observations, std::vector<double>* view_medians,
+                         double* median) {
   std::vector<std::vector<double>> per_view(camera_T_world.size());
   std::vector<double> all;
   for (const RefitObservation& o : observations) {
@@ -122,10 +123,11 @@ Eigen::Vector2d ProjectWithRadial(const Eigen::Matrix3d& K, double k1, const Eig
 Status RefitSharedCamera(const Eigen::Matrix3d& start_K, const std::vector<Pose3>& start_camera_T_world,
                          const std::vector<Eigen::Vector3d>& start_points,
                          const std::vector<RefitObservation>& observations,
-                         const std::vector<Eigen::Vector3d>& reference_centres, const SharedCameraRefitOptions& options,
-                         SharedCameraRefit* result) {
+                         const std::vector<Eigen::Vector3d>& reference_centres,
+                         const SharedCameraRefitOptions& options, SharedCameraRefit* result) {
   const size_t views = start_camera_T_world.size();
-  if (views < 2) return Status::Error("shared camera refit: needs at least 2 views, found " + std::to_string(views));
+  if (views < 2)
+    return Status::Error("shared camera refit: needs at least 2 views, found " + std::to_string(views));
   if (reference_centres.size() != views) {
     return Status::Error("shared camera refit: " + std::to_string(reference_centres.size()) +
                          " reference centres for " + std::to_string(views) + " views");
@@ -134,8 +136,8 @@ Status RefitSharedCamera(const Eigen::Matrix3d& start_K, const std::vector<Pose3
   for (const RefitObservation& o : observations) {
     if (o.view < 0 || static_cast<size_t>(o.view) >= views || o.point < 0 ||
         static_cast<size_t>(o.point) >= start_points.size()) {
-      return Status::Error("shared camera refit: observation of point " + std::to_string(o.point) + " in view " +
-                           std::to_string(o.view) + " is out of range");
+      return Status::Error("shared camera refit: observation of point " + std::to_string(o.point) +
+                           " in view " + std::to_string(o.view) + " is out of range");
     }
     if ((start_camera_T_world[o.view] * start_points[o.point]).z() <= 0) {
       return Status::Error("shared camera refit: point " + std::to_string(o.point) + " lies behind camera " +
@@ -145,16 +147,19 @@ Status RefitSharedCamera(const Eigen::Matrix3d& start_K, const std::vector<Pose3
   }
   for (size_t v = 0; v < views; ++v) {
     if (per_view[v] < kMinObservationsPerView) {
-      return Status::Error("shared camera refit: view " + std::to_string(v) + " has " + std::to_string(per_view[v]) +
-                           " observations; at least " + std::to_string(kMinObservationsPerView) + " are needed");
+      return Status::Error("shared camera refit: view " + std::to_string(v) + " has " +
+                           std::to_string(per_view[v]) + " observations; at least " +
+                           std::to_string(kMinObservationsPerView) + " are needed");
     }
   }
   const Eigen::Vector3d first_centre = Centre(start_camera_T_world.front());
   const double first_to_last = (Centre(start_camera_T_world.back()) - first_centre).norm();
-  if (!(first_to_last > 0)) return Status::Error("shared camera refit: the first and last camera centres coincide");
+  if (!(first_to_last > 0))
+    return Status::Error("shared camera refit: the first and last camera centres coincide");
 
   SharedCameraRefit refit;
-  ReprojectionMedians(start_K, options.k1, start_camera_T_world, start_points, observations, nullptr, &refit.start_median_px);
+  ReprojectionMedians(start_K, options.k1, start_camera_T_world, start_points, observations, nullptr,
+                      &refit.start_median_px);
 
   std::array<double, 4> intrinsics = {start_K(0, 0), start_K(1, 1), start_K(0, 2), start_K(1, 2)};
   double k1 = options.k1;
@@ -166,14 +171,16 @@ Status RefitSharedCamera(const Eigen::Matrix3d& start_K, const std::vector<Pose3
   for (const RefitObservation& o : observations) {
     problem.AddResidualBlock(
         new ceres::AutoDiffCostFunction<ReprojectionCost, 2, 4, 1, 6, 3>(new ReprojectionCost(o.pixel)),
-        new ceres::HuberLoss(options.huber_px), intrinsics.data(), &k1, poses[o.view].data(), points[o.point].data());
+        new ceres::HuberLoss(options.huber_px), intrinsics.data(), &k1, poses[o.view].data(),
+        points[o.point].data());
   }
   if (!options.radial_k1) problem.SetParameterBlockConstant(&k1);
   if (!options.refine_focal && !options.refine_principal_point) {
     problem.SetParameterBlockConstant(intrinsics.data());
   } else if (!options.refine_focal || !options.refine_principal_point) {
-    problem.SetManifold(intrinsics.data(), new ceres::SubsetManifold(4, options.refine_focal ? std::vector<int>{2, 3}
-                                                                                               : std::vector<int>{0, 1}));
+    problem.SetManifold(
+        intrinsics.data(),
+        new ceres::SubsetManifold(4, options.refine_focal ? std::vector<int>{2, 3} : std::vector<int>{0, 1}));
   }
   problem.SetParameterBlockConstant(poses.front().data());
   problem.AddResidualBlock(new ceres::AutoDiffCostFunction<CentreDistanceCost, 1, 6>(
@@ -212,8 +219,8 @@ Status RefitSharedCamera(const Eigen::Matrix3d& start_K, const std::vector<Pose3
   for (const Eigen::Vector3d& X : points) refit.points.push_back(reference_S_refit * X);
   refit.K << intrinsics[0], 0, intrinsics[2], 0, intrinsics[1], intrinsics[3], 0, 0, 1;
   refit.k1 = k1;
-  ReprojectionMedians(refit.K, refit.k1, refit.camera_T_world, refit.points, observations, &refit.view_median_px,
-                      &refit.median_px);
+  ReprojectionMedians(refit.K, refit.k1, refit.camera_T_world, refit.points, observations,
+                      &refit.view_median_px, &refit.median_px);
   *result = std::move(refit);
   return Status::Ok();
 }

@@ -5,9 +5,8 @@
 // set's own cameras each have their own K (VGG Corridor: docs/importers.md, "VGG").
 #pragma once
 
-#include <vector>
-
 #include <Eigen/Core>
+#include <vector>
 
 #include "frontend/geometry/pose.h"
 #include "frontend/util/status.h"
@@ -15,8 +14,8 @@
 namespace sfm {
 
 struct RefitObservation {
-  int view = 0;   // index into the poses
-  int point = 0;  // index into the points
+  int view = 0;                                     // index into the poses
+  int point = 0;                                    // index into the points
   Eigen::Vector2d pixel = Eigen::Vector2d::Zero();  // measured, OpenCV pixel-centre convention
 };
 
@@ -37,9 +36,9 @@ struct SharedCameraRefitOptions {
 
 struct SharedCameraRefit {
   Eigen::Matrix3d K = Eigen::Matrix3d::Identity();  // zero skew
-  double k1 = 0;                                     // 0 unless options.radial_k1
-  std::vector<Pose3> camera_T_world;                 // in the reference centres' frame and units
-  std::vector<Eigen::Vector3d> points;               // same frame
+  double k1 = 0;                                    // 0 unless options.radial_k1
+  std::vector<Pose3> camera_T_world;                // in the reference centres' frame and units
+  std::vector<Eigen::Vector3d> points;              // same frame
   // Reprojection error, pixels (distance, all observations, no outlier removed): median per view
   // and over all; the same for the start.
   std::vector<double> view_median_px;
@@ -62,8 +61,8 @@ struct SharedCameraRefit {
 Status RefitSharedCamera(const Eigen::Matrix3d& start_K, const std::vector<Pose3>& start_camera_T_world,
                          const std::vector<Eigen::Vector3d>& start_points,
                          const std::vector<RefitObservation>& observations,
-                         const std::vector<Eigen::Vector3d>& reference_centres, const SharedCameraRefitOptions& options,
-                         SharedCameraRefit* result);
+                         const std::vector<Eigen::Vector3d>& reference_centres,
+                         const SharedCameraRefitOptions& options, SharedCameraRefit* result);
 
 // Pixel of a point in the camera frame through K and k1 (zero skew), as the refit models it.
 Eigen::Vector2d ProjectWithRadial(const Eigen::Matrix3d& K, double k1, const Eigen::Vector3d& point_camera);

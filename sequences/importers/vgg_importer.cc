@@ -9,10 +9,10 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
-#include <sstream>
 #include <opencv2/calib3d.hpp>
 #include <opencv2/core/eigen.hpp>
 #include <opencv2/imgcodecs.hpp>
+#include <sstream>
 
 #include "frontend/util/number_text.h"
 #include "sequences/importers/input_files.h"
@@ -162,11 +162,12 @@ Status ReadCorners(const std::string& path, std::vector<Eigen::Vector2d>* corner
 
 // <name>.nview-corners (README-2D): one row per 3D point, per view the index of its corner in that
 // view's .corners or '*'; as observations of point (row) in view (column).
-Status ReadCornerTracks(const std::string& path, size_t point_count, const std::vector<std::vector<Eigen::Vector2d>>& corners,
+Status ReadCornerTracks(const std::string& path, size_t point_count,
+                        const std::vector<std::vector<Eigen::Vector2d>>& corners,
                         std::vector<RefitObservation>* observations) {
-  std::ifstream in(path);
   std::error_code error;
   if (!fs::is_regular_file(path, error)) return Status::Error(path + ": file does not exist");
+  std::ifstream in(path);
   if (!in) return Status::Error(path + ": cannot open");
   std::string line;
   size_t row = 0;
@@ -177,8 +178,8 @@ Status ReadCornerTracks(const std::string& path, size_t point_count, const std::
     if (tokens.empty()) continue;
     const std::string where = path + ":" + std::to_string(line_number);
     if (tokens.size() != corners.size()) {
-      return Status::Error(where + ": expected one entry per view (" + std::to_string(corners.size()) + "), found " +
-                           std::to_string(tokens.size()));
+      return Status::Error(where + ": expected one entry per view (" + std::to_string(corners.size()) +
+                           "), found " + std::to_string(tokens.size()));
     }
     if (row >= point_count) {
       return Status::Error(where + ": more rows than 3D points (" + std::to_string(point_count) + ")");
@@ -192,8 +193,8 @@ Status ReadCornerTracks(const std::string& path, size_t point_count, const std::
       }
       const size_t index = std::stoul(token);
       if (index >= corners[v].size()) {
-        return Status::Error(where + ": corner " + token + " of view " + std::to_string(v) + " does not exist (" +
-                             std::to_string(corners[v].size()) + " corners)");
+        return Status::Error(where + ": corner " + token + " of view " + std::to_string(v) +
+                             " does not exist (" + std::to_string(corners[v].size()) + " corners)");
       }
       observations->push_back({static_cast<int>(v), static_cast<int>(row), corners[v][index]});
     }
@@ -274,10 +275,11 @@ Status ReadVggSequence(const std::string& input_dir, const VggImportOptions& opt
   }
   result.K << Median(fx), 0, Median(cx), 0, Median(fy), Median(cy), 0, 0, 1;
   std::string k_note = "K: median of the " + std::to_string(views.size()) + " frames' decomposed K (fx " +
-                             RangeText(fx) + ", fy " + RangeText(fy) + ", cx " + RangeText(cx) + ", cy " +
-                             RangeText(cy) + ", |skew| " + RangeText(skew) + " set to 0): fx " +
-                             ShortestNumberText(result.K(0, 0)) + " fy " + ShortestNumberText(result.K(1, 1)) + " cx " +
-                             ShortestNumberText(result.K(0, 2)) + " cy " + ShortestNumberText(result.K(1, 2));
+                       RangeText(fx) + ", fy " + RangeText(fy) + ", cx " + RangeText(cx) + ", cy " +
+                       RangeText(cy) + ", |skew| " + RangeText(skew) + " set to 0): fx " +
+                       ShortestNumberText(result.K(0, 0)) + " fy " + ShortestNumberText(result.K(1, 1)) +
+                       " cx " + ShortestNumberText(result.K(0, 2)) + " cy " +
+                       ShortestNumberText(result.K(1, 2));
   LOG(INFO) << "VGG: one " << k_note;
 
   ImportedSequence imported;
@@ -316,7 +318,8 @@ Status ReadVggSequence(const std::string& input_dir, const VggImportOptions& opt
     double rms_px = 0;
     if (refit) {
       SFM_RETURN_IF_ERROR(RefitPose(views[i], points, size, result.K, &camera_T_world[i], &rms_px));
-      LOG(INFO) << "VGG: " << views[i].stem << ": pose refitted for the median K, RMS " << rms_px << " px against P";
+      LOG(INFO) << "VGG: " << views[i].stem << ": pose refitted for the median K, RMS " << rms_px
+                << " px against P";
     }
     result.refit_rms_px.push_back(rms_px);
   }
@@ -338,7 +341,6 @@ Status ReadVggSequence(const std::string& input_dir, const VggImportOptions& opt
     refit_options.refine_principal_point = options.refit_principal_point;
     refit_options.radial_k1 = options.refit_radial_k1;
     refit_options.k1 = options.k1;
-
     SharedCameraRefit joint;
     const Status status = RefitSharedCamera(result.K, camera_T_world, points, observations, reference_centres,
                                             refit_options, &joint);
@@ -348,23 +350,24 @@ Status ReadVggSequence(const std::string& input_dir, const VggImportOptions& opt
     imported.camera.distortion[0] = joint.k1;
     std::string held = options.refit_focal ? "" : " fx fy";
     if (!options.refit_principal_point) held += " cx cy";
-    refit_note = "joint refit (bundle adjustment, sequences/importers/shared_camera_refit.h) of the " +
-                 std::to_string(views.size()) + " poses, the " + std::to_string(points.size()) + " " + name +
-                 ".p3d points" + (options.refit_focal ? ", fx fy" : "") +
-                 (options.refit_principal_point ? ", cx cy" : "") + (options.refit_radial_k1 ? ", k1" : "") +
-                 (held.empty() ? "" : " (K's" + held + " held at the median)") +
-                 (options.k1 != 0 && !options.refit_radial_k1 ? " (k1 held at " + FixedText(options.k1, 4) + ")" : "") +
-                 " to the " +
-                 std::to_string(observations.size()) + " corner observations of " + name +
-                 ".nview-corners (Huber 1 px), from the median K and the PnP poses: median reprojection error " +
-                 FixedText(joint.start_median_px, 3) + " -> " + FixedText(joint.median_px, 3) + " px (per view " +
-                 RangeText(joint.view_median_px, 2) + "); gauge: the similarity (scale " +
-                 FixedText(joint.gauge_scale, 4) +
-                 ") that best maps the refit camera centres onto the P files' centres, which they then miss by " +
-                 RangeText(joint.centre_offset, 3) + " units";
+    refit_note =
+        "joint refit (bundle adjustment, sequences/importers/shared_camera_refit.h) of the " +
+        std::to_string(views.size()) + " poses, the " + std::to_string(points.size()) + " " + name +
+        ".p3d points" + (options.refit_focal ? ", fx fy" : "") +
+        (options.refit_principal_point ? ", cx cy" : "") + (options.refit_radial_k1 ? ", k1" : "") +
+        (held.empty() ? "" : " (K's" + held + " held at the median)") +
+        (options.k1 != 0 && !options.refit_radial_k1 ? " (k1 held at " + FixedText(options.k1, 4) + ")"
+                                                     : "") +
+        " to the " + std::to_string(observations.size()) + " corner observations of " + name +
+        ".nview-corners (Huber 1 px), from the median K and the PnP poses: median reprojection error " +
+        FixedText(joint.start_median_px, 3) + " -> " + FixedText(joint.median_px, 3) + " px (per view " +
+        RangeText(joint.view_median_px, 2) + "); gauge: the similarity (scale " +
+        FixedText(joint.gauge_scale, 4) +
+        ") that best maps the refit camera centres onto the P files' centres, which they then miss by " +
+        RangeText(joint.centre_offset, 3) + " units";
     if (options.refit_focal || options.refit_principal_point || options.refit_radial_k1 || options.k1 != 0) {
-      refit_note += "; K fx " + FixedText(result.K(0, 0), 2) + " fy " + FixedText(result.K(1, 1), 2) + " cx " +
-                    FixedText(result.K(0, 2), 2) + " cy " + FixedText(result.K(1, 2), 2) + " k1 " +
+      refit_note += "; K fx " + FixedText(result.K(0, 0), 2) + " fy " + FixedText(result.K(1, 1), 2) +
+                    " cx " + FixedText(result.K(0, 2), 2) + " cy " + FixedText(result.K(1, 2), 2) + " k1 " +
                     FixedText(joint.k1, 4);
     }
     if (options.refit_focal || options.refit_principal_point) {
@@ -379,8 +382,8 @@ Status ReadVggSequence(const std::string& input_dir, const VggImportOptions& opt
   imported.camera.cx = result.K(0, 2);
   imported.camera.cy = result.K(1, 2);
   for (size_t i = 0; i < views.size(); ++i) {
-    ImportedFrame frame{static_cast<double>(i) * kFrameInterval, views[i].image_path, camera_T_world[i].Inverse(),
-                        std::nullopt};
+    ImportedFrame frame{static_cast<double>(i) * kFrameInterval, views[i].image_path,
+                        camera_T_world[i].Inverse(), std::nullopt};
     if (options.warp_to_shared_k) frame.source_to_image = result.source_to_image[i];
     imported.frames.push_back(frame);
   }

@@ -3,11 +3,10 @@
 // and <name>.p3d 3D points, in a reconstruction whose units are not metres.
 #pragma once
 
+#include <Eigen/Core>
 #include <optional>
 #include <string>
 #include <vector>
-
-#include <Eigen/Core>
 
 #include "frontend/util/status.h"
 #include "sequences/importers/imported_sequence.h"
@@ -55,7 +54,8 @@ struct VggImportSummary {
   // The sequence's K (median of the frames', skew 0, unless the joint refit estimates it; its principal
   // point moved by the crop when warped).
   Eigen::Matrix3d K = Eigen::Matrix3d::Identity();
-  std::vector<double> refit_rms_px;  // per frame: RMS distance, shared K and PnP pose vs P, over the 3D points used
+  std::vector<double>
+      refit_rms_px;  // per frame: RMS distance, shared K and PnP pose vs P, over the 3D points used
   // kJoint: the joint refit (K, k1, poses, points in the sequence's world, figures).
   std::optional<SharedCameraRefit> joint_refit;
   // With warp_to_shared_k, per frame: sequence pixel = A (source pixel; 1), before any scaling.

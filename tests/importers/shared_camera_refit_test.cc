@@ -55,7 +55,8 @@ std::vector<Eigen::Vector3d> Centres(const std::vector<Pose3>& camera_T_world) {
 
 // The start: K off by 4 % in focal length and 20 px in the principal point, every pose turned by
 // ~0.01 rad and moved by ~0.05 units, every point moved by ~0.05 units.
-void Perturb(const Scene& scene, Eigen::Matrix3d* K, std::vector<Pose3>* poses, std::vector<Eigen::Vector3d>* points) {
+void Perturb(const Scene& scene, Eigen::Matrix3d* K, std::vector<Pose3>* poses,
+             std::vector<Eigen::Vector3d>* points) {
   *K = scene.K;
   (*K)(0, 0) *= 1.04;
   (*K)(1, 1) *= 0.97;
@@ -64,9 +65,10 @@ void Perturb(const Scene& scene, Eigen::Matrix3d* K, std::vector<Pose3>* poses, 
   *poses = scene.camera_T_world;
   for (size_t v = 1; v < poses->size(); ++v) {
     const double s = std::sin(3.0 * v);
-    (*poses)[v] = Pose3(Eigen::Quaterniond(Eigen::AngleAxisd(0.01 * s, Eigen::Vector3d(1, s, 0.5).normalized())),
-                        Eigen::Vector3d(0.05 * s, -0.03, 0.04 * std::cos(2.0 * v))) *
-                  (*poses)[v];
+    (*poses)[v] =
+        Pose3(Eigen::Quaterniond(Eigen::AngleAxisd(0.01 * s, Eigen::Vector3d(1, s, 0.5).normalized())),
+              Eigen::Vector3d(0.05 * s, -0.03, 0.04 * std::cos(2.0 * v))) *
+        (*poses)[v];
   }
   *points = scene.points;
   for (size_t p = 0; p < points->size(); ++p) {
@@ -94,9 +96,11 @@ TEST(SharedCameraRefitTest, RecoversSharedIntrinsicsPosesAndPoints) {
   ASSERT_EQ(refit.camera_T_world.size(), scene.camera_T_world.size());
   for (size_t v = 0; v < scene.camera_T_world.size(); ++v) {
     EXPECT_LT(refit.centre_offset[v], 1e-5) << "view " << v;
-    EXPECT_LT(RotationAngle(refit.camera_T_world[v].rotation, scene.camera_T_world[v].rotation), 1e-6) << "view " << v;
+    EXPECT_LT(RotationAngle(refit.camera_T_world[v].rotation, scene.camera_T_world[v].rotation), 1e-6)
+        << "view " << v;
   }
-  for (size_t p = 0; p < scene.points.size(); p += 17) EXPECT_LT((refit.points[p] - scene.points[p]).norm(), 1e-4);
+  for (size_t p = 0; p < scene.points.size(); p += 17)
+    EXPECT_LT((refit.points[p] - scene.points[p]).norm(), 1e-4);
 }
 
 // With k1 estimated too, a radial distortion of -0.1 (13 px at the image corner) is recovered to
@@ -110,8 +114,9 @@ TEST(SharedCameraRefitTest, RecoversRadialDistortion) {
   SharedCameraRefitOptions options;
   options.radial_k1 = true;
   SharedCameraRefit refit;
-  ASSERT_TRUE(RefitSharedCamera(K, poses, points, scene.observations, Centres(scene.camera_T_world), options, &refit)
-                  .ok());
+  ASSERT_TRUE(
+      RefitSharedCamera(K, poses, points, scene.observations, Centres(scene.camera_T_world), options, &refit)
+          .ok());
   EXPECT_NEAR(refit.k1, -0.1, 1e-5);
   EXPECT_LT((refit.K - scene.K).cwiseAbs().maxCoeff(), 1e-3) << refit.K;
   EXPECT_LT(refit.median_px, 1e-4);
@@ -129,8 +134,8 @@ TEST(SharedCameraRefitTest, HeldIntrinsicsStayAsGiven) {
   options.refine_focal = false;
   options.refine_principal_point = false;
   SharedCameraRefit refit;
-  ASSERT_TRUE(RefitSharedCamera(scene.K, poses, points, scene.observations, Centres(scene.camera_T_world), options,
-                                &refit)
+  ASSERT_TRUE(RefitSharedCamera(scene.K, poses, points, scene.observations, Centres(scene.camera_T_world),
+                                options, &refit)
                   .ok());
   EXPECT_EQ(refit.K, scene.K);
   EXPECT_LT(refit.median_px, 1e-4);
@@ -139,8 +144,8 @@ TEST(SharedCameraRefitTest, HeldIntrinsicsStayAsGiven) {
   Eigen::Matrix3d start = scene.K;
   start(0, 2) += 20;
   start(1, 2) -= 15;
-  ASSERT_TRUE(RefitSharedCamera(start, poses, points, scene.observations, Centres(scene.camera_T_world), options,
-                                &refit)
+  ASSERT_TRUE(RefitSharedCamera(start, poses, points, scene.observations, Centres(scene.camera_T_world),
+                                options, &refit)
                   .ok());
   EXPECT_EQ(refit.K(0, 0), scene.K(0, 0));
   EXPECT_EQ(refit.K(1, 1), scene.K(1, 1));
@@ -161,14 +166,14 @@ TEST(SharedCameraRefitTest, HeldRadialDistortionStaysAsGiven) {
   options.refine_principal_point = false;
   options.k1 = -0.1;
   SharedCameraRefit refit;
-  ASSERT_TRUE(RefitSharedCamera(scene.K, poses, points, scene.observations, Centres(scene.camera_T_world), options,
-                                &refit)
+  ASSERT_TRUE(RefitSharedCamera(scene.K, poses, points, scene.observations, Centres(scene.camera_T_world),
+                                options, &refit)
                   .ok());
   EXPECT_EQ(refit.k1, -0.1);
   EXPECT_LT(refit.median_px, 1e-4);
   options.k1 = 0;
-  ASSERT_TRUE(RefitSharedCamera(scene.K, poses, points, scene.observations, Centres(scene.camera_T_world), options,
-                                &refit)
+  ASSERT_TRUE(RefitSharedCamera(scene.K, poses, points, scene.observations, Centres(scene.camera_T_world),
+                                options, &refit)
                   .ok());
   EXPECT_EQ(refit.k1, 0);
   EXPECT_GT(refit.median_px, 0.1);
@@ -188,16 +193,19 @@ TEST(SharedCameraRefitTest, ResultLiesInTheReferenceFrameAndUnits) {
   const double scale = 2.5;
   const Eigen::Quaterniond rotation(Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 3).normalized()));
   const Eigen::Vector3d translation(4, -1, 2);
-  auto moved = [&](const Eigen::Vector3d& x) -> Eigen::Vector3d { return scale * (rotation * x) + translation; };
+  auto moved = [&](const Eigen::Vector3d& x) -> Eigen::Vector3d {
+    return scale * (rotation * x) + translation;
+  };
   std::vector<Eigen::Vector3d> reference;
   for (const Eigen::Vector3d& c : Centres(scene.camera_T_world)) reference.push_back(moved(c));
   SharedCameraRefit refit;
-  ASSERT_TRUE(RefitSharedCamera(K, poses, points, scene.observations, reference, SharedCameraRefitOptions(), &refit)
-                  .ok());
+  ASSERT_TRUE(
+      RefitSharedCamera(K, poses, points, scene.observations, reference, SharedCameraRefitOptions(), &refit)
+          .ok());
   // The solve held the start's first-to-last distance; the similarity scales that to the reference's.
   const std::vector<Eigen::Vector3d> start = Centres(poses);
-  EXPECT_NEAR(refit.gauge_scale, (reference.back() - reference.front()).norm() / (start.back() - start.front()).norm(),
-              1e-5);
+  EXPECT_NEAR(refit.gauge_scale,
+              (reference.back() - reference.front()).norm() / (start.back() - start.front()).norm(), 1e-5);
   const std::vector<Eigen::Vector3d> centres = Centres(refit.camera_T_world);
   for (size_t v = 0; v < reference.size(); ++v) {
     EXPECT_LT((centres[v] - reference[v]).norm(), 1e-5 * scale) << "view " << v;

@@ -116,7 +116,9 @@ void ExpectRecoversTruth(bool mirrored, VggRefit refit) {
   }
 }
 
-TEST(VggImporterTest, RecoversPosesFromMirroredFiles) { ExpectRecoversTruth(/*mirrored=*/true, VggRefit::kJoint); }
+TEST(VggImporterTest, RecoversPosesFromMirroredFiles) {
+  ExpectRecoversTruth(/*mirrored=*/true, VggRefit::kJoint);
+}
 
 TEST(VggImporterTest, RecoversPosesFromRightHandedFiles) {
   ExpectRecoversTruth(/*mirrored=*/false, VggRefit::kJoint);
@@ -264,7 +266,8 @@ struct CorridorTruthFigures {
 // them) and the refit's own for the joint refit (which moves them with the poses). Also the
 // epipolar distance of consecutive views' corner matches with F from the true poses (what the
 // matching is evaluated against) and from the simulated odometry, which needs no 3D point at all.
-void MeasureCorridorTruth(const std::string& data, const VggImportOptions& options, CorridorTruthFigures* figures) {
+void MeasureCorridorTruth(const std::string& data, const VggImportOptions& options,
+                          CorridorTruthFigures* figures) {
   const fs::path out = fs::path(testing::MakeScratchDir("vgg_corridor_" + TestName())) / "sequence";
   ImportedSequence imported;
   VggImportSummary summary;
@@ -286,9 +289,10 @@ void MeasureCorridorTruth(const std::string& data, const VggImportOptions& optio
     for (size_t p = 0; p < files.tracks.size(); ++p) {
       if (files.tracks[p][v] < 0) continue;
       const Eigen::Vector3d X =
-          summary.joint_refit ? summary.joint_refit->points[p]
-                              : VggFileToWorld(Eigen::Vector3d(files.points[p][0], files.points[p][1], files.points[p][2]),
-                                               summary.world_mirrored);
+          summary.joint_refit
+              ? summary.joint_refit->points[p]
+              : VggFileToWorld(Eigen::Vector3d(files.points[p][0], files.points[p][1], files.points[p][2]),
+                               summary.world_mirrored);
       const Eigen::Vector3d X_camera = camera_T_world * X;
       ASSERT_GT(X_camera.z(), 0) << "point " << p << " behind camera " << v;
       errors.push_back(((K * X_camera).hnormalized() - files.Corner(p, v)).norm());
@@ -299,8 +303,8 @@ void MeasureCorridorTruth(const std::string& data, const VggImportOptions& optio
     all.insert(all.end(), errors.begin(), errors.end());
   }
   figures->median_px = Median(all);
-  std::cout << "[ figure   ] all views: median reprojection error " << Median(all) << " px over " << all.size()
-            << " observations\n";
+  std::cout << "[ figure   ] all views: median reprojection error " << Median(all) << " px over "
+            << all.size() << " observations\n";
 
   std::vector<double> truth_distances, odometry_distances;
   for (int v = 0; v + 1 < 11; ++v) {
@@ -324,7 +328,8 @@ void MeasureCorridorTruth(const std::string& data, const VggImportOptions& optio
   const Eigen::Vector3d drift =
       sequence.frames.back().world_T_base_odometry.translation - sequence.frames.back().world_T_base_groundtruth->translation;
   std::cout << "[ figure   ] odometry end-point drift " << drift.norm() << " units over a "
-            << (figures->centres.back() - figures->centres.front()).norm() << "-unit first-to-last distance\n";
+            << (figures->centres.back() - figures->centres.front()).norm()
+            << "-unit first-to-last distance\n";
   EXPECT_EQ(sequence.frames.front().world_T_base_odometry.translation,
             sequence.frames.front().world_T_base_groundtruth->translation);
 }
@@ -370,7 +375,8 @@ TEST(VggImporterTest, CorridorJointRefitTruthReprojectsOntoTheCorners) {
     }
     // The null vector of P, in the files' frame; the sequence's world is its point reflection.
     const Eigen::Vector3d file_centre = -P.leftCols<3>().inverse() * P.col(3);
-    largest_offset = std::max(largest_offset, (figures.centres[v] - VggFileToWorld(file_centre, true)).norm());
+    largest_offset =
+        std::max(largest_offset, (figures.centres[v] - VggFileToWorld(file_centre, true)).norm());
   }
   std::cout << "[ figure   ] true centres at most " << largest_offset << " units from the P files' centres\n";
   EXPECT_LT(largest_offset, 0.1);
@@ -406,9 +412,11 @@ TEST(VggImporterTest, CorridorHeldOutCornersJudgeTheCameraModel) {
   std::vector<Eigen::Vector3d> points;
   std::vector<RefitObservation> training;
   for (size_t p = 0; p < files.points.size(); ++p) {
-    points.push_back(VggFileToWorld(Eigen::Vector3d(files.points[p][0], files.points[p][1], files.points[p][2]), true));
+    points.push_back(
+        VggFileToWorld(Eigen::Vector3d(files.points[p][0], files.points[p][1], files.points[p][2]), true));
     for (int v = 0; v < 11; ++v) {
-      if (p % 2 == 0 && files.tracks[p][v] >= 0) training.push_back({v, static_cast<int>(p), files.Corner(p, v)});
+      if (p % 2 == 0 && files.tracks[p][v] >= 0)
+        training.push_back({v, static_cast<int>(p), files.Corner(p, v)});
     }
   }
   // Held-out median reprojection error of the odd rows for a camera (K, k1) and poses.
@@ -450,20 +458,22 @@ TEST(VggImporterTest, CorridorHeldOutCornersJudgeTheCameraModel) {
     bool focal, principal_point, k1;
   };
   double default_training = 0, default_held_out = 0;
-  for (const Model& model : {Model{"K held (default)", false, false, false}, Model{"cx cy free", false, true, false},
-                             Model{"k1 free", false, false, true}, Model{"cx cy k1 free", false, true, true},
-                             Model{"fx fy free", true, false, false}, Model{"K free", true, true, false},
-                             Model{"K and k1 free", true, true, true}}) {
+  for (const Model& model :
+       {Model{"K held (default)", false, false, false}, Model{"cx cy free", false, true, false},
+        Model{"k1 free", false, false, true}, Model{"cx cy k1 free", false, true, true},
+        Model{"fx fy free", true, false, false}, Model{"K free", true, true, false},
+        Model{"K and k1 free", true, true, true}}) {
     SharedCameraRefitOptions options;
     options.refine_focal = model.focal;
     options.refine_principal_point = model.principal_point;
     options.radial_k1 = model.k1;
     SharedCameraRefit refit;
-    ASSERT_TRUE(RefitSharedCamera(summary.K, start_poses, points, training, start_centres, options, &refit).ok());
+    ASSERT_TRUE(
+        RefitSharedCamera(summary.K, start_poses, points, training, start_centres, options, &refit).ok());
     const double held_out = held_out_px(refit.K, refit.k1, refit.camera_T_world);
-    std::cout << "[ figure   ] " << model.name << ": training " << refit.median_px << " px, held-out " << held_out
-              << " px; fx " << refit.K(0, 0) << " fy " << refit.K(1, 1) << " cx " << refit.K(0, 2) << " cy "
-              << refit.K(1, 2) << " k1 " << refit.k1 << "\n";
+    std::cout << "[ figure   ] " << model.name << ": training " << refit.median_px << " px, held-out "
+              << held_out << " px; fx " << refit.K(0, 0) << " fy " << refit.K(1, 1) << " cx " << refit.K(0, 2)
+              << " cy " << refit.K(1, 2) << " k1 " << refit.k1 << "\n";
     if (!model.focal && !model.principal_point && !model.k1) {
       default_training = refit.median_px;
       default_held_out = held_out;
