@@ -63,6 +63,10 @@ DEFINE_double(
     "vgg, --vgg_refit=joint: the images' radial distortion k1 (OpenCV's model) when known from elsewhere, "
     "e.g. scripts/plumb_line_k1.py; held in the refit and written to sequence.yaml. 0: none.");
 DEFINE_bool(
+    vgg_k1_from_lines, sfm::VggImportOptions().k1_from_lines,
+    "vgg, --vgg_refit=joint: k1 by the plumb-line estimate from the data set's long straight segments "
+    "(<name>.NNN.lines) in its images, held in the refit and written to sequence.yaml; not with --vgg_k1.");
+DEFINE_bool(
     vgg_warp_to_shared_k, sfm::VggImportOptions().warp_to_shared_k,
     "vgg: resample each image to the sequence's one K (H_i = K K_i^-1, cropped to the rectangle all frames "
     "cover) and keep each P's own pose, exact for the warped images; writes image_warps.txt. "
@@ -83,6 +87,7 @@ sfm::Status ReadDataSet(sfm::ImportedSequence* sequence) {
     options.refit_principal_point = FLAGS_vgg_refit_principal_point;
     options.refit_radial_k1 = FLAGS_vgg_refit_k1;
     options.k1 = FLAGS_vgg_k1;
+    options.k1_from_lines = FLAGS_vgg_k1_from_lines;
     options.warp_to_shared_k = FLAGS_vgg_warp_to_shared_k;
     sfm::VggImportSummary summary;
     return sfm::ReadVggSequence(FLAGS_input, options, sequence, &summary);

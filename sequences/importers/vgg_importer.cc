@@ -207,6 +207,25 @@ Status ReadCornerTracks(const std::string& path, size_t point_count,
   return Status::Ok();
 }
 
+// <name>.NNN.lines (README-2D): 'x0 y0 x1 y1' and possibly more fields per line; the end points.
+Status ReadSegments(const std::string& path, int image, std::vector<PlumbLineSegment>* segments) {
+  std::error_code error;
+  if (!fs::is_regular_file(path, error)) return Status::Error(path + ": file does not exist");
+  std::ifstream in(path);
+  if (!in) return Status::Error(path + ": cannot open");
+  std::string line;
+  for (int line_number = 1; std::getline(in, line); ++line_number) {
+    std::istringstream fields(line);
+    double x0, y0, x1, y1;
+    if (!(fields >> x0)) continue;  // a blank line
+    if (!(fields >> y0 >> x1 >> y1) || !std::isfinite(x0 + y0 + x1 + y1)) {
+      return Status::Error(path + ":" + std::to_string(line_number) + ": expected 'x0 y0 x1 y1'");
+    }
+    segments->push_back({image, Eigen::Vector2d(x0, y0), Eigen::Vector2d(x1, y1)});
+  }
+  return Status::Ok();
+}
+
 double Median(std::vector<double> values) {
   std::sort(values.begin(), values.end());
   const size_t n = values.size();
@@ -336,11 +355,32 @@ Status ReadVggSequence(const std::string& input_dir, const VggImportOptions& opt
     SFM_RETURN_IF_ERROR(ReadCornerTracks(tracks_path, points.size(), corners, &observations));
     std::vector<Eigen::Vector3d> reference_centres;
     for (const View& view : views) reference_centres.push_back(view.decomposition.centre);
+    double k1 = options.k1;
+    if (options.k1_from_lines) {
+      if (options.k1 != 0) return Status::Error(input_dir + ": a k1 given and k1 from the lines: choose one");
+      std::vector<cv::Mat> images;
+      std::vector<PlumbLineSegment> segments;
+      for (size_t i = 0; i < views.size(); ++i) {
+        cv::Mat image;
+        SFM_RETURN_IF_ERROR(DecodeImage(views[i].image_path, cv::IMREAD_GRAYSCALE, &image));
+        images.push_back(image);
+        SFM_RETURN_IF_ERROR(
+            ReadSegments((dir / (views[i].stem + ".lines")).string(), static_cast<int>(i), &segments));
+      }
+      PlumbLineEstimate plumb_line;
+      const Status status =
+          EstimateRadialDistortionFromEdges(images, segments, result.K, PlumbLineOptions(), &plumb_line);
+      if (!status.ok()) return Status::Error(input_dir + ": " + status.message());
+      k1 = plumb_line.k1;
+      result.plumb_line = plumb_line;
+      LOG(INFO) << "VGG: k1 " << plumb_line.k1 << " +- " << plumb_line.k1_sigma << " from the bows of "
+                << plumb_line.edges << " long straight edges (plumb line)";
+    }
     SharedCameraRefitOptions refit_options;
     refit_options.refine_focal = options.refit_focal;
     refit_options.refine_principal_point = options.refit_principal_point;
     refit_options.radial_k1 = options.refit_radial_k1;
-    refit_options.k1 = options.k1;
+    refit_options.k1 = k1;
     SharedCameraRefit joint;
     const Status status = RefitSharedCamera(result.K, camera_T_world, points, observations, reference_centres,
                                             refit_options, &joint);
@@ -365,7 +405,7 @@ Status ReadVggSequence(const std::string& input_dir, const VggImportOptions& opt
         FixedText(joint.gauge_scale, 4) +
         ") that best maps the refit camera centres onto the P files' centres, which they then miss by " +
         RangeText(joint.centre_offset, 3) + " units";
-    if (options.refit_focal || options.refit_principal_point || options.refit_radial_k1 || options.k1 != 0) {
+    if (options.refit_focal || options.refit_principal_point || options.refit_radial_k1 || k1 != 0) {
       refit_note += "; K fx " + FixedText(result.K(0, 0), 2) + " fy " + FixedText(result.K(1, 1), 2) +
                     " cx " + FixedText(result.K(0, 2), 2) + " cy " + FixedText(result.K(1, 2), 2) + " k1 " +
                     FixedText(joint.k1, 4);

@@ -10,6 +10,7 @@
 
 #include "frontend/util/status.h"
 #include "sequences/importers/imported_sequence.h"
+#include "sequences/importers/plumb_line_distortion.h"
 #include "sequences/importers/shared_camera_refit.h"
 
 namespace sfm {
@@ -43,6 +44,9 @@ struct VggImportOptions {
   // plumb-line check of docs/importers.md: held in the refit (the start when refit_radial_k1) and
   // written to sequence.yaml. 0: none, as the P files assume.
   double k1 = 0;
+  // kJoint only: k1 instead by the plumb-line estimate (plumb_line_distortion.h) from the data set's
+  // long straight segments, <name>.NNN.lines, in its images; held in the refit. Not with k1 != 0.
+  bool k1_from_lines = false;
   bool warp_to_shared_k = false;
 };
 
@@ -58,6 +62,8 @@ struct VggImportSummary {
       refit_rms_px;  // per frame: RMS distance, shared K and PnP pose vs P, over the 3D points used
   // kJoint: the joint refit (K, k1, poses, points in the sequence's world, figures).
   std::optional<SharedCameraRefit> joint_refit;
+  // k1_from_lines: the plumb-line estimate.
+  std::optional<PlumbLineEstimate> plumb_line;
   // With warp_to_shared_k, per frame: sequence pixel = A (source pixel; 1), before any scaling.
   std::vector<Eigen::Matrix<double, 2, 3>> source_to_image;
 };

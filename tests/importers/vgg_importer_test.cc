@@ -186,6 +186,17 @@ TEST(VggImporterTest, BadInputsGiveOneLineErrors) {
   ExpectError(dir, "bt.nview-corners:1", "corner 999 of view 1 does not exist");
   std::ofstream(dir / "bt.nview-corners") << "0 1 * *\n";
   ExpectError(dir, "bt.nview-corners", "1 rows for 60 3D points");
+  // The plumb-line k1 needs the segments, and is not combined with a given k1.
+  WriteSyntheticVgg(dir, true);
+  VggImportOptions from_lines;
+  from_lines.k1_from_lines = true;
+  ImportedSequence imported;
+  VggImportSummary imported_summary;
+  Status status = ReadVggSequence(dir.string(), from_lines, &imported, &imported_summary);
+  EXPECT_THAT(status.message(), HasSubstr("bt.000.lines: file does not exist"));
+  from_lines.k1 = -0.05;
+  status = ReadVggSequence(dir.string(), from_lines, &imported, &imported_summary);
+  EXPECT_THAT(status.message(), HasSubstr("a k1 given and k1 from the lines: choose one"));
   // Not needed by the PnP refit.
   VggImportOptions pnp;
   pnp.refit = VggRefit::kPnpMedianK;
