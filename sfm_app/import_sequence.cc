@@ -61,7 +61,7 @@ DEFINE_bool(vgg_refit_k1, sfm::VggImportOptions().refit_radial_k1,
 DEFINE_double(
     vgg_k1, sfm::VggImportOptions().k1,
     "vgg, --vgg_refit=joint: the images' radial distortion k1 (OpenCV's model) when known from elsewhere, "
-    "e.g. scripts/plumb_line_k1.py; held in the refit and written to sequence.yaml. 0: none.");
+    "e.g. a separate calibration; held in the refit and written to sequence.yaml. 0: none.");
 DEFINE_bool(
     vgg_k1_from_lines, sfm::VggImportOptions().k1_from_lines,
     "vgg, --vgg_refit=joint: k1 by the plumb-line estimate from the data set's long straight segments "

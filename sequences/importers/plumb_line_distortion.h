@@ -4,7 +4,7 @@
 // at evenly spaced points, its bow (the 4t(1-t) coefficient of a fit along the chord) is measured,
 // and k1 of OpenCV's model (x_d = x (1 + k1 r^2), normalised coordinates about the principal point)
 // is the least-squares factor between the measured bows and the bows one unit of k1 predicts.
-// scripts/plumb_line_k1.py is the same method (docs/importers.md, "VGG").
+// Used by the VGG importer (--vgg_k1_from_lines; docs/importers.md, "VGG").
 #pragma once
 
 #include <Eigen/Core>
