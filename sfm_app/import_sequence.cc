@@ -119,6 +119,10 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "import_sequence: --format must be vgg, strecha or tum (found '%s')\n", FLAGS_format.c_str());
     return 2;
   }
+  if (FLAGS_vgg_k1 != 0 && FLAGS_vgg_k1_from_lines) {
+    std::fprintf(stderr, "import_sequence: --vgg_k1 and --vgg_k1_from_lines: give one\n");
+    return 2;
+  }
   if (FLAGS_vgg_refit != "joint" && FLAGS_vgg_refit != "pnp") {
     std::fprintf(stderr, "import_sequence: --vgg_refit must be joint or pnp (found '%s')\n",
                  FLAGS_vgg_refit.c_str());

@@ -100,6 +100,10 @@ TEST(ImportSequenceAppTest, BadInputExitsNonZeroWithOneLineAndNoOutput) {
       scratch, "--format vgg --vgg_refit=bundle --input " + strecha.string() + " --output " + out.string());
   EXPECT_EQ(run.exit_status, 2);
   EXPECT_THAT(run.stderr_text, HasSubstr("--vgg_refit must be joint or pnp (found 'bundle')"));
+  run = RunImport(scratch, "--format vgg --vgg_k1=-0.05 --vgg_k1_from_lines --input " + strecha.string() +
+                               " --output " + out.string());
+  EXPECT_EQ(run.exit_status, 2);
+  EXPECT_THAT(run.stderr_text, HasSubstr("--vgg_k1 and --vgg_k1_from_lines: give one"));
   EXPECT_FALSE(fs::exists(out));
 }
 
