@@ -107,8 +107,8 @@ TEST(ImportSequenceAppTest, BadInputExitsNonZeroWithOneLineAndNoOutput) {
   EXPECT_FALSE(fs::exists(out));
 }
 
-// --vgg_refit and --vgg_k1 through the app: import_notes.txt says which truth was made (with the
-// joint refit's figures), and a given k1 reaches sequence.yaml.
+// --vgg_refit, --vgg_k1 and --vgg_k1_from_lines through the app: import_notes.txt says which truth
+// was made (with the joint refit's figures), and a given or estimated k1 reaches sequence.yaml.
 TEST(ImportSequenceAppTest, VggRefitChoiceReachesTheNotesAndK1TheCamera) {
   const std::string data = testing::SharedDataDir("vgg-corridor");
   if (data.empty()) GTEST_SKIP() << "../shared/data/vgg-corridor is absent";
@@ -132,6 +132,13 @@ TEST(ImportSequenceAppTest, VggRefitChoiceReachesTheNotesAndK1TheCamera) {
   EXPECT_EQ(joint.calibration.camera.distortion[0], -0.05);
   EXPECT_EQ(pnp.calibration.camera.distortion[0], 0);
   EXPECT_EQ(joint.calibration.camera.fx, pnp.calibration.camera.fx);  // K held at the median
+  // k1 from the images' straight edges (measured -0.0612).
+  run = RunImport(scratch, base + (scratch / "lines").string() + " --vgg_k1_from_lines");
+  ASSERT_EQ(run.exit_status, 0) << run.stderr_text;
+  EXPECT_THAT(text(scratch / "lines" / "import_notes.txt"), HasSubstr("k1 from the plumb-line bows of"));
+  Sequence lines;
+  ASSERT_TRUE(ReadSequence((scratch / "lines").string(), &lines).ok());
+  EXPECT_NEAR(lines.calibration.camera.distortion[0], -0.061, 0.003);
 }
 
 TEST(ImportSequenceAppTest, ImportsAndRefusesToOverwriteUnlessAsked) {
