@@ -396,8 +396,11 @@ Status ReadVggSequence(const std::string& input_dir, const VggImportOptions& opt
         ".p3d points" + (options.refit_focal ? ", fx fy" : "") +
         (options.refit_principal_point ? ", cx cy" : "") + (options.refit_radial_k1 ? ", k1" : "") +
         (held.empty() ? "" : " (K's" + held + " held at the median)") +
-        (options.k1 != 0 && !options.refit_radial_k1 ? " (k1 held at " + FixedText(options.k1, 4) + ")"
-                                                     : "") +
+        (k1 != 0 && !options.refit_radial_k1 ? " (k1 held at " + FixedText(k1, 4) + ")" : "") +
+        (result.plumb_line
+             ? " (k1 from the plumb-line bows of " + std::to_string(result.plumb_line->edges) +
+                   " long straight edges of the images, +- " + FixedText(result.plumb_line->k1_sigma, 4) + ")"
+             : "") +
         " to the " + std::to_string(observations.size()) + " corner observations of " + name +
         ".nview-corners (Huber 1 px), from the median K and the PnP poses: median reprojection error " +
         FixedText(joint.start_median_px, 3) + " -> " + FixedText(joint.median_px, 3) + " px (per view " +
