@@ -120,8 +120,12 @@ int main(int argc, char** argv) {
     return 2;
   }
   if (FLAGS_vgg_k1 != 0 && FLAGS_vgg_k1_from_lines) {
-    std::fprintf(stderr, "import_sequence: --vgg_k1 and --vgg_k1_from_lines: give one\n");
-    return 2;
+    // --vgg_k1_from_lines is on by default: a given k1 replaces it, unless both were asked for.
+    if (!gflags::GetCommandLineFlagInfoOrDie("vgg_k1_from_lines").is_default) {
+      std::fprintf(stderr, "import_sequence: --vgg_k1 and --vgg_k1_from_lines: give one\n");
+      return 2;
+    }
+    FLAGS_vgg_k1_from_lines = false;
   }
   if (FLAGS_vgg_refit != "joint" && FLAGS_vgg_refit != "pnp") {
     std::fprintf(stderr, "import_sequence: --vgg_refit must be joint or pnp (found '%s')\n",

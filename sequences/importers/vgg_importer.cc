@@ -344,7 +344,19 @@ Status ReadVggSequence(const std::string& input_dir, const VggImportOptions& opt
   }
   if (refit) pose_note += "; RMS " + RangeText(result.refit_rms_px) + " px";
   std::string refit_note;
-  if (refit && options.refit == VggRefit::kJoint) {
+  // The joint refit needs the data set's corner tracks; a data set without them keeps the PnP truth
+  // (with a warning and a note) rather than failing to import.
+  std::string missing_corners;
+  for (const View& view : views) {
+    if (!fs::is_regular_file(dir / (view.stem + ".corners"))) missing_corners = view.stem + ".corners";
+  }
+  if (!fs::is_regular_file(dir / (name + ".nview-corners"))) missing_corners = name + ".nview-corners";
+  if (refit && options.refit == VggRefit::kJoint && !missing_corners.empty()) {
+    LOG(WARNING) << "VGG: " << (dir / missing_corners).string()
+                 << " does not exist: no joint refit, the poses stay the PnP fit for the median K";
+    pose_note += "; no joint refit (" + missing_corners + " missing)";
+  }
+  if (refit && options.refit == VggRefit::kJoint && missing_corners.empty()) {
     // Started from the median K and the PnP poses above; the P files' own centres fix the gauge.
     std::vector<std::vector<Eigen::Vector2d>> corners(views.size());
     for (size_t i = 0; i < views.size(); ++i) {
@@ -356,25 +368,38 @@ Status ReadVggSequence(const std::string& input_dir, const VggImportOptions& opt
     std::vector<Eigen::Vector3d> reference_centres;
     for (const View& view : views) reference_centres.push_back(view.decomposition.centre);
     double k1 = options.k1;
+    std::string no_plumb_line;  // why k1 stayed 0 although asked for from the lines
     if (options.k1_from_lines) {
       if (options.k1 != 0) return Status::Error(input_dir + ": a k1 given and k1 from the lines: choose one");
       std::vector<cv::Mat> images;
       std::vector<PlumbLineSegment> segments;
-      for (size_t i = 0; i < views.size(); ++i) {
+      for (size_t i = 0; i < views.size() && no_plumb_line.empty(); ++i) {
+        const fs::path lines_path = dir / (views[i].stem + ".lines");
+        if (!fs::is_regular_file(lines_path)) {
+          no_plumb_line = lines_path.string() + " does not exist";
+          break;
+        }
         cv::Mat image;
         SFM_RETURN_IF_ERROR(DecodeImage(views[i].image_path, cv::IMREAD_GRAYSCALE, &image));
         images.push_back(image);
-        SFM_RETURN_IF_ERROR(
-            ReadSegments((dir / (views[i].stem + ".lines")).string(), static_cast<int>(i), &segments));
+        SFM_RETURN_IF_ERROR(ReadSegments(lines_path.string(), static_cast<int>(i), &segments));
       }
       PlumbLineEstimate plumb_line;
-      const Status status =
-          EstimateRadialDistortionFromEdges(images, segments, result.K, PlumbLineOptions(), &plumb_line);
-      if (!status.ok()) return Status::Error(input_dir + ": " + status.message());
-      k1 = plumb_line.k1;
-      result.plumb_line = plumb_line;
-      LOG(INFO) << "VGG: k1 " << plumb_line.k1 << " +- " << plumb_line.k1_sigma << " from the bows of "
-                << plumb_line.edges << " long straight edges (plumb line)";
+      if (no_plumb_line.empty()) {
+        const Status status =
+            EstimateRadialDistortionFromEdges(images, segments, result.K, PlumbLineOptions(), &plumb_line);
+        if (!status.ok()) no_plumb_line = status.message();
+      }
+      if (no_plumb_line.empty()) {
+        k1 = plumb_line.k1;
+        result.plumb_line = plumb_line;
+        LOG(INFO) << "VGG: k1 " << plumb_line.k1 << " +- " << plumb_line.k1_sigma << " from the bows of "
+                  << plumb_line.edges << " long straight edges (plumb line)";
+      } else {
+        // A data set without long straight segments (or without .lines files) is imported as the P
+        // files model it, without distortion, rather than refused.
+        LOG(WARNING) << "VGG: no plumb-line k1 (" << no_plumb_line << "): k1 = 0";
+      }
     }
     SharedCameraRefitOptions refit_options;
     refit_options.refine_focal = options.refit_focal;
@@ -416,6 +441,7 @@ Status ReadVggSequence(const std::string& input_dir, const VggImportOptions& opt
     if (options.refit_focal || options.refit_principal_point) {
       k_note = "K: fitted with the poses (next line), started from the " + k_note.substr(3);
     }
+    if (!no_plumb_line.empty()) refit_note += "; no plumb-line k1 (" + no_plumb_line + "), k1 = 0";
     LOG(INFO) << "VGG: " << refit_note;
     pose_note = "poses: " + refit_note;
     result.joint_refit = std::move(joint);

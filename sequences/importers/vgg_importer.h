@@ -46,7 +46,9 @@ struct VggImportOptions {
   double k1 = 0;
   // kJoint only: k1 instead by the plumb-line estimate (plumb_line_distortion.h) from the data set's
   // long straight segments, <name>.NNN.lines, in its images; held in the refit. Not with k1 != 0.
-  bool k1_from_lines = false;
+  // On by default (docs/importers.md, "VGG"): Corridor's images bow by 1-2.5 px along long edges. A
+  // data set without .lines files or with too few long edges gets k1 = 0, with a warning and a note.
+  bool k1_from_lines = true;
   bool warp_to_shared_k = false;
 };
 

@@ -132,8 +132,13 @@ TEST(ImportSequenceAppTest, VggRefitChoiceReachesTheNotesAndK1TheCamera) {
   EXPECT_EQ(joint.calibration.camera.distortion[0], -0.05);
   EXPECT_EQ(pnp.calibration.camera.distortion[0], 0);
   EXPECT_EQ(joint.calibration.camera.fx, pnp.calibration.camera.fx);  // K held at the median
-  // k1 from the images' straight edges (measured -0.0612).
-  run = RunImport(scratch, base + (scratch / "lines").string() + " --vgg_k1_from_lines");
+  // k1 from the images' straight edges (measured -0.0612), the default; off, none.
+  run = RunImport(scratch, base + (scratch / "none").string() + " --vgg_k1_from_lines=false");
+  ASSERT_EQ(run.exit_status, 0) << run.stderr_text;
+  Sequence none;
+  ASSERT_TRUE(ReadSequence((scratch / "none").string(), &none).ok());
+  EXPECT_EQ(none.calibration.camera.distortion[0], 0);
+  run = RunImport(scratch, base + (scratch / "lines").string());
   ASSERT_EQ(run.exit_status, 0) << run.stderr_text;
   EXPECT_THAT(text(scratch / "lines" / "import_notes.txt"), HasSubstr("k1 from the plumb-line bows of"));
   Sequence lines;
