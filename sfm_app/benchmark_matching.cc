@@ -164,7 +164,23 @@ struct LoadedFrame {
   cv::Mat grey;  // undistorted
   FrameFeatures features;
   LbdFeatures lbd;
+  // Set when the truth is given in the stored (distorted) image's pixels, as VGG's bt.NNN.P and
+  // bt.NNN.lines are: the junctions (found on the undistorted image) are mapped back through this
+  // camera's distortion before they are judged. Unset: the truth is in undistorted pixels
+  // (generated sequences' truth/frames).
+  std::optional<Camera> truth_in_distorted_pixels;
 };
+
+// A junction location in the pixels the frame's truth is given in.
+Eigen::Vector2d JudgedPixel(const LoadedFrame& frame, const Eigen::Vector2d& undistorted) {
+  return frame.truth_in_distorted_pixels ? frame.truth_in_distorted_pixels->DistortPixel(undistorted) : undistorted;
+}
+
+std::vector<Eigen::Vector2d> JudgedLocations(const LoadedFrame& frame) {
+  std::vector<Eigen::Vector2d> locations = JunctionLocations(frame.features.junctions);
+  for (Eigen::Vector2d& p : locations) p = JudgedPixel(frame, p);
+  return locations;
+}
 
 Status LoadFrames(const Sequence& sequence, const Settings& settings, std::vector<LoadedFrame>* frames) {
   const ImageUndistorter undistorter(sequence.calibration.camera);
@@ -296,6 +312,9 @@ Status LoadVgg(const std::string& sequence_dir, const std::string& data_dir, con
                          data_dir + " has " + std::to_string(data->truth.views.size()) + " views");
   }
   SFM_RETURN_IF_ERROR(LoadFrames(data->sequence, settings, &data->frames));
+  for (LoadedFrame& frame : data->frames) {
+    if (data->sequence.calibration.camera.HasDistortion()) frame.truth_in_distorted_pixels = data->sequence.calibration.camera;
+  }
   for (size_t f = 0; f < data->frames.size(); ++f) {
     const VggView& view = data->truth.views[f];
     if (data->frames[f].grey.cols != 512 || data->frames[f].grey.rows != 512) {
@@ -304,10 +323,15 @@ Status LoadVgg(const std::string& sequence_dir, const std::string& data_dir, con
     }
     std::vector<Eigen::Vector2d> gt_points;
     for (const SegmentJunction& j : view.junctions) gt_points.push_back(j.location);
-    const std::vector<Eigen::Vector2d> locations = JunctionLocations(data->frames[f].features.junctions);
+    const std::vector<Eigen::Vector2d> locations = JudgedLocations(data->frames[f]);
     data->gt_junction_of.push_back(NearestWithin(locations, gt_points, FLAGS_radius));
     data->near_points.push_back(VggPointsNear(view, locations, FLAGS_radius));
-    std::vector<int> ids = AssociateSegments(data->frames[f].lbd.segments, view.lines, LineAssociationOptions());
+    LineSegments lbd_judged = data->frames[f].lbd.segments;  // end-points in bt.NNN.lines' pixels
+    for (LineSegment& s : lbd_judged) {
+      s.p0 = JudgedPixel(data->frames[f], s.p0);
+      s.p1 = JudgedPixel(data->frames[f], s.p1);
+    }
+    std::vector<int> ids = AssociateSegments(lbd_judged, view.lines, LineAssociationOptions());
     for (int& id : ids) {
       if (id >= 0) id = view.line3d[id];
     }
@@ -493,16 +517,20 @@ std::string RefinementRow(const std::string& data, const RefinementTally& t) {
 }
 
 // The same for the VGG corners that bt.nview-corners identifies as one 3D point in both views.
-void VggCornerEpipolarErrors(const VggView& a, const VggView& b, const Eigen::Matrix3d& F, std::vector<double>* errors) {
+// F acts on undistorted pixels (the matcher's); the data set's corners are in the stored image's,
+// so they are undistorted with the sequence's camera first.
+void VggCornerEpipolarErrors(const VggView& a, const VggView& b, const Camera& camera, const Eigen::Matrix3d& F,
+                             std::vector<double>* errors) {
   std::map<int, Eigen::Vector2d> in_b;
   for (size_t k = 0; k < b.corners.size(); ++k) {
-    if (b.corner_point3d[k] >= 0) in_b[b.corner_point3d[k]] = b.corners[k];
+    if (b.corner_point3d[k] >= 0) in_b[b.corner_point3d[k]] = camera.UndistortPixel(b.corners[k]);
   }
   for (size_t k = 0; k < a.corners.size(); ++k) {
     const auto it = in_b.find(a.corner_point3d[k]);
     if (a.corner_point3d[k] < 0 || it == in_b.end()) continue;
-    errors->push_back(std::max(PointLineDistance(EpipolarLineInImage2(F, a.corners[k]), it->second),
-                               PointLineDistance(EpipolarLineInImage1(F, it->second), a.corners[k])));
+    const Eigen::Vector2d corner = camera.UndistortPixel(a.corners[k]);
+    errors->push_back(std::max(PointLineDistance(EpipolarLineInImage2(F, corner), it->second),
+                               PointLineDistance(EpipolarLineInImage1(F, it->second), corner)));
   }
 }
 
@@ -512,7 +540,7 @@ RefinementCase VggRefinementCase(const VggData& d, int i, int j, const PairGeome
   const Pose3 truth = PairInputOf(d.sequence, i, j, true).geometry->camera2_T_camera1;
   auto median_error = [&](const Eigen::Matrix3d& F) {
     std::vector<double> errors;
-    VggCornerEpipolarErrors(d.truth.views[i], d.truth.views[j], F, &errors);
+    VggCornerEpipolarErrors(d.truth.views[i], d.truth.views[j], d.sequence.calibration.camera, F, &errors);
     return Median(errors);
   };
   auto fundamental = [&](const Pose3& pose) {
@@ -618,7 +646,7 @@ Sweep RunSweep(const LoadedFrame& a, const LoadedFrame& b, const PairInput& F, c
                const SameFeature& same, const MatchingOptions& base, const std::vector<double>& R_values,
                const std::vector<double>& tau2_values) {
   Sweep sweep{R_values, tau2_values, {}};
-  const std::vector<Eigen::Vector2d> pa = JunctionLocations(a.features.junctions), pb = JunctionLocations(b.features.junctions);
+  const std::vector<Eigen::Vector2d> pa = JudgedLocations(a), pb = JudgedLocations(b);
   for (double R : R_values) {
     sweep.cells.emplace_back();
     for (double tau2 : tau2_values) {
@@ -683,8 +711,8 @@ Status WriteVerdictPicture(const std::string& path, const LoadedFrame& a, const 
   // Partial matches included: DrawMatchOverlay pairs their segments by PartnerSegment and draws the
   // left-out one in grey.
   for (const JunctionMatch& m : matches) {
-    const MatchVerdicts v = JudgeMatches({{m.index_a, m.index_b}}, JunctionLocations(a.features.junctions),
-                                         JunctionLocations(b.features.junctions), F_true, FLAGS_epipolar_tolerance, same);
+    const MatchVerdicts v = JudgeMatches({{m.index_a, m.index_b}}, JudgedLocations(a),
+                                         JudgedLocations(b), F_true, FLAGS_epipolar_tolerance, same);
     correct.push_back(v.correct == 1);
   }
   return WritePng(path, DrawMatchOverlay(a.grey, a.features.junctions, b.grey, b.features.junctions, matches,
@@ -712,7 +740,8 @@ void TallyWrong(const LoadedFrame& a, const LoadedFrame& b, const std::vector<Ju
     const Junction& jb = b.features.junctions[m.index_b];
     const int type = static_cast<int>(ja.type);
     const int identity = same(m.index_a, m.index_b);
-    const bool epipolar_ok = EpipolarConsistent(F_true, ja.location, jb.location, FLAGS_epipolar_tolerance);
+    const bool epipolar_ok = EpipolarConsistent(F_true, JudgedPixel(a, ja.location), JudgedPixel(b, jb.location),
+                                                FLAGS_epipolar_tolerance);
     if (identity_only && identity < 0) continue;
     ++tally->matches;
     ++tally->matches_by_type[type];
@@ -785,9 +814,10 @@ void AppendVggMatchRows(const VggData& d, int i, int j, const PairInput& input,
     const Junction& ja = a[m.index_a];
     const Junction& jb = b[m.index_b];
     const int identity = same(m.index_a, m.index_b);
-    const bool epipolar_ok = EpipolarConsistent(F_true, ja.location, jb.location, FLAGS_epipolar_tolerance);
-    const double true_d2 = PointLineDistance(EpipolarLineInImage2(F_true, ja.location), jb.location);
-    const double true_d1 = PointLineDistance(EpipolarLineInImage1(F_true, jb.location), ja.location);
+    const Eigen::Vector2d ta = JudgedPixel(d.frames[i], ja.location), tb = JudgedPixel(d.frames[j], jb.location);
+    const bool epipolar_ok = EpipolarConsistent(F_true, ta, tb, FLAGS_epipolar_tolerance);
+    const double true_d2 = PointLineDistance(EpipolarLineInImage2(F_true, ta), tb);
+    const double true_d1 = PointLineDistance(EpipolarLineInImage1(F_true, tb), ta);
     const double used_d2 = PointLineDistance(EpipolarLineInImage2(F_used, ja.location), jb.location);
     const double used_d1 = PointLineDistance(EpipolarLineInImage1(F_used, jb.location), ja.location);
     const JunctionSimilarity::Bands bands = similarity.BandsOf(m.index_a, m.index_b);
@@ -1006,8 +1036,8 @@ int main(int argc, char** argv) {
             const SameFeature same = GeneratedSame(d.near_vertices[i], d.near_vertices[j]);
             ++ours_generated.pairs;
             ours_generated.features += d.frames[i].features.junctions.size() + d.frames[j].features.junctions.size();
-            ours_generated.verdicts.Add(JudgeMatches(MatchPairs(matches), JunctionLocations(d.frames[i].features.junctions),
-                                                     JunctionLocations(d.frames[j].features.junctions), F_true,
+            ours_generated.verdicts.Add(JudgeMatches(MatchPairs(matches), JudgedLocations(d.frames[i]),
+                                                     JudgedLocations(d.frames[j]), F_true,
                                                      FLAGS_epipolar_tolerance, same));
             ours_generated.recall.Add({pair_counts.seen_both, pair_counts.matched});
             ours_generated.detect_ms.push_back(d.frames[i].features.detect_ms + d.frames[j].features.detect_ms);
@@ -1107,12 +1137,12 @@ int main(int argc, char** argv) {
             refinement_vgg.back().second.Add(
                 diagnostics, *F.geometry, PairInputOf(d.sequence, i, j, true).geometry->camera2_T_camera1,
                 [&](const Eigen::Matrix3d& F_used, std::vector<double>* errors) {
-                  VggCornerEpipolarErrors(d.truth.views[i], d.truth.views[j], F_used, errors);
+                  VggCornerEpipolarErrors(d.truth.views[i], d.truth.views[j], d.sequence.calibration.camera, F_used, errors);
                 });
             refinement_cases.push_back(VggRefinementCase(d, i, j, *F.geometry, diagnostics.refinement, matching));
           }
-          const MatchVerdicts v = JudgeMatches(MatchPairs(matches), JunctionLocations(d.frames[i].features.junctions),
-                                               JunctionLocations(d.frames[j].features.junctions), F_true,
+          const MatchVerdicts v = JudgeMatches(MatchPairs(matches), JudgedLocations(d.frames[i]),
+                                               JudgedLocations(d.frames[j]), F_true,
                                                FLAGS_epipolar_tolerance, VggSame(d, i, j));
           const VertexMatchCounts points = ScoreVertexMatches(d.frames[i].features.junctions, d.frames[j].features.junctions,
                                                               d.near_points[i], d.near_points[j], matches, F, matching);
@@ -1163,8 +1193,8 @@ int main(int argc, char** argv) {
         for (int i = 0; i + 1 < n; ++i) {
           const std::vector<JunctionMatch> matches =
               Match(d.frames[i], d.frames[i + 1], PairInputOf(d.sequence, i, i + 1, false), matching);
-          verdicts.Add(JudgeMatches(MatchPairs(matches), JunctionLocations(d.frames[i].features.junctions),
-                                    JunctionLocations(d.frames[i + 1].features.junctions), d.TrueF(i, i + 1), tolerance,
+          verdicts.Add(JudgeMatches(MatchPairs(matches), JudgedLocations(d.frames[i]),
+                                    JudgedLocations(d.frames[i + 1]), d.TrueF(i, i + 1), tolerance,
                                     VggSame(d, i, i + 1)));
         }
         report << " " << Percent(verdicts.correct, verdicts.matches) << " |";

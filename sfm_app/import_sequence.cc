@@ -41,9 +41,31 @@ DEFINE_double(odometry_rotation_sigma, kDefaults.odometry.rotation_sigma,
               "(0.0052 rad = 0.3 deg).");
 DEFINE_double(odometry_rotation_bias, kDefaults.odometry.rotation_bias,
               "Odometry rotation bias per step about the camera's y axis (a heading drift), radians.");
-DEFINE_bool(vgg_refit_poses, sfm::VggImportOptions().refit_poses,
-            "vgg: re-estimate each pose for the sequence's one K (median of the frames' K); false keeps R, C "
-            "of each P's own decomposition, which reproject worse with the shared K.");
+DEFINE_bool(
+    vgg_refit_poses, sfm::VggImportOptions().refit_poses,
+    "vgg: re-estimate the poses for the sequence's one K (by --vgg_refit); false keeps R, C of each P's "
+    "own decomposition with the median of the frames' K, which reproject worse.");
+DEFINE_string(
+    vgg_refit, "joint",
+    "vgg: how the poses are re-estimated: 'joint' (all poses and the data set's 3D points fitted together "
+    "to its matched corners, <name>.nview-corners, for the median K) or 'pnp' (each pose alone by PnP onto "
+    "the fixed 3D points as its P projects them; the import before session 5).");
+DEFINE_bool(
+    vgg_refit_focal, sfm::VggImportOptions().refit_focal,
+    "vgg, --vgg_refit=joint: also estimate fx, fy (self-calibration; nearly unobservable on Corridor).");
+DEFINE_bool(
+    vgg_refit_principal_point, sfm::VggImportOptions().refit_principal_point,
+    "vgg, --vgg_refit=joint: also estimate cx, cy (self-calibration; nearly unobservable on Corridor).");
+DEFINE_bool(vgg_refit_k1, sfm::VggImportOptions().refit_radial_k1,
+            "vgg, --vgg_refit=joint: also estimate a radial distortion term k1 (written to sequence.yaml).");
+DEFINE_double(
+    vgg_k1, sfm::VggImportOptions().k1,
+    "vgg, --vgg_refit=joint: the images' radial distortion k1 (OpenCV's model) when known from elsewhere, "
+    "e.g. a separate calibration; held in the refit and written to sequence.yaml. 0: none.");
+DEFINE_bool(
+    vgg_k1_from_lines, sfm::VggImportOptions().k1_from_lines,
+    "vgg, --vgg_refit=joint: k1 by the plumb-line estimate from the data set's long straight segments "
+    "(<name>.NNN.lines) in its images, held in the refit and written to sequence.yaml; not with --vgg_k1.");
 DEFINE_bool(
     vgg_warp_to_shared_k, sfm::VggImportOptions().warp_to_shared_k,
     "vgg: resample each image to the sequence's one K (H_i = K K_i^-1, cropped to the rectangle all frames "
@@ -60,6 +82,12 @@ sfm::Status ReadDataSet(sfm::ImportedSequence* sequence) {
   if (FLAGS_format == "vgg") {
     sfm::VggImportOptions options;
     options.refit_poses = FLAGS_vgg_refit_poses;
+    options.refit = FLAGS_vgg_refit == "pnp" ? sfm::VggRefit::kPnpMedianK : sfm::VggRefit::kJoint;
+    options.refit_focal = FLAGS_vgg_refit_focal;
+    options.refit_principal_point = FLAGS_vgg_refit_principal_point;
+    options.refit_radial_k1 = FLAGS_vgg_refit_k1;
+    options.k1 = FLAGS_vgg_k1;
+    options.k1_from_lines = FLAGS_vgg_k1_from_lines;
     options.warp_to_shared_k = FLAGS_vgg_warp_to_shared_k;
     sfm::VggImportSummary summary;
     return sfm::ReadVggSequence(FLAGS_input, options, sequence, &summary);
@@ -89,6 +117,19 @@ int main(int argc, char** argv) {
   }
   if (FLAGS_format != "vgg" && FLAGS_format != "strecha" && FLAGS_format != "tum") {
     std::fprintf(stderr, "import_sequence: --format must be vgg, strecha or tum (found '%s')\n", FLAGS_format.c_str());
+    return 2;
+  }
+  if (FLAGS_vgg_k1 != 0 && FLAGS_vgg_k1_from_lines) {
+    // --vgg_k1_from_lines is on by default: a given k1 replaces it, unless both were asked for.
+    if (!gflags::GetCommandLineFlagInfoOrDie("vgg_k1_from_lines").is_default) {
+      std::fprintf(stderr, "import_sequence: --vgg_k1 and --vgg_k1_from_lines: give one\n");
+      return 2;
+    }
+    FLAGS_vgg_k1_from_lines = false;
+  }
+  if (FLAGS_vgg_refit != "joint" && FLAGS_vgg_refit != "pnp") {
+    std::fprintf(stderr, "import_sequence: --vgg_refit must be joint or pnp (found '%s')\n",
+                 FLAGS_vgg_refit.c_str());
     return 2;
   }
   if (FLAGS_input.empty() || FLAGS_output.empty()) {

@@ -7,10 +7,12 @@
 #include <cctype>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <map>
 #include <opencv2/calib3d.hpp>
 #include <opencv2/core/eigen.hpp>
 #include <opencv2/imgcodecs.hpp>
+#include <sstream>
 
 #include "frontend/util/number_text.h"
 #include "sequences/importers/input_files.h"
@@ -146,17 +148,101 @@ Status RefitPose(const View& view, const std::vector<Eigen::Vector3d>& points, c
   return Status::Ok();
 }
 
+// <name>.NNN.corners: 'x y' per line.
+Status ReadCorners(const std::string& path, std::vector<Eigen::Vector2d>* corners) {
+  std::vector<double> numbers;
+  SFM_RETURN_IF_ERROR(ReadNumbers(path, &numbers));
+  if (numbers.size() % 2 != 0) {
+    return Status::Error(path + ": expected 'x y' per line, found " + std::to_string(numbers.size()) +
+                         " numbers in all");
+  }
+  for (size_t i = 0; i < numbers.size(); i += 2) corners->emplace_back(numbers[i], numbers[i + 1]);
+  return Status::Ok();
+}
+
+// <name>.nview-corners (README-2D): one row per 3D point, per view the index of its corner in that
+// view's .corners or '*'; as observations of point (row) in view (column).
+Status ReadCornerTracks(const std::string& path, size_t point_count,
+                        const std::vector<std::vector<Eigen::Vector2d>>& corners,
+                        std::vector<RefitObservation>* observations) {
+  std::error_code error;
+  if (!fs::is_regular_file(path, error)) return Status::Error(path + ": file does not exist");
+  std::ifstream in(path);
+  if (!in) return Status::Error(path + ": cannot open");
+  std::string line;
+  size_t row = 0;
+  for (int line_number = 1; std::getline(in, line); ++line_number) {
+    std::istringstream fields(line);
+    std::vector<std::string> tokens;
+    for (std::string token; fields >> token;) tokens.push_back(token);
+    if (tokens.empty()) continue;
+    const std::string where = path + ":" + std::to_string(line_number);
+    if (tokens.size() != corners.size()) {
+      return Status::Error(where + ": expected one entry per view (" + std::to_string(corners.size()) +
+                           "), found " + std::to_string(tokens.size()));
+    }
+    if (row >= point_count) {
+      return Status::Error(where + ": more rows than 3D points (" + std::to_string(point_count) + ")");
+    }
+    for (size_t v = 0; v < tokens.size(); ++v) {
+      if (tokens[v] == "*") continue;
+      const std::string& token = tokens[v];
+      if (!std::all_of(token.begin(), token.end(), [](unsigned char c) { return std::isdigit(c); }) ||
+          token.size() > 9) {
+        return Status::Error(where + ": '" + token + "' is neither a corner index nor '*'");
+      }
+      const size_t index = std::stoul(token);
+      if (index >= corners[v].size()) {
+        return Status::Error(where + ": corner " + token + " of view " + std::to_string(v) +
+                             " does not exist (" + std::to_string(corners[v].size()) + " corners)");
+      }
+      observations->push_back({static_cast<int>(v), static_cast<int>(row), corners[v][index]});
+    }
+    ++row;
+  }
+  if (row != point_count) {
+    return Status::Error(path + ": " + std::to_string(row) + " rows for " + std::to_string(point_count) +
+                         " 3D points");
+  }
+  return Status::Ok();
+}
+
+// <name>.NNN.lines (README-2D): 'x0 y0 x1 y1' and possibly more fields per line; the end points.
+Status ReadSegments(const std::string& path, int image, std::vector<PlumbLineSegment>* segments) {
+  std::error_code error;
+  if (!fs::is_regular_file(path, error)) return Status::Error(path + ": file does not exist");
+  std::ifstream in(path);
+  if (!in) return Status::Error(path + ": cannot open");
+  std::string line;
+  for (int line_number = 1; std::getline(in, line); ++line_number) {
+    std::istringstream fields(line);
+    double x0, y0, x1, y1;
+    if (!(fields >> x0)) continue;  // a blank line
+    if (!(fields >> y0 >> x1 >> y1) || !std::isfinite(x0 + y0 + x1 + y1)) {
+      return Status::Error(path + ":" + std::to_string(line_number) + ": expected 'x0 y0 x1 y1'");
+    }
+    segments->push_back({image, Eigen::Vector2d(x0, y0), Eigen::Vector2d(x1, y1)});
+  }
+  return Status::Ok();
+}
+
 double Median(std::vector<double> values) {
   std::sort(values.begin(), values.end());
   const size_t n = values.size();
   return n % 2 == 1 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
 }
 
+std::string FixedText(double value, int decimals) {
+  char text[32];
+  std::snprintf(text, sizeof(text), "%.*f", decimals, value);
+  return text;
+}
+
 // "a..b" of the values, for the log and the notes.
-std::string RangeText(const std::vector<double>& values) {
+std::string RangeText(const std::vector<double>& values, int decimals = 1) {
   const auto [low, high] = std::minmax_element(values.begin(), values.end());
   char text[64];
-  std::snprintf(text, sizeof(text), "%.1f..%.1f", *low, *high);
+  std::snprintf(text, sizeof(text), "%.*f..%.*f", decimals, *low, decimals, *high);
   return text;
 }
 
@@ -207,11 +293,12 @@ Status ReadVggSequence(const std::string& input_dir, const VggImportOptions& opt
     skew.push_back(std::abs(K(0, 1)));
   }
   result.K << Median(fx), 0, Median(cx), 0, Median(fy), Median(cy), 0, 0, 1;
-  const std::string k_note = "K: median of the " + std::to_string(views.size()) + " frames' decomposed K (fx " +
-                             RangeText(fx) + ", fy " + RangeText(fy) + ", cx " + RangeText(cx) + ", cy " +
-                             RangeText(cy) + ", |skew| " + RangeText(skew) + " set to 0): fx " +
-                             ShortestNumberText(result.K(0, 0)) + " fy " + ShortestNumberText(result.K(1, 1)) + " cx " +
-                             ShortestNumberText(result.K(0, 2)) + " cy " + ShortestNumberText(result.K(1, 2));
+  std::string k_note = "K: median of the " + std::to_string(views.size()) + " frames' decomposed K (fx " +
+                       RangeText(fx) + ", fy " + RangeText(fy) + ", cx " + RangeText(cx) + ", cy " +
+                       RangeText(cy) + ", |skew| " + RangeText(skew) + " set to 0): fx " +
+                       ShortestNumberText(result.K(0, 0)) + " fy " + ShortestNumberText(result.K(1, 1)) +
+                       " cx " + ShortestNumberText(result.K(0, 2)) + " cy " +
+                       ShortestNumberText(result.K(1, 2));
   LOG(INFO) << "VGG: one " << k_note;
 
   ImportedSequence imported;
@@ -240,29 +327,135 @@ Status ReadVggSequence(const std::string& input_dir, const VggImportOptions& opt
     LOG(INFO) << "VGG: " << pose_note;
   } else {
     pose_note = options.refit_poses
-                    ? "poses: re-estimated for that K (PnP on " + name + ".p3d as each P projects it)"
+                    ? "poses: re-estimated for the median K (PnP on " + name + ".p3d as each P projects it)"
                     : "poses: R, C of each P's RQ decomposition (with its own K, not the shared one)";
+  }
+  std::vector<Pose3> camera_T_world;
+  for (const View& view : views) camera_T_world.push_back(view.decomposition.camera_T_world);
+  const bool refit = options.refit_poses && !options.warp_to_shared_k;
+  for (size_t i = 0; i < views.size(); ++i) {
+    double rms_px = 0;
+    if (refit) {
+      SFM_RETURN_IF_ERROR(RefitPose(views[i], points, size, result.K, &camera_T_world[i], &rms_px));
+      LOG(INFO) << "VGG: " << views[i].stem << ": pose refitted for the median K, RMS " << rms_px
+                << " px against P";
+    }
+    result.refit_rms_px.push_back(rms_px);
+  }
+  if (refit) pose_note += "; RMS " + RangeText(result.refit_rms_px) + " px";
+  std::string refit_note;
+  // The joint refit needs the data set's corner tracks; a data set without them keeps the PnP truth
+  // (with a warning and a note) rather than failing to import.
+  std::string missing_corners;
+  for (const View& view : views) {
+    if (!fs::is_regular_file(dir / (view.stem + ".corners"))) missing_corners = view.stem + ".corners";
+  }
+  if (!fs::is_regular_file(dir / (name + ".nview-corners"))) missing_corners = name + ".nview-corners";
+  if (refit && options.refit == VggRefit::kJoint && !missing_corners.empty()) {
+    LOG(WARNING) << "VGG: " << (dir / missing_corners).string()
+                 << " does not exist: no joint refit, the poses stay the PnP fit for the median K";
+    pose_note += "; no joint refit (" + missing_corners + " missing)";
+  }
+  if (refit && options.refit == VggRefit::kJoint && missing_corners.empty()) {
+    // Started from the median K and the PnP poses above; the P files' own centres fix the gauge.
+    std::vector<std::vector<Eigen::Vector2d>> corners(views.size());
+    for (size_t i = 0; i < views.size(); ++i) {
+      SFM_RETURN_IF_ERROR(ReadCorners((dir / (views[i].stem + ".corners")).string(), &corners[i]));
+    }
+    std::vector<RefitObservation> observations;
+    const std::string tracks_path = (dir / (name + ".nview-corners")).string();
+    SFM_RETURN_IF_ERROR(ReadCornerTracks(tracks_path, points.size(), corners, &observations));
+    std::vector<Eigen::Vector3d> reference_centres;
+    for (const View& view : views) reference_centres.push_back(view.decomposition.centre);
+    double k1 = options.k1;
+    std::string no_plumb_line;  // why k1 stayed 0 although asked for from the lines
+    if (options.k1_from_lines) {
+      if (options.k1 != 0) return Status::Error(input_dir + ": a k1 given and k1 from the lines: choose one");
+      std::vector<cv::Mat> images;
+      std::vector<PlumbLineSegment> segments;
+      for (size_t i = 0; i < views.size() && no_plumb_line.empty(); ++i) {
+        const fs::path lines_path = dir / (views[i].stem + ".lines");
+        if (!fs::is_regular_file(lines_path)) {
+          no_plumb_line = lines_path.string() + " does not exist";
+          break;
+        }
+        cv::Mat image;
+        SFM_RETURN_IF_ERROR(DecodeImage(views[i].image_path, cv::IMREAD_GRAYSCALE, &image));
+        images.push_back(image);
+        SFM_RETURN_IF_ERROR(ReadSegments(lines_path.string(), static_cast<int>(i), &segments));
+      }
+      PlumbLineEstimate plumb_line;
+      if (no_plumb_line.empty()) {
+        const Status status =
+            EstimateRadialDistortionFromEdges(images, segments, result.K, PlumbLineOptions(), &plumb_line);
+        if (!status.ok()) no_plumb_line = status.message();
+      }
+      if (no_plumb_line.empty()) {
+        k1 = plumb_line.k1;
+        result.plumb_line = plumb_line;
+        LOG(INFO) << "VGG: k1 " << plumb_line.k1 << " +- " << plumb_line.k1_sigma << " from the bows of "
+                  << plumb_line.edges << " long straight edges (plumb line)";
+      } else {
+        // A data set without long straight segments (or without .lines files) is imported as the P
+        // files model it, without distortion, rather than refused.
+        LOG(WARNING) << "VGG: no plumb-line k1 (" << no_plumb_line << "): k1 = 0";
+      }
+    }
+    SharedCameraRefitOptions refit_options;
+    refit_options.refine_focal = options.refit_focal;
+    refit_options.refine_principal_point = options.refit_principal_point;
+    refit_options.radial_k1 = options.refit_radial_k1;
+    refit_options.k1 = k1;
+    SharedCameraRefit joint;
+    const Status status = RefitSharedCamera(result.K, camera_T_world, points, observations, reference_centres,
+                                            refit_options, &joint);
+    if (!status.ok()) return Status::Error(tracks_path + ": " + status.message());
+    result.K = joint.K;
+    camera_T_world = joint.camera_T_world;
+    imported.camera.distortion[0] = joint.k1;
+    std::string held = options.refit_focal ? "" : " fx fy";
+    if (!options.refit_principal_point) held += " cx cy";
+    refit_note =
+        "joint refit (bundle adjustment, sequences/importers/shared_camera_refit.h) of the " +
+        std::to_string(views.size()) + " poses, the " + std::to_string(points.size()) + " " + name +
+        ".p3d points" + (options.refit_focal ? ", fx fy" : "") +
+        (options.refit_principal_point ? ", cx cy" : "") + (options.refit_radial_k1 ? ", k1" : "") +
+        (held.empty() ? "" : " (K's" + held + " held at the median)") +
+        (k1 != 0 && !options.refit_radial_k1 ? " (k1 held at " + FixedText(k1, 4) + ")" : "") +
+        (result.plumb_line
+             ? " (k1 from the plumb-line bows of " + std::to_string(result.plumb_line->edges) +
+                   " long straight edges of the images, +- " + FixedText(result.plumb_line->k1_sigma, 4) + ")"
+             : "") +
+        " to the " + std::to_string(observations.size()) + " corner observations of " + name +
+        ".nview-corners (Huber 1 px), from the median K and the PnP poses: median reprojection error " +
+        FixedText(joint.start_median_px, 3) + " -> " + FixedText(joint.median_px, 3) + " px (per view " +
+        RangeText(joint.view_median_px, 2) + "); gauge: the similarity (scale " +
+        FixedText(joint.gauge_scale, 4) +
+        ") that best maps the refit camera centres onto the P files' centres, which they then miss by " +
+        RangeText(joint.centre_offset, 3) + " units";
+    if (options.refit_focal || options.refit_principal_point || options.refit_radial_k1 || k1 != 0) {
+      refit_note += "; K fx " + FixedText(result.K(0, 0), 2) + " fy " + FixedText(result.K(1, 1), 2) +
+                    " cx " + FixedText(result.K(0, 2), 2) + " cy " + FixedText(result.K(1, 2), 2) + " k1 " +
+                    FixedText(joint.k1, 4);
+    }
+    if (options.refit_focal || options.refit_principal_point) {
+      k_note = "K: fitted with the poses (next line), started from the " + k_note.substr(3);
+    }
+    if (!no_plumb_line.empty()) refit_note += "; no plumb-line k1 (" + no_plumb_line + "), k1 = 0";
+    LOG(INFO) << "VGG: " << refit_note;
+    pose_note = "poses: " + refit_note;
+    result.joint_refit = std::move(joint);
   }
   imported.camera.fx = result.K(0, 0);
   imported.camera.fy = result.K(1, 1);
   imported.camera.cx = result.K(0, 2);
   imported.camera.cy = result.K(1, 2);
   for (size_t i = 0; i < views.size(); ++i) {
-    const View& view = views[i];
-    Pose3 camera_T_world = view.decomposition.camera_T_world;
-    double rms_px = 0;
-    if (options.refit_poses && !options.warp_to_shared_k) {
-      SFM_RETURN_IF_ERROR(RefitPose(view, points, size, result.K, &camera_T_world, &rms_px));
-      LOG(INFO) << "VGG: " << view.stem << ": pose refitted for the shared K, RMS " << rms_px << " px against P";
-    }
-    result.refit_rms_px.push_back(rms_px);
-    ImportedFrame frame{static_cast<double>(i) * kFrameInterval, view.image_path, camera_T_world.Inverse(),
-                        std::nullopt};
+    ImportedFrame frame{static_cast<double>(i) * kFrameInterval, views[i].image_path,
+                        camera_T_world[i].Inverse(), std::nullopt};
     if (options.warp_to_shared_k) frame.source_to_image = result.source_to_image[i];
     imported.frames.push_back(frame);
   }
-  if (options.refit_poses && !options.warp_to_shared_k)
-    pose_note += "; RMS " + RangeText(result.refit_rms_px) + " px";
   imported.notes.push_back("format: VGG multi-view, " + input_dir + ", " + std::to_string(views.size()) +
                            " frames " + views.front().stem + " .. " + views.back().stem);
   imported.notes.push_back(k_note);

@@ -8,6 +8,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <opencv2/imgcodecs.hpp>
 #include <sstream>
 #include <string>
@@ -95,7 +96,54 @@ TEST(ImportSequenceAppTest, BadInputExitsNonZeroWithOneLineAndNoOutput) {
   run = RunImport(scratch, "--format colmap --input " + strecha.string() + " --output " + out.string());
   EXPECT_EQ(run.exit_status, 2);
   EXPECT_THAT(run.stderr_text, HasSubstr("--format must be vgg, strecha or tum"));
+  run = RunImport(
+      scratch, "--format vgg --vgg_refit=bundle --input " + strecha.string() + " --output " + out.string());
+  EXPECT_EQ(run.exit_status, 2);
+  EXPECT_THAT(run.stderr_text, HasSubstr("--vgg_refit must be joint or pnp (found 'bundle')"));
+  run = RunImport(scratch, "--format vgg --vgg_k1=-0.05 --vgg_k1_from_lines --input " + strecha.string() +
+                               " --output " + out.string());
+  EXPECT_EQ(run.exit_status, 2);
+  EXPECT_THAT(run.stderr_text, HasSubstr("--vgg_k1 and --vgg_k1_from_lines: give one"));
   EXPECT_FALSE(fs::exists(out));
+}
+
+// --vgg_refit, --vgg_k1 and --vgg_k1_from_lines through the app: import_notes.txt says which truth
+// was made (with the joint refit's figures), and a given or estimated k1 reaches sequence.yaml.
+TEST(ImportSequenceAppTest, VggRefitChoiceReachesTheNotesAndK1TheCamera) {
+  const std::string data = testing::SharedDataDir("vgg-corridor");
+  if (data.empty()) GTEST_SKIP() << "../shared/data/vgg-corridor is absent";
+  const fs::path scratch = testing::MakeScratchDir("import_app_vgg_refit");
+  const std::string base = "--format vgg --input " + data + " --output ";
+  AppRun run = RunImport(scratch, base + (scratch / "joint").string() + " --vgg_k1=-0.05");
+  ASSERT_EQ(run.exit_status, 0) << run.stderr_text;
+  run = RunImport(scratch, base + (scratch / "pnp").string() + " --vgg_refit=pnp");
+  ASSERT_EQ(run.exit_status, 0) << run.stderr_text;
+  auto text = [](const fs::path& path) {
+    std::ifstream in(path);
+    return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  };
+  EXPECT_THAT(text(scratch / "joint" / "import_notes.txt"), HasSubstr("poses: joint refit"));
+  EXPECT_THAT(text(scratch / "joint" / "import_notes.txt"), HasSubstr("(k1 held at -0.0500)"));
+  EXPECT_THAT(text(scratch / "pnp" / "import_notes.txt"),
+              HasSubstr("poses: re-estimated for the median K (PnP"));
+  Sequence joint, pnp;
+  ASSERT_TRUE(ReadSequence((scratch / "joint").string(), &joint).ok());
+  ASSERT_TRUE(ReadSequence((scratch / "pnp").string(), &pnp).ok());
+  EXPECT_EQ(joint.calibration.camera.distortion[0], -0.05);
+  EXPECT_EQ(pnp.calibration.camera.distortion[0], 0);
+  EXPECT_EQ(joint.calibration.camera.fx, pnp.calibration.camera.fx);  // K held at the median
+  // k1 from the images' straight edges (measured -0.0612), the default; off, none.
+  run = RunImport(scratch, base + (scratch / "none").string() + " --vgg_k1_from_lines=false");
+  ASSERT_EQ(run.exit_status, 0) << run.stderr_text;
+  Sequence none;
+  ASSERT_TRUE(ReadSequence((scratch / "none").string(), &none).ok());
+  EXPECT_EQ(none.calibration.camera.distortion[0], 0);
+  run = RunImport(scratch, base + (scratch / "lines").string());
+  ASSERT_EQ(run.exit_status, 0) << run.stderr_text;
+  EXPECT_THAT(text(scratch / "lines" / "import_notes.txt"), HasSubstr("k1 from the plumb-line bows of"));
+  Sequence lines;
+  ASSERT_TRUE(ReadSequence((scratch / "lines").string(), &lines).ok());
+  EXPECT_NEAR(lines.calibration.camera.distortion[0], -0.061, 0.003);
 }
 
 TEST(ImportSequenceAppTest, ImportsAndRefusesToOverwriteUnlessAsked) {
