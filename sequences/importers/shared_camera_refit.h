@@ -46,8 +46,8 @@ struct SharedCameraRefit {
   // Per view: distance of the refit camera centre from its reference centre (after the gauge's
   // similarity, below), in the reference's units.
   std::vector<double> centre_offset;
-  double gauge_scale = 1;
-  int observations = 0;  // scale of the similarity that moved the solution onto the reference centres
+  double gauge_scale = 1;  // scale of the similarity that moved the solution onto the reference centres
+  int observations = 0;    // used in the solve
   int iterations = 0;
 };
 
