@@ -9,18 +9,13 @@
 #include <string>
 
 #include "backend/metrics/alignment.h"
+#include "sequences/importers/shared_camera_refit_costs.h"
 
 namespace sfm {
 namespace {
 
 // Fewer observations than this leave a view's 6 pose dof barely determined (as for PnP).
 constexpr int kMinObservationsPerView = 6;
-
-// The scale gauge's residual weight, per unit of relative distance: a 1 % change of the first-to-
-// last centre distance costs as much as 1 px of reprojection error. The weight does not move the
-// optimum (the distance is a pure gauge direction, so the residual is zero there whatever its
-// weight); it only has to be large enough to take the gauge out of the normal equations.
-constexpr double kScaleGaugeWeight = 100.0;
 
 using Pose6 = std::array<double, 6>;  // angle-axis of camera_R_world, then camera_t_world
 
@@ -40,50 +35,6 @@ Pose3 FromPose6(const Pose6& pose) {
 }
 
 Eigen::Vector3d Centre(const Pose3& camera_T_world) { return camera_T_world.Inverse().translation; }
-
-// Pixel residual of one observation: intrinsics (fx, fy, cx, cy), k1, pose (Pose6), point (3).
-struct ReprojectionCost {
-  explicit ReprojectionCost(const Eigen::Vector2d& pixel) : pixel(pixel) {}
-
-  template <typename T>
-  bool operator()(const T* intrinsics, const T* k1, const T* pose, const T* point, T* residual) const {
-    T p[3];
-    ceres::AngleAxisRotatePoint(pose, point, p);
-    for (int i = 0; i < 3; ++i) p[i] += pose[3 + i];
-    const T x = p[0] / p[2], y = p[1] / p[2];
-    const T radial = T(1) + k1[0] * (x * x + y * y);
-    residual[0] = intrinsics[0] * x * radial + intrinsics[2] - T(pixel.x());
-    residual[1] = intrinsics[1] * y * radial + intrinsics[3] - T(pixel.y());
-    return true;
-  }
-
-  Eigen::Vector2d pixel;
-};
-
-// Holds the distance of a camera's centre from the (fixed) first centre at its start value.
-struct CentreDistanceCost {
-  CentreDistanceCost(const Eigen::Vector3d& first_centre, double distance)
-      : first_centre(first_centre), distance(distance) {}
-
-  template <typename T>
-  bool operator()(const T* pose, T* residual) const {
-    // C = -R^T t: rotate -t by the inverse angle-axis.
-    const T inverse[3] = {-pose[0], -pose[1], -pose[2]};
-    const T minus_t[3] = {-pose[3], -pose[4], -pose[5]};
-    T centre[3];
-    ceres::AngleAxisRotatePoint(inverse, minus_t, centre);
-    T squared(0);
-    for (int i = 0; i < 3; ++i) {
-      const T d = centre[i] - T(first_centre[i]);
-      squared += d * d;
-    }
-    residual[0] = T(kScaleGaugeWeight) * (ceres::sqrt(squared) / T(distance) - T(1));
-    return true;
-  }
-
-  Eigen::Vector3d first_centre;
-  double distance;
-};
 
 double Median(std::vector<double> values) {
   if (values.empty()) return 0;
@@ -169,10 +120,10 @@ Status RefitSharedCamera(const Eigen::Matrix3d& start_K, const std::vector<Pose3
 
   ceres::Problem problem;
   for (const RefitObservation& o : observations) {
-    problem.AddResidualBlock(
-        new ceres::AutoDiffCostFunction<ReprojectionCost, 2, 4, 1, 6, 3>(new ReprojectionCost(o.pixel)),
-        new ceres::HuberLoss(options.huber_px), intrinsics.data(), &k1, poses[o.view].data(),
-        points[o.point].data());
+    problem.AddResidualBlock(new ceres::AutoDiffCostFunction<RefitReprojectionCost, 2, 4, 1, 6, 3>(
+                                 new RefitReprojectionCost(o.pixel)),
+                             new ceres::HuberLoss(options.huber_px), intrinsics.data(), &k1,
+                             poses[o.view].data(), points[o.point].data());
   }
   if (!options.radial_k1) problem.SetParameterBlockConstant(&k1);
   if (!options.refine_focal && !options.refine_principal_point) {
@@ -183,8 +134,8 @@ Status RefitSharedCamera(const Eigen::Matrix3d& start_K, const std::vector<Pose3
         new ceres::SubsetManifold(4, options.refine_focal ? std::vector<int>{2, 3} : std::vector<int>{0, 1}));
   }
   problem.SetParameterBlockConstant(poses.front().data());
-  problem.AddResidualBlock(new ceres::AutoDiffCostFunction<CentreDistanceCost, 1, 6>(
-                               new CentreDistanceCost(first_centre, first_to_last)),
+  problem.AddResidualBlock(new ceres::AutoDiffCostFunction<RefitCentreDistanceCost, 1, 6>(
+                               new RefitCentreDistanceCost(first_centre, first_to_last)),
                            nullptr, poses.back().data());
 
   ceres::Solver::Options solver;
