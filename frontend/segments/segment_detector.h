@@ -54,6 +54,10 @@ struct FastSegmentOptions {
   // precision 98.1-98.8 % on odometry seeds 1-3, segments + junctions 2.49 -> 2.86-2.89 x Canny
   // on VGG (docs/junction_results.md, "Session 4").
   bool branches_at_free_ends = true;
+  // With branches_at_free_ends: at a free end of a segment B, continue the line of a segment A
+  // that stops 3-12 px short of their corner at a corner of its own, when the gradient along the
+  // gap is aligned with A's line (a-contrario, branch_segments.h; docs/segments.md, step 8).
+  bool bridges_past_corners = false;
 };
 
 struct SegmentDetectorOptions {
