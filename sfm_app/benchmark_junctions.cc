@@ -73,6 +73,9 @@ DEFINE_bool(corners_between_chains, sfm::SegmentDetectorOptions().fast.corners_b
             "the corner.");
 DEFINE_bool(branches_at_free_ends, sfm::SegmentDetectorOptions().fast.branches_at_free_ends,
             "Fast segments: look for a corner's missing side along rays from free segment end-points.");
+DEFINE_bool(branches_to_far_corners, sfm::SegmentDetectorOptions().fast.branches_to_far_corners,
+            "Fast segments (with branches_at_free_ends): a branch ending at another corner is measured from corner "
+            "to corner.");
 DEFINE_bool(bridges_past_corners, sfm::SegmentDetectorOptions().fast.bridges_past_corners,
             "Fast segments (with branches_at_free_ends): continue a segment's line across the gap to a free end when the "
             "gradient there is aligned with it.");
@@ -1019,6 +1022,7 @@ int main(int argc, char** argv) {
     method.options.fast.corners_between_chains = FLAGS_corners_between_chains;
     method.options.fast.branches_at_free_ends = FLAGS_branches_at_free_ends;
     method.options.fast.bridges_past_corners = FLAGS_bridges_past_corners;
+    method.options.fast.branches_to_far_corners = FLAGS_branches_to_far_corners;
     method.options.fast.presmooth_sigma = FLAGS_presmooth_sigma;
     if (name == "fast") {
       method.options.method = SegmentMethod::kFast;

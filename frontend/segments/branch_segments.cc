@@ -86,6 +86,7 @@ class EndGrid {
   }
 
   const Eigen::Vector2d& EndPoint(int i) const { return i % 2 == 0 ? s_[i / 2].p0 : s_[i / 2].p1; }
+  const LineSegments& Segments() const { return s_; }
 
   // Calls visit(j) for every end-point j in the cells within `reach` cells of p's, until it returns
   // false; returns false if it did.
@@ -177,6 +178,7 @@ class BranchSearch {
     std::vector<char> is_free;
     MarkCovered(s);
     const EndGrid grid(s, rows_, cols_, 4 * options_.max_gap);
+    grid_ = &grid;
     FreeEnds(s, grid, &free_ends, &is_free);
     stats.free_ends = static_cast<int>(free_ends.size());
     if (free_ends.empty()) return stats;
@@ -227,7 +229,7 @@ class BranchSearch {
           continue;
         }
         LineSegment branch;
-        if (!Branch(segment, e, origin, c, &branch)) continue;
+        if (!Branch(segment, end / 2, e, origin, c, &branch)) continue;
         blocked_.push_back(c.angle);
         ++taken;
         branch_angles.push_back({end, c.angle});
@@ -557,10 +559,49 @@ class BranchSearch {
     return c->log10_nfa <= options_.fast.log10_nfa_max;
   }
 
+  // A branch whose far end stops at another corner (fast.branches_to_far_corners): how far beyond
+  // its far end-point `far` (direction d) its line meets the line of another segment (not
+  // `exclude`, the segment it starts from) at a corner, or 0. As the short sides between two corners
+  // (docs/segments.md, step 7): a rounded corner takes 1-2 px off each end of a side, so a side of
+  // 10-12 px between two corners gives a branch of 7-9 px, and it is measured from corner to corner.
+  // The far corner lies within max_gap of `far` and within max_gap of an end-point of the other
+  // segment (an L), or on its interior (the branch ends on it, a T); lines at least 11.5 degrees
+  // apart (so a 0.2 px line error moves the corner by under 1 px).
+  double FarCornerBeyond(const Eigen::Vector2d& far, const Eigen::Vector2d& d, int exclude) const {
+    const double gap = options_.max_gap;
+    double best = 0;
+    grid_->ForEachNear(far, 1, [&](int j) {
+      if (j / 2 == exclude) return true;
+      const LineSegment& other = grid_->Segments()[j / 2];
+      const Eigen::Vector2d& end = grid_->EndPoint(j);
+      if ((end - far).squaredNorm() > 4 * gap * gap) return true;
+      const Eigen::Vector2d od = other.Direction();
+      const double sine = d.x() * od.y() - d.y() * od.x();
+      if (std::abs(sine) < kMinCornerSine) return true;
+      // Y = far + beyond * d on the other segment's line: (Y - end) . normal = 0.
+      const Eigen::Vector2d on = other.Normal();
+      const double beyond = (end - far).dot(on) / d.dot(on);
+      const Eigen::Vector2d y = far + beyond * d;
+      if (std::abs(beyond) > gap || (y - end).norm() > gap) return true;
+      best = std::max(best, beyond);
+      return true;
+    });
+    // A T: the points 1..max_gap px beyond the far end run into another segment's interior.
+    for (int r = 1; r <= static_cast<int>(gap); ++r) {
+      int x, y;
+      if (!PixelAt(far + r * d, &x, &y)) break;
+      if (Covered(x, y)) {
+        best = std::max(best, static_cast<double>(r));
+        break;
+      }
+    }
+    return best;
+  }
+
   // The branch of candidate c: a line fitted to the sub-pixel edge points across the ray, checked
   // for its corner with `segment` (end-point e) and its length from that corner.
-  bool Branch(const LineSegment& segment, const Eigen::Vector2d& e, const Eigen::Vector2d& origin,
-              const Candidate& c, LineSegment* branch) const {
+  bool Branch(const LineSegment& segment, int segment_index, const Eigen::Vector2d& e,
+              const Eigen::Vector2d& origin, const Candidate& c, LineSegment* branch) const {
     const Eigen::Vector2d v(std::cos(c.angle), std::sin(c.angle)), normal(-v.y(), v.x());
     // Across the ray: along the image axis closest to its normal (as the chains' sub-pixel points).
     const bool across_y = std::abs(normal.y()) >= std::abs(normal.x());
@@ -626,7 +667,10 @@ class BranchSearch {
     if ((corner - e).norm() > options_.max_gap) return false;
     *branch = SegmentOnLine(line, kept.front(), kept.back(), fit.count());
     const Eigen::Vector2d far = line.Project(kept.back());
-    if ((far - corner).dot(line.direction) < options_.min_length) return false;
+    double length = (far - corner).dot(line.direction);
+    if (length < options_.min_length && options_.fast.branches_to_far_corners)
+      length += FarCornerBeyond(far, line.direction, segment_index);
+    if (length < options_.min_length) return false;
     // Brighter side along Normal() (segment_detector.h): the gradient's polarity across the ray.
     if (branch->Normal().dot(c.polarity * normal) < 0) std::swap(branch->p0, branch->p1);
     return true;
@@ -643,6 +687,7 @@ class BranchSearch {
   std::vector<double>& tail_;
   std::vector<uint64_t>& covered_;
   std::vector<double> blocked_;             // directions of one end already explained (Run)
+  const EndGrid* grid_ = nullptr;           // the input segments' end-points (Run)
   std::vector<Eigen::Vector2d> rotations_;  // cosine and sine of each direction's angle from the segment
   // The edge thresholds in |gx| + |gy| units: as on a chain, every aligned sample reaches the low
   // one and the branch's strongest edge point the high one (an anchor).

@@ -58,6 +58,9 @@ struct FastSegmentOptions {
   // that stops 3-12 px short of their corner at a corner of its own, when the gradient along the
   // gap is aligned with A's line (a-contrario, branch_segments.h; docs/segments.md, step 8).
   bool bridges_past_corners = false;
+  // With branches_at_free_ends: a branch whose far end stops at another segment's corner (an L or a
+  // T within max_gap) is measured from corner to corner for min_length, as the short sides of step 7.
+  bool branches_to_far_corners = false;
 };
 
 struct SegmentDetectorOptions {
