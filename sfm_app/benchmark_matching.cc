@@ -71,6 +71,9 @@ DEFINE_double(lbd_min_length, sfm::SegmentDetectorOptions().min_length, "LSD seg
 DEFINE_string(segments, "fast", "Our segment detector: 'fast' or 'reference'.");
 DEFINE_bool(branches_at_free_ends, sfm::SegmentDetectorOptions().fast.branches_at_free_ends,
             "Fast segments: look for a corner's missing side along rays from free segment end-points.");
+DEFINE_bool(branches_to_far_corners, sfm::SegmentDetectorOptions().fast.branches_to_far_corners,
+            "Fast segments (with branches_at_free_ends): a branch ending at another corner is measured from corner "
+            "to corner.");
 DEFINE_bool(bridges_past_corners, sfm::SegmentDetectorOptions().fast.bridges_past_corners,
             "Fast segments (with branches_at_free_ends): continue a segment's line across the gap to a free end when the "
             "gradient there is aligned with it.");
@@ -862,6 +865,7 @@ int main(int argc, char** argv) {
   }
   settings.segments.fast.branches_at_free_ends = FLAGS_branches_at_free_ends;
   settings.segments.fast.bridges_past_corners = FLAGS_bridges_past_corners;
+  settings.segments.fast.branches_to_far_corners = FLAGS_branches_to_far_corners;
   const EndpointModel model{FLAGS_endpoint_lambda, FLAGS_endpoint_mu};
   settings.junctions.endpoint_model = model;
   settings.junctions.min_probability = FLAGS_junction_min_probability;

@@ -48,6 +48,9 @@ DEFINE_string(segments, "fast", "Line segment detector: 'fast' (anchored edge ch
                                 "(the paper's edge filter + Hough transform + sub-pixel fit).");
 DEFINE_bool(branches_at_free_ends, kDefaults.segments.fast.branches_at_free_ends,
             "Fast segments: look for a corner's missing side along rays from free segment end-points.");
+DEFINE_bool(branches_to_far_corners, kDefaults.segments.fast.branches_to_far_corners,
+            "Fast segments (with branches_at_free_ends): a branch ending at another corner is measured from corner "
+            "to corner.");
 DEFINE_bool(bridges_past_corners, kDefaults.segments.fast.bridges_past_corners,
             "Fast segments (with branches_at_free_ends): continue a segment's line across the gap to a free end when the "
             "gradient there is aligned with it.");
@@ -143,6 +146,7 @@ bool OptionsFromFlags(sfm::PipelineOptions* options, std::string* error) {
   }
   options->segments.fast.branches_at_free_ends = FLAGS_branches_at_free_ends;
   options->segments.fast.bridges_past_corners = FLAGS_bridges_past_corners;
+  options->segments.fast.branches_to_far_corners = FLAGS_branches_to_far_corners;
   const sfm::EndpointModel endpoint_model{FLAGS_endpoint_lambda, FLAGS_endpoint_mu};
   options->junctions.endpoint_model = endpoint_model;
   options->junctions.min_probability = FLAGS_junction_min_probability;
