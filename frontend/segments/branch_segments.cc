@@ -311,7 +311,9 @@ class BranchSearch {
     };
     const double max_bridge = options_.min_length + options_.max_gap;
     const double cos_min_angle = std::cos(kMinBranchAngle);
-    const int reach = static_cast<int>(std::ceil((max_bridge + options_.max_gap) / (4 * options_.max_gap)));
+    // A's end-point lies within max_bridge of the corner, the corner within max_gap of B's end.
+    const double reach_px = max_bridge + options_.max_gap;
+    const int reach = static_cast<int>(std::ceil(reach_px / (4 * options_.max_gap)));
     std::vector<Bridge> bridges;
     for (const int i : free_ends) {
       const LineSegment b = (*segments)[i / 2];
@@ -320,8 +322,9 @@ class BranchSearch {
       const Eigen::Vector2d qb = b.Normal();
       grid.ForEachNear(e, reach, [&](int j) {
         if (j / 2 == i / 2 || is_free[j]) return true;
-        const LineSegment& a = (*segments)[j / 2];
         const Eigen::Vector2d& ae = grid.EndPoint(j);
+        if ((ae - e).squaredNorm() > reach_px * reach_px) return true;
+        const LineSegment& a = (*segments)[j / 2];
         const Eigen::Vector2d out = j % 2 == 0 ? Eigen::Vector2d(-a.Direction()) : a.Direction();
         const double sine = out.x() * u.y() - out.y() * u.x();
         if (std::abs(sine) < kMinCornerSine) return true;
