@@ -156,6 +156,8 @@ TEST(BranchSegmentsTest, BridgesALineContinuedPastACornerToAFreeEnd) {
     SCOPED_TRACE("seed " + std::to_string(seed));
     image.seed = seed;
     SegmentDetectorOptions options;
+    options.fast.bridges_past_corners = false;
+    options.fast.branches_to_far_corners = false;
     const Gradient g = GradientOf(testing::RenderPolygons(scene, image), options);
     LineSegments off = segments;
     AppendBranchSegments(g.gx, g.gy, g.magnitude, g.low, g.high, options, &off);
@@ -203,6 +205,8 @@ TEST(BranchSegmentsTest, MeasuresABranchEndingAtAnotherCornerFromCornerToCorner)
     SCOPED_TRACE("seed " + std::to_string(seed));
     image.seed = seed;
     SegmentDetectorOptions options;
+    options.fast.branches_to_far_corners = false;
+    options.fast.bridges_past_corners = false;  // which would bridge V to the top side beyond C
     const Gradient g = GradientOf(testing::RenderPolygons(scene, image), options);
     // The new segments with an end-point within 4 px of V (the other free ends, at the scene's
     // other corners, may get branches of their own).
@@ -232,10 +236,8 @@ TEST(BranchSegmentsTest, MeasuresABranchEndingAtAnotherCornerFromCornerToCorner)
 // min_length), 100 random segments per 640 x 480 image give at most one branch per image on
 // average (the NFA threshold is 1 per image). 20 images; measured: 0 branches.
 TEST(BranchSegmentsTest, FindsAtMostOneBranchPerImageInHeavyNoise) {
-  SegmentDetectorOptions options;
-  // With the bridges and the corner-to-corner length too (measured: 0 branches, 0 bridges).
-  options.fast.bridges_past_corners = true;
-  options.fast.branches_to_far_corners = true;
+  // The defaults: with the bridges and the corner-to-corner length (measured: 0 branches, 0 bridges).
+  const SegmentDetectorOptions options;
   SyntheticImageOptions image;
   image.width = 640;
   image.height = 480;
