@@ -60,6 +60,8 @@ DEFINE_double(endpoint_mu, kDefaults.junctions.endpoint_model.mu,
               "End-point model eq. (5): decay, 1/px, of a detected end-point falling short of the true one.");
 DEFINE_double(junction_min_probability, kDefaults.junctions.min_probability,
               "Junction threshold: least junction probability of a pair of segments (0, 1].");
+DEFINE_double(acute_shortfall_px, kDefaults.junctions.acute_shortfall_px,
+              "Junctions: an L contact's end-point shortfall is reduced by this times (1 / sin(angle) - 1) before eq. (5), px (0: off).");
 DEFINE_double(match_max_distance, kDefaults.matching.max_epipolar_distance_px,
               "R: largest distance, px, of a junction from its partner's epipolar line (used with "
               "--match_pose_band=false).");
@@ -150,6 +152,7 @@ bool OptionsFromFlags(sfm::PipelineOptions* options, std::string* error) {
   const sfm::EndpointModel endpoint_model{FLAGS_endpoint_lambda, FLAGS_endpoint_mu};
   options->junctions.endpoint_model = endpoint_model;
   options->junctions.min_probability = FLAGS_junction_min_probability;
+  options->junctions.acute_shortfall_px = FLAGS_acute_shortfall_px;
   options->matching.endpoint_model = endpoint_model;
   options->matching.max_epipolar_distance_px = FLAGS_match_max_distance;
   options->matching.tau1 = FLAGS_match_tau1;
