@@ -589,18 +589,12 @@ class BranchSearch {
       best = std::max(best, beyond);
       return true;
     });
-    // A T: the points 1..max_gap px beyond the far end run into another segment's interior, at a
-    // corner: the gradient there is at least 11.5 degrees (kMinCornerSine) from the branch's
-    // normal, so that a segment continuing the branch's own line is not taken for a corner.
-    const double max_cos2 = 1 - kMinCornerSine * kMinCornerSine;
+    // A T: the points 1..max_gap px beyond the far end run into another segment's interior.
     for (int r = 1; r <= static_cast<int>(gap); ++r) {
       int x, y;
       if (!PixelAt(far + r * d, &x, &y)) break;
       if (Covered(x, y)) {
-        const size_t i = static_cast<size_t>(y) * cols_ + x;
-        const double g_x = gx_[i], g_y = gy_[i];
-        const double across = g_y * d.x() - g_x * d.y();  // along the branch's normal (-d.y, d.x)
-        if (across * across <= max_cos2 * (g_x * g_x + g_y * g_y)) best = std::max(best, static_cast<double>(r));
+        best = std::max(best, static_cast<double>(r));
         break;
       }
     }
