@@ -108,6 +108,8 @@ DEFINE_double(collinear_max_offset_px, kJunctionDefaults.collinear_max_offset_px
 DEFINE_int32(junction_repeats, 1,
              "The junction time is the fastest of this many runs on the same segments (VGG: also printed per image to stderr).");
 DEFINE_double(min_arm_px, kJunctionDefaults.min_arm_px, "Smallest arm of a T bar or X, px.");
+DEFINE_bool(choose_by_end_likelihood, kJunctionDefaults.choose_by_end_likelihood,
+            "Junctions: choose between conflicting junctions by the log-likelihood of the end-points they explain (not the sum of pair probabilities).");
 DEFINE_double(acute_shortfall_px, kJunctionDefaults.acute_shortfall_px,
               "Junctions: an L contact's end-point shortfall is reduced by this times (1 / sin(angle) - 1) before eq. (5), px (0: off).");
 
@@ -1055,6 +1057,7 @@ int main(int argc, char** argv) {
   junction_options.collinear_max_offset_px = FLAGS_collinear_max_offset_px;
   junction_options.min_arm_px = FLAGS_min_arm_px;
   junction_options.acute_shortfall_px = FLAGS_acute_shortfall_px;
+  junction_options.choose_by_end_likelihood = FLAGS_choose_by_end_likelihood;
   if (const Status check = junction_options.Check(); !check.ok()) return fail(2, check.message());
   for (const std::string& directory : {FLAGS_overlay_dir, FLAGS_miss_dir}) {
     if (directory.empty()) continue;

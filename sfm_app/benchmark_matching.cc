@@ -80,6 +80,8 @@ DEFINE_bool(bridges_past_corners, sfm::SegmentDetectorOptions().fast.bridges_pas
 DEFINE_double(endpoint_lambda, kJunctionDefaults.endpoint_model.lambda, "End-point model eq. (5), t >= 0, 1/px.");
 DEFINE_double(endpoint_mu, kJunctionDefaults.endpoint_model.mu, "End-point model eq. (5), t < 0, 1/px.");
 DEFINE_double(junction_min_probability, kJunctionDefaults.min_probability, "Junction threshold, (0, 1].");
+DEFINE_bool(choose_by_end_likelihood, kJunctionDefaults.choose_by_end_likelihood,
+            "Junctions: choose between conflicting junctions by the log-likelihood of the end-points they explain (not the sum of pair probabilities).");
 DEFINE_double(acute_shortfall_px, kJunctionDefaults.acute_shortfall_px,
               "Junctions: an L contact's end-point shortfall is reduced by this times (1 / sin(angle) - 1) before eq. (5), px (0: off).");
 DEFINE_double(match_max_distance, kMatchingDefaults.max_epipolar_distance_px, "R, px.");
@@ -872,6 +874,7 @@ int main(int argc, char** argv) {
   settings.junctions.endpoint_model = model;
   settings.junctions.min_probability = FLAGS_junction_min_probability;
   settings.junctions.acute_shortfall_px = FLAGS_acute_shortfall_px;
+  settings.junctions.choose_by_end_likelihood = FLAGS_choose_by_end_likelihood;
   MatchingOptions& matching = settings.matching;
   matching.endpoint_model = model;
   matching.max_epipolar_distance_px = FLAGS_match_max_distance;

@@ -60,6 +60,8 @@ DEFINE_double(endpoint_mu, kDefaults.junctions.endpoint_model.mu,
               "End-point model eq. (5): decay, 1/px, of a detected end-point falling short of the true one.");
 DEFINE_double(junction_min_probability, kDefaults.junctions.min_probability,
               "Junction threshold: least junction probability of a pair of segments (0, 1].");
+DEFINE_bool(choose_by_end_likelihood, kDefaults.junctions.choose_by_end_likelihood,
+            "Junctions: choose between conflicting junctions by the log-likelihood of the end-points they explain (not the sum of pair probabilities).");
 DEFINE_double(acute_shortfall_px, kDefaults.junctions.acute_shortfall_px,
               "Junctions: an L contact's end-point shortfall is reduced by this times (1 / sin(angle) - 1) before eq. (5), px (0: off).");
 DEFINE_double(match_max_distance, kDefaults.matching.max_epipolar_distance_px,
@@ -153,6 +155,7 @@ bool OptionsFromFlags(sfm::PipelineOptions* options, std::string* error) {
   options->junctions.endpoint_model = endpoint_model;
   options->junctions.min_probability = FLAGS_junction_min_probability;
   options->junctions.acute_shortfall_px = FLAGS_acute_shortfall_px;
+  options->junctions.choose_by_end_likelihood = FLAGS_choose_by_end_likelihood;
   options->matching.endpoint_model = endpoint_model;
   options->matching.max_epipolar_distance_px = FLAGS_match_max_distance;
   options->matching.tau1 = FLAGS_match_tau1;

@@ -42,6 +42,16 @@ struct JunctionDetectorOptions {
   // precision 92.2 -> 92.5 %, but VGG matching precision falls 0.2-0.7 points on odometry seeds 1-3
   // (docs/junction_results.md, "Session 5").
   double acute_shortfall_px = 0.0;
+  // How the best conflict-free set of candidate junctions is chosen (docs/junctions.md, step 3).
+  // false: the largest total of the paper's score (the sum of pairwise probabilities). true: the
+  // largest total log-likelihood ratio of the end-points explained, each end-point counted once,
+  // ln f(t) - ln sqrt(min_probability) when positive (junction_detector.cc, EndLikelihoodWeight).
+  // The output score stays the paper's. Off by default: with it junction recall on generated
+  // vertices rises 85.3 -> 86.4 % (held-out 82.6 -> 84.6 %), precision 92.2 -> 93.4 %, median error
+  // 0.257 -> 0.248 px, but VGG consecutive matching precision falls under issue 4's 97 % on
+  // odometry seeds 1 and 3 (96.2 / 96.9 %): crossings (X) and 3-junctions give way to L's
+  // (docs/junction_results.md, "Session 5").
+  bool choose_by_end_likelihood = false;
 
   Status Check() const {
     auto bad = [](const std::string& what) { return Status::Error("JunctionDetectorOptions: " + what); };
