@@ -74,11 +74,11 @@ DEFINE_bool(corners_between_chains, sfm::SegmentDetectorOptions().fast.corners_b
 DEFINE_bool(branches_at_free_ends, sfm::SegmentDetectorOptions().fast.branches_at_free_ends,
             "Fast segments: look for a corner's missing side along rays from free segment end-points.");
 DEFINE_bool(branches_to_far_corners, sfm::SegmentDetectorOptions().fast.branches_to_far_corners,
-            "Fast segments (with branches_at_free_ends): a branch ending at another corner is measured from corner "
-            "to corner.");
+            "Fast segments (with branches_at_free_ends): a branch ending at another corner is measured "
+            "from corner to corner.");
 DEFINE_bool(bridges_past_corners, sfm::SegmentDetectorOptions().fast.bridges_past_corners,
-            "Fast segments (with branches_at_free_ends): continue a segment's line across the gap to a free end when the "
-            "gradient there is aligned with it.");
+            "Fast segments (with branches_at_free_ends): continue a segment's line across the gap to a "
+            "free end when the gradient there is aligned with it.");
 DEFINE_double(line_tolerance, sfm::SegmentDetectorOptions().fast.line_tolerance, "Fast segments: splitting tolerance, px.");
 DEFINE_string(overlay_dir, "", "If set, write overlays there (every 10th generated frame, every VGG image), "
                                "with missed true junctions circled in white.");
@@ -109,9 +109,11 @@ DEFINE_int32(junction_repeats, 1,
              "The junction time is the fastest of this many runs on the same segments (VGG: also printed per image to stderr).");
 DEFINE_double(min_arm_px, kJunctionDefaults.min_arm_px, "Smallest arm of a T bar or X, px.");
 DEFINE_bool(choose_by_end_likelihood, kJunctionDefaults.choose_by_end_likelihood,
-            "Junctions: choose between conflicting junctions by the log-likelihood of the end-points they explain (not the sum of pair probabilities).");
+            "Junctions: choose between conflicting junctions by the log-likelihood of the end-points they "
+            "explain (not the sum of pair probabilities).");
 DEFINE_double(acute_shortfall_px, kJunctionDefaults.acute_shortfall_px,
-              "Junctions: an L contact's end-point shortfall is reduced by this times (1 / sin(angle) - 1) before eq. (5), px (0: off).");
+              "Junctions: an L contact's end-point shortfall is reduced by this times (1 / sin(angle) - 1) "
+              "before eq. (5), px (0: off).");
 
 namespace sfm {
 namespace {
@@ -432,8 +434,8 @@ std::vector<std::pair<std::string, GeneratorOptions>> StandardSequences(int fram
 // Crop for --miss_dir: 40 x 40 px around the vertex, drawn 8x: the grey levels stretched to the
 // crop's range on the left, the overlay (segments, the given junctions, the true long edges, true
 // junctions, the missed vertex) on the right (18 black rows on top hold its legend).
-Status WriteMissCrop(const std::string& path, const TrueVertexJunction& v, const std::vector<Eigen::Vector2d>& any_truth,
-                     const cv::Mat& grey, const LineSegments& segments, const Junctions& junctions,
+Status WriteMissCrop(const std::string& path, const TrueVertexJunction& v,
+                     const std::vector<Eigen::Vector2d>& any_truth, const cv::Mat& grey, const LineSegments& segments, const Junctions& junctions,
                      LineSegments edges) {
   const int half = 20, legend_rows = 18;
   const cv::Rect box = cv::Rect(static_cast<int>(v.location.x()) - half, static_cast<int>(v.location.y()) - half,
@@ -767,8 +769,8 @@ Status MeasureSequence(const std::string& directory, const std::string& clean_di
         const MissKind inner = WhySegmentsMissed(*detectable_vertex[i], segments, junction_options.max_gap_px);
         if (!FLAGS_miss_dir.empty() && inner == kNotJoined) {
           SFM_RETURN_IF_ERROR(WriteNotJoined(std::filesystem::path(directory).filename().string() + "_" + methods[m].name,
-                                             static_cast<int>(f), *detectable_vertex[i], kind == kCrowded, any_truth, grey,
-                                             segments, junctions, junction_options));
+                                             static_cast<int>(f), *detectable_vertex[i], kind == kCrowded,
+                                             any_truth, grey, segments, junctions, junction_options));
         }
         if (!FLAGS_miss_dir.empty() && inner == kEdgesMissing) {
           SFM_RETURN_IF_ERROR(WriteMiss(std::filesystem::path(directory).filename().string() + "_" + methods[m].name,

@@ -47,11 +47,11 @@ DEFINE_bool(corners_between_chains, sfm::SegmentDetectorOptions().fast.corners_b
 DEFINE_bool(branches_at_free_ends, sfm::SegmentDetectorOptions().fast.branches_at_free_ends,
             "Fast segments: look for a corner's missing side along rays from free segment end-points.");
 DEFINE_bool(branches_to_far_corners, sfm::SegmentDetectorOptions().fast.branches_to_far_corners,
-            "Fast segments (with branches_at_free_ends): a branch ending at another corner is measured from corner "
-            "to corner.");
+            "Fast segments (with branches_at_free_ends): a branch ending at another corner is measured "
+            "from corner to corner.");
 DEFINE_bool(bridges_past_corners, sfm::SegmentDetectorOptions().fast.bridges_past_corners,
-            "Fast segments (with branches_at_free_ends): continue a segment's line across the gap to a free end when the "
-            "gradient there is aligned with it.");
+            "Fast segments (with branches_at_free_ends): continue a segment's line across the gap to a "
+            "free end when the gradient there is aligned with it.");
 DEFINE_string(overlay_dir, "", "If set, write <method>_<image>.png overlays of the segments found there.");
 
 namespace sfm {

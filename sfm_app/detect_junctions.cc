@@ -55,9 +55,11 @@ DEFINE_double(collinear_max_offset_px, kJunctionDefaults.collinear_max_offset_px
 DEFINE_double(min_arm_px, kJunctionDefaults.min_arm_px,
               "A junction inside a segment must be this far from its ends (else the end moves), px.");
 DEFINE_bool(choose_by_end_likelihood, kJunctionDefaults.choose_by_end_likelihood,
-            "Junctions: choose between conflicting junctions by the log-likelihood of the end-points they explain (not the sum of pair probabilities).");
+            "Junctions: choose between conflicting junctions by the log-likelihood of the end-points they "
+            "explain (not the sum of pair probabilities).");
 DEFINE_double(acute_shortfall_px, kJunctionDefaults.acute_shortfall_px,
-              "Junctions: an L contact's end-point shortfall is reduced by this times (1 / sin(angle) - 1) before eq. (5), px (0: off).");
+              "Junctions: an L contact's end-point shortfall is reduced by this times (1 / sin(angle) - 1) "
+              "before eq. (5), px (0: off).");
 
 namespace {
 

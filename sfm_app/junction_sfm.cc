@@ -49,11 +49,11 @@ DEFINE_string(segments, "fast", "Line segment detector: 'fast' (anchored edge ch
 DEFINE_bool(branches_at_free_ends, kDefaults.segments.fast.branches_at_free_ends,
             "Fast segments: look for a corner's missing side along rays from free segment end-points.");
 DEFINE_bool(branches_to_far_corners, kDefaults.segments.fast.branches_to_far_corners,
-            "Fast segments (with branches_at_free_ends): a branch ending at another corner is measured from corner "
-            "to corner.");
+            "Fast segments (with branches_at_free_ends): a branch ending at another corner is measured "
+            "from corner to corner.");
 DEFINE_bool(bridges_past_corners, kDefaults.segments.fast.bridges_past_corners,
-            "Fast segments (with branches_at_free_ends): continue a segment's line across the gap to a free end when the "
-            "gradient there is aligned with it.");
+            "Fast segments (with branches_at_free_ends): continue a segment's line across the gap to a "
+            "free end when the gradient there is aligned with it.");
 DEFINE_double(endpoint_lambda, kDefaults.junctions.endpoint_model.lambda,
               "End-point model eq. (5): decay, 1/px, of a detected end-point lying beyond the true one.");
 DEFINE_double(endpoint_mu, kDefaults.junctions.endpoint_model.mu,
@@ -61,9 +61,11 @@ DEFINE_double(endpoint_mu, kDefaults.junctions.endpoint_model.mu,
 DEFINE_double(junction_min_probability, kDefaults.junctions.min_probability,
               "Junction threshold: least junction probability of a pair of segments (0, 1].");
 DEFINE_bool(choose_by_end_likelihood, kDefaults.junctions.choose_by_end_likelihood,
-            "Junctions: choose between conflicting junctions by the log-likelihood of the end-points they explain (not the sum of pair probabilities).");
+            "Junctions: choose between conflicting junctions by the log-likelihood of the end-points they "
+            "explain (not the sum of pair probabilities).");
 DEFINE_double(acute_shortfall_px, kDefaults.junctions.acute_shortfall_px,
-              "Junctions: an L contact's end-point shortfall is reduced by this times (1 / sin(angle) - 1) before eq. (5), px (0: off).");
+              "Junctions: an L contact's end-point shortfall is reduced by this times (1 / sin(angle) - 1) "
+              "before eq. (5), px (0: off).");
 DEFINE_double(match_max_distance, kDefaults.matching.max_epipolar_distance_px,
               "R: largest distance, px, of a junction from its partner's epipolar line (used with "
               "--match_pose_band=false).");

@@ -237,7 +237,8 @@ class BranchSearch {
         ++stats.accepted;
       }
     }
-    if (options_.fast.bridges_past_corners) stats.bridges = AppendBridges(grid, free_ends, is_free, branch_angles, segments);
+    if (options_.fast.bridges_past_corners)
+      stats.bridges = AppendBridges(grid, free_ends, is_free, branch_angles, segments);
     CHECK_GE(static_cast<int>(segments->size()), n);
     return stats;
   }
@@ -259,9 +260,8 @@ class BranchSearch {
     for (int i = 0; i < m; ++i) {
       const Eigen::Vector2d& p = grid.EndPoint(i);
       if (!(s[i / 2].Length() > 0)) continue;
-      bool alone = grid.ForEachNear(p, 1, [&](int j) {
-        return j / 2 == i / 2 || (grid.EndPoint(j) - p).squaredNorm() > gap * gap;
-      });
+      bool alone = grid.ForEachNear(
+          p, 1, [&](int j) { return j / 2 == i / 2 || (grid.EndPoint(j) - p).squaredNorm() > gap * gap; });
       // An end that runs into another segment's interior within max_gap (a T's stem, or an L
       // whose other side continues past the corner) has its junction too. From 2 px on: the 3 x 3
       // pixels around a point 1 px beyond the end could hold the segment's own last marked pixel.
@@ -300,14 +300,14 @@ class BranchSearch {
   int AppendBridges(const EndGrid& grid, const std::vector<int>& free_ends, const std::vector<char>& is_free,
                     const std::vector<std::pair<int, double>>& branch_angles, LineSegments* segments) const {
     struct Bridge {
-      int end;                  // B's free end, 2 * segment + 0 or 1
-      Eigen::Vector2d corner;   // X, on A's line
-      Eigen::Vector2d w;        // unit direction from X to A's end-point
-      double gap;               // distance from X to A's end-point, px
+      int end;                 // B's free end, 2 * segment + 0 or 1
+      Eigen::Vector2d corner;  // X, on A's line
+      Eigen::Vector2d w;       // unit direction from X to A's end-point
+      double gap;              // distance from X to A's end-point, px
       double log10_nfa = 0;
       int first = 0, last = 0;  // first and last aligned samples, px from X
       int polarity = 0;
-      double fit_rms = 0;       // A's
+      double fit_rms = 0;  // A's
     };
     const double max_bridge = options_.min_length + options_.max_gap;
     const double cos_min_angle = std::cos(kMinBranchAngle);
@@ -337,7 +337,8 @@ class BranchSearch {
         if (std::abs(w.dot(u)) > cos_min_angle) return true;
         const double angle = std::atan2(w.y(), w.x());
         for (const auto& [end, taken] : branch_angles) {
-          if (end == i && std::abs(std::remainder(taken - angle, 2 * M_PI)) < kMinBranchSeparation) return true;
+          if (end == i && std::abs(std::remainder(taken - angle, 2 * M_PI)) < kMinBranchSeparation)
+            return true;
         }
         Bridge bridge;
         bridge.end = i;
@@ -364,7 +365,8 @@ class BranchSearch {
         const size_t i = static_cast<size_t>(y) * cols_ + x;
         const double g_x = gx_[i], g_y = gy_[i];
         const double along = g_x * normal.x() + g_y * normal.y();
-        const bool parallel = mag_[i] >= low_ && along * along >= kAlignedCos2 * (g_x * g_x + g_y * g_y) && along != 0;
+        const bool parallel =
+            mag_[i] >= low_ && along * along >= kAlignedCos2 * (g_x * g_x + g_y * g_y) && along != 0;
         if (polarity == 0 && parallel) polarity = along > 0 ? 1 : -1;
         if (parallel && along * polarity > 0) {
           if (aligned++ == 0) first = r;

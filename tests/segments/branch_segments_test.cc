@@ -164,7 +164,8 @@ TEST(BranchSegmentsTest, BridgesALineContinuedPastACornerToAFreeEnd) {
     EXPECT_EQ(off.size(), segments.size());
     options.fast.bridges_past_corners = true;
     LineSegments on = segments;
-    const BranchSearchStats stats = AppendBranchSegments(g.gx, g.gy, g.magnitude, g.low, g.high, options, &on);
+    const BranchSearchStats stats =
+        AppendBranchSegments(g.gx, g.gy, g.magnitude, g.low, g.high, options, &on);
     ASSERT_EQ(on.size(), segments.size() + 1);
     EXPECT_EQ(stats.bridges, 1);
     const LineSegment& bridge = on.back();
