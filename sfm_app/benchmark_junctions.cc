@@ -435,8 +435,8 @@ std::vector<std::pair<std::string, GeneratorOptions>> StandardSequences(int fram
 // crop's range on the left, the overlay (segments, the given junctions, the true long edges, true
 // junctions, the missed vertex) on the right (18 black rows on top hold its legend).
 Status WriteMissCrop(const std::string& path, const TrueVertexJunction& v,
-                     const std::vector<Eigen::Vector2d>& any_truth, const cv::Mat& grey, const LineSegments& segments, const Junctions& junctions,
-                     LineSegments edges) {
+                     const std::vector<Eigen::Vector2d>& any_truth, const cv::Mat& grey,
+                     const LineSegments& segments, const Junctions& junctions, LineSegments edges) {
   const int half = 20, legend_rows = 18;
   const cv::Rect box = cv::Rect(static_cast<int>(v.location.x()) - half, static_cast<int>(v.location.y()) - half,
                                 2 * half, 2 * half) & cv::Rect(0, 0, grey.cols, grey.rows);
