@@ -73,6 +73,12 @@ DEFINE_bool(corners_between_chains, sfm::SegmentDetectorOptions().fast.corners_b
             "the corner.");
 DEFINE_bool(branches_at_free_ends, sfm::SegmentDetectorOptions().fast.branches_at_free_ends,
             "Fast segments: look for a corner's missing side along rays from free segment end-points.");
+DEFINE_bool(branches_to_far_corners, sfm::SegmentDetectorOptions().fast.branches_to_far_corners,
+            "Fast segments (with branches_at_free_ends): a branch ending at another corner is measured "
+            "from corner to corner.");
+DEFINE_bool(bridges_past_corners, sfm::SegmentDetectorOptions().fast.bridges_past_corners,
+            "Fast segments (with branches_at_free_ends): continue a segment's line across the gap to a "
+            "free end when the gradient there is aligned with it.");
 DEFINE_double(line_tolerance, sfm::SegmentDetectorOptions().fast.line_tolerance, "Fast segments: splitting tolerance, px.");
 DEFINE_string(overlay_dir, "", "If set, write overlays there (every 10th generated frame, every VGG image), "
                                "with missed true junctions circled in white.");
@@ -102,6 +108,12 @@ DEFINE_double(collinear_max_offset_px, kJunctionDefaults.collinear_max_offset_px
 DEFINE_int32(junction_repeats, 1,
              "The junction time is the fastest of this many runs on the same segments (VGG: also printed per image to stderr).");
 DEFINE_double(min_arm_px, kJunctionDefaults.min_arm_px, "Smallest arm of a T bar or X, px.");
+DEFINE_bool(choose_by_end_likelihood, kJunctionDefaults.choose_by_end_likelihood,
+            "Junctions: choose between conflicting junctions by the log-likelihood of the end-points they "
+            "explain (not the sum of pair probabilities).");
+DEFINE_double(acute_shortfall_px, kJunctionDefaults.acute_shortfall_px,
+              "Junctions: an L contact's end-point shortfall is reduced by this times (1 / sin(angle) - 1) "
+              "before eq. (5), px (0: off).");
 
 namespace sfm {
 namespace {
@@ -419,6 +431,41 @@ std::vector<std::pair<std::string, GeneratorOptions>> StandardSequences(int fram
   return sequences;
 }
 
+// Crop for --miss_dir: 40 x 40 px around the vertex, drawn 8x: the grey levels stretched to the
+// crop's range on the left, the overlay (segments, the given junctions, the true long edges, true
+// junctions, the missed vertex) on the right (18 black rows on top hold its legend).
+Status WriteMissCrop(const std::string& path, const TrueVertexJunction& v,
+                     const std::vector<Eigen::Vector2d>& any_truth, const cv::Mat& grey,
+                     const LineSegments& segments, const Junctions& junctions, LineSegments edges) {
+  const int half = 20, legend_rows = 18;
+  const cv::Rect box = cv::Rect(static_cast<int>(v.location.x()) - half, static_cast<int>(v.location.y()) - half,
+                                2 * half, 2 * half) & cv::Rect(0, 0, grey.cols, grey.rows);
+  cv::Mat padded(box.height + legend_rows, box.width, CV_8U, cv::Scalar(0));
+  grey(box).copyTo(padded(cv::Rect(0, legend_rows, box.width, box.height)));
+  const Eigen::Vector2d origin(box.x, box.y - legend_rows);
+  LineSegments shifted = segments;
+  for (LineSegment& s : shifted) s.p0 -= origin, s.p1 -= origin;
+  for (LineSegment& s : edges) s.p0 -= origin, s.p1 -= origin;
+  Junctions moved = junctions;
+  for (Junction& j : moved) {
+    j.location -= origin;
+    for (JunctionSegment& js : j.segments) js.end -= origin;
+  }
+  std::vector<Eigen::Vector2d> others;
+  for (const Eigen::Vector2d& q : any_truth) others.push_back(q - origin);
+  const cv::Mat overlay = DrawJunctionOverlay(padded, shifted, moved, 8,
+                                              {{{}, edges, cv::Scalar(0, 140, 255), "true long edges"},
+                                               {others, {}, cv::Scalar(0, 255, 0), "true junctions"},
+                                               {{v.location - origin}, {}, cv::Scalar(255, 255, 255), "missed"}});
+  cv::Mat stretched;
+  cv::normalize(padded, stretched, 0, 255, cv::NORM_MINMAX, CV_8U, padded > 0);
+  cv::resize(stretched, stretched, cv::Size(), 8, 8, cv::INTER_NEAREST);
+  cv::cvtColor(stretched, stretched, cv::COLOR_GRAY2BGR);
+  cv::Mat both;
+  cv::hconcat(stretched, overlay, both);
+  return WritePng(path, both);
+}
+
 // One missed vertex whose edges have no segment, for --miss_dir: a row per long edge in misses.csv
 // and a crop of the image around it.
 Status WriteMiss(const std::string& tag, int frame, const TrueVertexJunction& v, bool crowded,
@@ -476,32 +523,9 @@ Status WriteMiss(const std::string& tag, int frame, const TrueVertexJunction& v,
     edges.push_back(edge);
   }
   std::fclose(csv);
-  // Crop: 40 x 40 px around the vertex, drawn 8x: the grey levels stretched to the crop's range on
-  // the left, the overlay on the right (18 black rows on top hold its legend).
-  const int half = 20, legend_rows = 18;
-  const cv::Rect box = cv::Rect(static_cast<int>(v.location.x()) - half, static_cast<int>(v.location.y()) - half,
-                                2 * half, 2 * half) & cv::Rect(0, 0, grey.cols, grey.rows);
-  cv::Mat padded(box.height + legend_rows, box.width, CV_8U, cv::Scalar(0));
-  grey(box).copyTo(padded(cv::Rect(0, legend_rows, box.width, box.height)));
-  const Eigen::Vector2d origin(box.x, box.y - legend_rows);
-  LineSegments shifted = segments;
-  for (LineSegment& s : shifted) s.p0 -= origin, s.p1 -= origin;
-  for (LineSegment& s : edges) s.p0 -= origin, s.p1 -= origin;
-  std::vector<Eigen::Vector2d> others;
-  for (const Eigen::Vector2d& q : any_truth) others.push_back(q - origin);
-  const cv::Mat overlay = DrawJunctionOverlay(padded, shifted, {}, 8,
-                                              {{{}, edges, cv::Scalar(0, 140, 255), "true long edges"},
-                                               {others, {}, cv::Scalar(0, 255, 0), "true junctions"},
-                                               {{v.location - origin}, {}, cv::Scalar(255, 255, 255), "missed"}});
-  cv::Mat stretched;
-  cv::normalize(padded, stretched, 0, 255, cv::NORM_MINMAX, CV_8U, padded > 0);
-  cv::resize(stretched, stretched, cv::Size(), 8, 8, cv::INTER_NEAREST);
-  cv::cvtColor(stretched, stretched, cv::COLOR_GRAY2BGR);
-  cv::Mat both;
-  cv::hconcat(stretched, overlay, both);
   char name[128];
   std::snprintf(name, sizeof name, "/%04d_%s_%03d.png", id, tag.c_str(), frame);
-  return WritePng(FLAGS_miss_dir + name, both);
+  return WriteMissCrop(FLAGS_miss_dir + name, v, any_truth, grey, segments, {}, edges);
 }
 
 // One missed vertex whose segments end near it, for --miss_dir: in notjoined.csv, a row per pair of
@@ -510,6 +534,7 @@ Status WriteMiss(const std::string& tag, int frame, const TrueVertexJunction& v,
 // that took it closest to the vertex (its distance from the vertex and its segments' indices, "-" if
 // none): which reading won over the vertex's own pair.
 Status WriteNotJoined(const std::string& tag, int frame, const TrueVertexJunction& v, bool crowded,
+                      const std::vector<Eigen::Vector2d>& any_truth, const cv::Mat& grey,
                       const LineSegments& segments, const Junctions& junctions,
                       const JunctionDetectorOptions& options) {
   static int counter = 0;
@@ -581,7 +606,16 @@ Status WriteNotJoined(const std::string& tag, int frame, const TrueVertexJunctio
     }
   }
   std::fclose(csv);
-  return Status::Ok();
+  LineSegments edges;
+  for (const Eigen::Vector2d& far : v.long_edge_ends) {
+    LineSegment edge;
+    edge.p0 = v.location;
+    edge.p1 = far;
+    edges.push_back(edge);
+  }
+  char name[128];
+  std::snprintf(name, sizeof name, "/notjoined_%04d_%s_%03d.png", id, tag.c_str(), frame);
+  return WriteMissCrop(FLAGS_miss_dir + name, v, any_truth, grey, segments, junctions, edges);
 }
 
 // Measures one generated sequence with each method.
@@ -735,8 +769,8 @@ Status MeasureSequence(const std::string& directory, const std::string& clean_di
         const MissKind inner = WhySegmentsMissed(*detectable_vertex[i], segments, junction_options.max_gap_px);
         if (!FLAGS_miss_dir.empty() && inner == kNotJoined) {
           SFM_RETURN_IF_ERROR(WriteNotJoined(std::filesystem::path(directory).filename().string() + "_" + methods[m].name,
-                                             static_cast<int>(f), *detectable_vertex[i], kind == kCrowded, segments,
-                                             junctions, junction_options));
+                                             static_cast<int>(f), *detectable_vertex[i], kind == kCrowded,
+                                             any_truth, grey, segments, junctions, junction_options));
         }
         if (!FLAGS_miss_dir.empty() && inner == kEdgesMissing) {
           SFM_RETURN_IF_ERROR(WriteMiss(std::filesystem::path(directory).filename().string() + "_" + methods[m].name,
@@ -993,6 +1027,8 @@ int main(int argc, char** argv) {
     method.options.fast.line_tolerance = FLAGS_line_tolerance;
     method.options.fast.corners_between_chains = FLAGS_corners_between_chains;
     method.options.fast.branches_at_free_ends = FLAGS_branches_at_free_ends;
+    method.options.fast.bridges_past_corners = FLAGS_bridges_past_corners;
+    method.options.fast.branches_to_far_corners = FLAGS_branches_to_far_corners;
     method.options.fast.presmooth_sigma = FLAGS_presmooth_sigma;
     if (name == "fast") {
       method.options.method = SegmentMethod::kFast;
@@ -1022,6 +1058,8 @@ int main(int argc, char** argv) {
   junction_options.collinear_tolerance_deg = FLAGS_collinear_tolerance_deg;
   junction_options.collinear_max_offset_px = FLAGS_collinear_max_offset_px;
   junction_options.min_arm_px = FLAGS_min_arm_px;
+  junction_options.acute_shortfall_px = FLAGS_acute_shortfall_px;
+  junction_options.choose_by_end_likelihood = FLAGS_choose_by_end_likelihood;
   if (const Status check = junction_options.Check(); !check.ok()) return fail(2, check.message());
   for (const std::string& directory : {FLAGS_overlay_dir, FLAGS_miss_dir}) {
     if (directory.empty()) continue;

@@ -71,9 +71,21 @@ DEFINE_double(lbd_min_length, sfm::SegmentDetectorOptions().min_length, "LSD seg
 DEFINE_string(segments, "fast", "Our segment detector: 'fast' or 'reference'.");
 DEFINE_bool(branches_at_free_ends, sfm::SegmentDetectorOptions().fast.branches_at_free_ends,
             "Fast segments: look for a corner's missing side along rays from free segment end-points.");
+DEFINE_bool(branches_to_far_corners, sfm::SegmentDetectorOptions().fast.branches_to_far_corners,
+            "Fast segments (with branches_at_free_ends): a branch ending at another corner is measured "
+            "from corner to corner.");
+DEFINE_bool(bridges_past_corners, sfm::SegmentDetectorOptions().fast.bridges_past_corners,
+            "Fast segments (with branches_at_free_ends): continue a segment's line across the gap to a "
+            "free end when the gradient there is aligned with it.");
 DEFINE_double(endpoint_lambda, kJunctionDefaults.endpoint_model.lambda, "End-point model eq. (5), t >= 0, 1/px.");
 DEFINE_double(endpoint_mu, kJunctionDefaults.endpoint_model.mu, "End-point model eq. (5), t < 0, 1/px.");
 DEFINE_double(junction_min_probability, kJunctionDefaults.min_probability, "Junction threshold, (0, 1].");
+DEFINE_bool(choose_by_end_likelihood, kJunctionDefaults.choose_by_end_likelihood,
+            "Junctions: choose between conflicting junctions by the log-likelihood of the end-points they "
+            "explain (not the sum of pair probabilities).");
+DEFINE_double(acute_shortfall_px, kJunctionDefaults.acute_shortfall_px,
+              "Junctions: an L contact's end-point shortfall is reduced by this times (1 / sin(angle) - 1) "
+              "before eq. (5), px (0: off).");
 DEFINE_double(match_max_distance, kMatchingDefaults.max_epipolar_distance_px, "R, px.");
 DEFINE_double(match_tau1, kMatchingDefaults.tau1, "tau1 of rule (38).");
 DEFINE_double(match_tau2, kMatchingDefaults.tau2, "tau2 of rule (38).");
@@ -888,9 +900,13 @@ int main(int argc, char** argv) {
     return fail(2, "--segments must be 'fast' or 'reference', not '" + FLAGS_segments + "'");
   }
   settings.segments.fast.branches_at_free_ends = FLAGS_branches_at_free_ends;
+  settings.segments.fast.bridges_past_corners = FLAGS_bridges_past_corners;
+  settings.segments.fast.branches_to_far_corners = FLAGS_branches_to_far_corners;
   const EndpointModel model{FLAGS_endpoint_lambda, FLAGS_endpoint_mu};
   settings.junctions.endpoint_model = model;
   settings.junctions.min_probability = FLAGS_junction_min_probability;
+  settings.junctions.acute_shortfall_px = FLAGS_acute_shortfall_px;
+  settings.junctions.choose_by_end_likelihood = FLAGS_choose_by_end_likelihood;
   MatchingOptions& matching = settings.matching;
   matching.endpoint_model = model;
   matching.max_epipolar_distance_px = FLAGS_match_max_distance;

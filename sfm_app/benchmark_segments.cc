@@ -46,6 +46,12 @@ DEFINE_bool(corners_between_chains, sfm::SegmentDetectorOptions().fast.corners_b
             "corner.");
 DEFINE_bool(branches_at_free_ends, sfm::SegmentDetectorOptions().fast.branches_at_free_ends,
             "Fast segments: look for a corner's missing side along rays from free segment end-points.");
+DEFINE_bool(branches_to_far_corners, sfm::SegmentDetectorOptions().fast.branches_to_far_corners,
+            "Fast segments (with branches_at_free_ends): a branch ending at another corner is measured "
+            "from corner to corner.");
+DEFINE_bool(bridges_past_corners, sfm::SegmentDetectorOptions().fast.bridges_past_corners,
+            "Fast segments (with branches_at_free_ends): continue a segment's line across the gap to a "
+            "free end when the gradient there is aligned with it.");
 DEFINE_string(overlay_dir, "", "If set, write <method>_<image>.png overlays of the segments found there.");
 
 namespace sfm {
@@ -89,6 +95,8 @@ std::vector<Method> Methods() {
   fast.min_length = FLAGS_min_segment_length;
   fast.fast.corners_between_chains = FLAGS_corners_between_chains;
   fast.fast.branches_at_free_ends = FLAGS_branches_at_free_ends;
+  fast.fast.bridges_past_corners = FLAGS_bridges_past_corners;
+  fast.fast.branches_to_far_corners = FLAGS_branches_to_far_corners;
   methods.push_back(
       {"ours: fast (Sobel + chaining)", [fast](const cv::Mat& grey) { return DetectLineSegments(grey, fast); }});
   // The speed goal is for segments and junctions together, in the same run as cv::Canny.

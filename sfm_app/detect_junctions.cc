@@ -54,6 +54,12 @@ DEFINE_double(collinear_max_offset_px, kJunctionDefaults.collinear_max_offset_px
               "Offset allowed between two pieces of one broken line, px.");
 DEFINE_double(min_arm_px, kJunctionDefaults.min_arm_px,
               "A junction inside a segment must be this far from its ends (else the end moves), px.");
+DEFINE_bool(choose_by_end_likelihood, kJunctionDefaults.choose_by_end_likelihood,
+            "Junctions: choose between conflicting junctions by the log-likelihood of the end-points they "
+            "explain (not the sum of pair probabilities).");
+DEFINE_double(acute_shortfall_px, kJunctionDefaults.acute_shortfall_px,
+              "Junctions: an L contact's end-point shortfall is reduced by this times (1 / sin(angle) - 1) "
+              "before eq. (5), px (0: off).");
 
 namespace {
 
@@ -103,6 +109,8 @@ int main(int argc, char** argv) {
   junction_options.collinear_tolerance_deg = FLAGS_collinear_tolerance_deg;
   junction_options.collinear_max_offset_px = FLAGS_collinear_max_offset_px;
   junction_options.min_arm_px = FLAGS_min_arm_px;
+  junction_options.acute_shortfall_px = FLAGS_acute_shortfall_px;
+  junction_options.choose_by_end_likelihood = FLAGS_choose_by_end_likelihood;
   for (const sfm::Status& check : {segment_options.Check(), junction_options.Check()}) {
     if (!check.ok()) return Fail(2, check.message());
   }

@@ -48,12 +48,24 @@ DEFINE_string(segments, "fast", "Line segment detector: 'fast' (anchored edge ch
                                 "(the paper's edge filter + Hough transform + sub-pixel fit).");
 DEFINE_bool(branches_at_free_ends, kDefaults.segments.fast.branches_at_free_ends,
             "Fast segments: look for a corner's missing side along rays from free segment end-points.");
+DEFINE_bool(branches_to_far_corners, kDefaults.segments.fast.branches_to_far_corners,
+            "Fast segments (with branches_at_free_ends): a branch ending at another corner is measured "
+            "from corner to corner.");
+DEFINE_bool(bridges_past_corners, kDefaults.segments.fast.bridges_past_corners,
+            "Fast segments (with branches_at_free_ends): continue a segment's line across the gap to a "
+            "free end when the gradient there is aligned with it.");
 DEFINE_double(endpoint_lambda, kDefaults.junctions.endpoint_model.lambda,
               "End-point model eq. (5): decay, 1/px, of a detected end-point lying beyond the true one.");
 DEFINE_double(endpoint_mu, kDefaults.junctions.endpoint_model.mu,
               "End-point model eq. (5): decay, 1/px, of a detected end-point falling short of the true one.");
 DEFINE_double(junction_min_probability, kDefaults.junctions.min_probability,
               "Junction threshold: least junction probability of a pair of segments (0, 1].");
+DEFINE_bool(choose_by_end_likelihood, kDefaults.junctions.choose_by_end_likelihood,
+            "Junctions: choose between conflicting junctions by the log-likelihood of the end-points they "
+            "explain (not the sum of pair probabilities).");
+DEFINE_double(acute_shortfall_px, kDefaults.junctions.acute_shortfall_px,
+              "Junctions: an L contact's end-point shortfall is reduced by this times (1 / sin(angle) - 1) "
+              "before eq. (5), px (0: off).");
 DEFINE_double(match_max_distance, kDefaults.matching.max_epipolar_distance_px,
               "R: largest distance, px, of a junction from its partner's epipolar line (used with "
               "--match_pose_band=false).");
@@ -139,9 +151,13 @@ bool OptionsFromFlags(sfm::PipelineOptions* options, std::string* error) {
     return false;
   }
   options->segments.fast.branches_at_free_ends = FLAGS_branches_at_free_ends;
+  options->segments.fast.bridges_past_corners = FLAGS_bridges_past_corners;
+  options->segments.fast.branches_to_far_corners = FLAGS_branches_to_far_corners;
   const sfm::EndpointModel endpoint_model{FLAGS_endpoint_lambda, FLAGS_endpoint_mu};
   options->junctions.endpoint_model = endpoint_model;
   options->junctions.min_probability = FLAGS_junction_min_probability;
+  options->junctions.acute_shortfall_px = FLAGS_acute_shortfall_px;
+  options->junctions.choose_by_end_likelihood = FLAGS_choose_by_end_likelihood;
   options->matching.endpoint_model = endpoint_model;
   options->matching.max_epipolar_distance_px = FLAGS_match_max_distance;
   options->matching.tau1 = FLAGS_match_tau1;

@@ -141,6 +141,30 @@ Junction MakeJunction(const Group& group, const std::vector<SegmentLine>& lines,
   return junction;
 }
 
+// The weight of a candidate for ChooseJunctions with options.choose_by_end_likelihood: the
+// log-likelihood ratio of the end-points it explains. An assignment of end-points to junctions has
+// the likelihood prod f(t) over the assigned end-points (eq. 5, t at the junction's location), so
+// its log is a sum over end-points, each counted once, where the paper's score (the sum of pairwise
+// probabilities) counts an end-point once per pair it is in (N - 1 times in an N-junction) and
+// favours large junctions of weak pairs over one probable pair. Each end-point adds
+// ln f(t) - ln sqrt(min_probability) (the per-end-point share of the pair threshold: a pair of two
+// equal end-points at the threshold adds 0) when positive, else 0 (an end-point explained no
+// better than the threshold allows counts as free). An interior (a T's bar, an X's crossing) moves
+// nothing and adds nothing. A tiny floor keeps every weight positive (the branch and bound's
+// bound needs it).
+double EndLikelihoodWeight(const Group& group, const std::vector<SegmentLine>& lines,
+                           const JunctionDetectorOptions& options) {
+  const double baseline = 0.5 * std::log(options.min_probability);
+  const Eigen::Vector2d at = group.Location();
+  double weight = 1e-9;
+  for (int node : group.nodes) {
+    if (ContactOf(node) == Contact::kThrough) continue;
+    const double t = NearEndChange(lines[SegmentOf(node)], at).t;
+    weight += std::max(0.0, std::log(options.endpoint_model.F(t)) - baseline);
+  }
+  return weight;
+}
+
 // Candidates conflict when they share an end-point node (an end-point belongs to one junction) or a
 // pair (a pairing belongs to one junction); interiors may be shared (a bar holding several T's).
 // Returns the indices, in candidate order, of the conflict-free set with the largest total score
@@ -357,7 +381,14 @@ Junctions DetectJunctions(const LineSegments& segments, const JunctionDetectorOp
     candidates.push_back(std::move(pair));
   }
 
-  const std::vector<int> chosen = ChooseJunctions(candidates, graph.hits().size(), 3 * n);
+  std::vector<int> chosen;
+  if (options.choose_by_end_likelihood) {
+    std::vector<Group> weighted = candidates;
+    for (Group& group : weighted) group.score = EndLikelihoodWeight(group, lines, options);
+    chosen = ChooseJunctions(weighted, graph.hits().size(), 3 * n);
+  } else {
+    chosen = ChooseJunctions(candidates, graph.hits().size(), 3 * n);
+  }
   const double collinear_tolerance_rad = options.collinear_tolerance_deg * M_PI / 180.0;
   Junctions junctions;
   junctions.reserve(chosen.size());

@@ -32,6 +32,26 @@ struct JunctionDetectorOptions {
   // A junction lies inside a segment (the bar of a T, a crossing of an X) when it is at least this
   // far from both of the segment's end-points; closer, the end-point is moved instead. Pixels.
   double min_arm_px = 3.0;
+  // Acute corners (an L contact, both end-points moved): near a corner of angle theta the other
+  // edge comes within an edge filter's scale s of a segment's line at s / sin(theta) from the
+  // vertex, and there the two edges' responses merge, so the segment stops about s / sin(theta)
+  // short instead of about s at a right angle (the shortfall eq. (5)'s fitted f already holds). The
+  // shortfall t < 0 of each end-point is reduced by s (1 / sin(theta) - 1), never past 0, before
+  // f(t) is evaluated. This is s, px; 0 leaves eq. (5) as it is. Off by default: with s = 1 px (the
+  // detector's filter scale) junction recall on generated vertices rises 85.3 -> 85.7 % at
+  // precision 92.2 -> 92.5 %, but VGG matching precision falls 0.2-0.7 points on odometry seeds 1-3
+  // (docs/junction_results.md, "Session 5").
+  double acute_shortfall_px = 0.0;
+  // How the best conflict-free set of candidate junctions is chosen (docs/junctions.md, step 3).
+  // false: the largest total of the paper's score (the sum of pairwise probabilities). true: the
+  // largest total log-likelihood ratio of the end-points explained, each end-point counted once,
+  // ln f(t) - ln sqrt(min_probability) when positive (junction_detector.cc, EndLikelihoodWeight).
+  // The output score stays the paper's. Off by default: with it junction recall on generated
+  // vertices rises 85.3 -> 86.4 % (held-out 82.6 -> 84.6 %), precision 92.2 -> 93.4 %, median error
+  // 0.257 -> 0.248 px, but VGG consecutive matching precision falls under issue 4's 97 % on
+  // odometry seeds 1 and 3 (96.2 / 96.9 %): crossings (X) and 3-junctions give way to L's
+  // (docs/junction_results.md, "Session 5").
+  bool choose_by_end_likelihood = false;
 
   Status Check() const {
     auto bad = [](const std::string& what) { return Status::Error("JunctionDetectorOptions: " + what); };
@@ -45,6 +65,9 @@ struct JunctionDetectorOptions {
       return bad("collinear_max_offset_px must be finite and >= 0");
     }
     if (!(min_arm_px >= 0 && std::isfinite(min_arm_px))) return bad("min_arm_px must be finite and >= 0");
+    if (!(acute_shortfall_px >= 0 && std::isfinite(acute_shortfall_px))) {
+      return bad("acute_shortfall_px must be finite and >= 0");
+    }
     return Status::Ok();
   }
 };

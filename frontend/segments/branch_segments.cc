@@ -69,6 +69,59 @@ struct Workspace {
   std::vector<uint64_t> covered;  // one bit per pixel: a segment passes through it
 };
 
+// The end-points (2 * segment + 0 or 1) of a segment list bucketed in square cells, for the
+// searches of nearby ends (FreeEnds, Bridges).
+class EndGrid {
+ public:
+  EndGrid(const LineSegments& s, int rows, int cols, double cell) : s_(s), cell_(cell) {
+    grid_cols_ = static_cast<int>(cols / cell) + 1;
+    grid_rows_ = static_cast<int>(rows / cell) + 1;
+    const int m = static_cast<int>(2 * s.size());
+    begin_.assign(static_cast<size_t>(grid_cols_) * grid_rows_ + 1, 0);
+    order_.resize(m);
+    for (int i = 0; i < m; ++i) ++begin_[CellOf(EndPoint(i)) + 1];
+    for (size_t c = 1; c < begin_.size(); ++c) begin_[c] += begin_[c - 1];
+    std::vector<int> fill(begin_.begin(), begin_.end() - 1);
+    for (int i = 0; i < m; ++i) order_[fill[CellOf(EndPoint(i))]++] = i;
+  }
+
+  const Eigen::Vector2d& EndPoint(int i) const { return i % 2 == 0 ? s_[i / 2].p0 : s_[i / 2].p1; }
+  const LineSegments& Segments() const { return s_; }
+
+  // Calls visit(j) for every end-point j in the cells within `reach` cells of p's, until it returns
+  // false; returns false if it did.
+  template <typename Visit>
+  bool ForEachNear(const Eigen::Vector2d& p, int reach, Visit&& visit) const {
+    int cx, cy;
+    CellXY(p, &cx, &cy);
+    for (int y = std::max(cy - reach, 0); y <= std::min(cy + reach, grid_rows_ - 1); ++y) {
+      for (int x = std::max(cx - reach, 0); x <= std::min(cx + reach, grid_cols_ - 1); ++x) {
+        const int c = y * grid_cols_ + x;
+        for (int k = begin_[c]; k < begin_[c + 1]; ++k) {
+          if (!visit(order_[k])) return false;
+        }
+      }
+    }
+    return true;
+  }
+
+ private:
+  void CellXY(const Eigen::Vector2d& p, int* cx, int* cy) const {
+    *cx = std::clamp(static_cast<int>(p.x() / cell_), 0, grid_cols_ - 1);
+    *cy = std::clamp(static_cast<int>(p.y() / cell_), 0, grid_rows_ - 1);
+  }
+  int CellOf(const Eigen::Vector2d& p) const {
+    int cx, cy;
+    CellXY(p, &cx, &cy);
+    return cy * grid_cols_ + cx;
+  }
+
+  const LineSegments& s_;
+  double cell_;
+  int grid_cols_ = 0, grid_rows_ = 0;
+  std::vector<int> begin_, order_;
+};
+
 class BranchSearch {
  public:
   BranchSearch(const cv::Mat& gx, const cv::Mat& gy, const cv::Mat& magnitude, int low_magnitude,
@@ -122,8 +175,11 @@ class BranchSearch {
     const LineSegments& s = *segments;
     const int n = static_cast<int>(s.size());
     std::vector<int> free_ends;
+    std::vector<char> is_free;
     MarkCovered(s);
-    FreeEnds(s, &free_ends);
+    const EndGrid grid(s, rows_, cols_, 4 * options_.max_gap);
+    grid_ = &grid;
+    FreeEnds(s, grid, &free_ends, &is_free);
     stats.free_ends = static_cast<int>(free_ends.size());
     if (free_ends.empty()) return stats;
     // Every (free end, direction, polarity, length) is a candidate the test could accept.
@@ -132,9 +188,11 @@ class BranchSearch {
     log10_tests_ = std::log10(tests);
     stats.log10_tests = log10_tests_;
     std::vector<Candidate> candidates;
+    std::vector<std::pair<int, double>> branch_angles;  // (free end, direction) of each branch
     for (const int end : free_ends) {
       candidates.clear();
-      const LineSegment& segment = s[end / 2];
+      // A copy: the branches appended below may move the segments.
+      const LineSegment segment = s[end / 2];
       const Eigen::Vector2d e = end % 2 == 0 ? segment.p0 : segment.p1;
       const Eigen::Vector2d u = end % 2 == 0 ? Eigen::Vector2d(-segment.Direction()) : segment.Direction();
       const Eigen::Vector2d origin = e + kCornerOffset * u;
@@ -171,13 +229,16 @@ class BranchSearch {
           continue;
         }
         LineSegment branch;
-        if (!Branch(segment, e, origin, c, &branch)) continue;
+        if (!Branch(segment, end / 2, e, origin, c, &branch)) continue;
         blocked_.push_back(c.angle);
         ++taken;
+        branch_angles.push_back({end, c.angle});
         segments->push_back(branch);
         ++stats.accepted;
       }
     }
+    if (options_.fast.bridges_past_corners)
+      stats.bridges = AppendBridges(grid, free_ends, is_free, branch_angles, segments);
     CHECK_GE(static_cast<int>(segments->size()), n);
     return stats;
   }
@@ -191,43 +252,16 @@ class BranchSearch {
   // instead of 9.5 and consecutive VGG matching precision fell to 97.0-97.7 % (98.1-98.8 % with
   // 2 max_gap); keeping free the ends whose near neighbour cannot meet them at a corner gave the
   // 21 branches back. Bucketed in cells of 4 max_gap.
-  void FreeEnds(const LineSegments& s, std::vector<int>* free_ends) const {
-    const double gap = 2 * options_.max_gap, cell = 2 * gap;
-    const int grid_cols = static_cast<int>(cols_ / cell) + 1, grid_rows = static_cast<int>(rows_ / cell) + 1;
-    auto cell_of = [&](const Eigen::Vector2d& p, int* cx, int* cy) {
-      *cx = std::clamp(static_cast<int>(p.x() / cell), 0, grid_cols - 1);
-      *cy = std::clamp(static_cast<int>(p.y() / cell), 0, grid_rows - 1);
-    };
+  void FreeEnds(const LineSegments& s, const EndGrid& grid, std::vector<int>* free_ends,
+                std::vector<char>* is_free) const {
+    const double gap = 2 * options_.max_gap;
     const int m = static_cast<int>(2 * s.size());
-    auto end_point = [&](int i) -> const Eigen::Vector2d& { return i % 2 == 0 ? s[i / 2].p0 : s[i / 2].p1; };
-    std::vector<int> begin(static_cast<size_t>(grid_cols) * grid_rows + 1, 0), order(m);
+    is_free->assign(m, 0);
     for (int i = 0; i < m; ++i) {
-      int cx, cy;
-      cell_of(end_point(i), &cx, &cy);
-      ++begin[cy * grid_cols + cx + 1];
-    }
-    for (size_t c = 1; c < begin.size(); ++c) begin[c] += begin[c - 1];
-    std::vector<int> fill(begin.begin(), begin.end() - 1);
-    for (int i = 0; i < m; ++i) {
-      int cx, cy;
-      cell_of(end_point(i), &cx, &cy);
-      order[fill[cy * grid_cols + cx]++] = i;
-    }
-    for (int i = 0; i < m; ++i) {
-      const Eigen::Vector2d& p = end_point(i);
+      const Eigen::Vector2d& p = grid.EndPoint(i);
       if (!(s[i / 2].Length() > 0)) continue;
-      int cx, cy;
-      cell_of(p, &cx, &cy);
-      bool alone = true;
-      for (int y = std::max(cy - 1, 0); y <= std::min(cy + 1, grid_rows - 1) && alone; ++y) {
-        for (int x = std::max(cx - 1, 0); x <= std::min(cx + 1, grid_cols - 1) && alone; ++x) {
-          const int c = y * grid_cols + x;
-          for (int k = begin[c]; k < begin[c + 1] && alone; ++k) {
-            const int j = order[k];
-            alone = j / 2 == i / 2 || (end_point(j) - p).squaredNorm() > gap * gap;
-          }
-        }
-      }
+      bool alone = grid.ForEachNear(
+          p, 1, [&](int j) { return j / 2 == i / 2 || (grid.EndPoint(j) - p).squaredNorm() > gap * gap; });
       // An end that runs into another segment's interior within max_gap (a T's stem, or an L
       // whose other side continues past the corner) has its junction too. From 2 px on: the 3 x 3
       // pixels around a point 1 px beyond the end could hold the segment's own last marked pixel.
@@ -236,8 +270,147 @@ class BranchSearch {
         int x, y;
         alone = !PixelAt(p + r * u, &x, &y) || !Covered(x, y);
       }
-      if (alone) free_ends->push_back(i);
+      if (alone) {
+        free_ends->push_back(i);
+        (*is_free)[i] = 1;
+      }
     }
+  }
+
+  // Bridges (fast.bridges_past_corners; docs/segments.md, step 8): a segment A often stops at a
+  // corner W with a third edge while its line goes on, as an edge between other faces (often of the
+  // other polarity), for a few pixels more to the vertex V where a free end of a segment B stops.
+  // That piece, shorter than min_length, is no chain piece and no branch (a branch must reach
+  // min_length from its corner), and the pair A-B cannot make V's junction because W's took A's
+  // end-point. So from each free end of B, the lines of the segments whose end-points are not
+  // free (they have a corner) are continued: where A's line meets B's line within max_gap of B's
+  // end (the corner X, lines at least 11.5 degrees apart), A's end-point lies more than max_gap
+  // short of X (nearer, the pair test joins them directly) and at most min_length + max_gap (farther,
+  // a branch could reach min_length), and the direction from X to A's end is at least 22.5 degrees
+  // from B's (as a branch's), the gradient is sampled every pixel on A's line from 2 px after X to
+  // 2 px before A's end-point (both are corners, where the smoothed gradient mixes two edges). The
+  // samples aligned with the line's normal (22.5 degrees, the polarity of the first aligned one, at
+  // the low threshold) are counted a-contrario against the family of such candidates (every
+  // (free end, A end) pair that passes the geometric tests, two polarities): a few per image, not
+  // the chains' 10^5 sub-runs, since two segments in this position are themselves rare in noise.
+  // As for a branch, one sample must reach the high threshold and most samples must not lie on an
+  // existing segment. The bridge is the piece of A's line between its first and last aligned
+  // samples (A's line is fitted to many more points than the piece could give); its polarity is
+  // the samples'. Returns the number of bridges appended.
+  int AppendBridges(const EndGrid& grid, const std::vector<int>& free_ends, const std::vector<char>& is_free,
+                    const std::vector<std::pair<int, double>>& branch_angles, LineSegments* segments) const {
+    struct Bridge {
+      int end;                 // B's free end, 2 * segment + 0 or 1
+      Eigen::Vector2d corner;  // X, on A's line
+      Eigen::Vector2d w;       // unit direction from X to A's end-point
+      double gap;              // distance from X to A's end-point, px
+      double log10_nfa = 0;
+      int first = 0, last = 0;  // first and last aligned samples, px from X
+      int polarity = 0;
+      double fit_rms = 0;  // A's
+    };
+    const double max_bridge = options_.min_length + options_.max_gap;
+    const double cos_min_angle = std::cos(kMinBranchAngle);
+    // A's end-point lies within max_bridge of the corner, the corner within max_gap of B's end.
+    const double reach_px = max_bridge + options_.max_gap;
+    const int reach = static_cast<int>(std::ceil(reach_px / (4 * options_.max_gap)));
+    std::vector<Bridge> bridges;
+    for (const int i : free_ends) {
+      const LineSegment b = (*segments)[i / 2];
+      const Eigen::Vector2d e = grid.EndPoint(i);
+      const Eigen::Vector2d u = i % 2 == 0 ? Eigen::Vector2d(-b.Direction()) : b.Direction();
+      const Eigen::Vector2d qb = b.Normal();
+      grid.ForEachNear(e, reach, [&](int j) {
+        if (j / 2 == i / 2 || is_free[j]) return true;
+        const Eigen::Vector2d& ae = grid.EndPoint(j);
+        if ((ae - e).squaredNorm() > reach_px * reach_px) return true;
+        const LineSegment& a = (*segments)[j / 2];
+        const Eigen::Vector2d out = j % 2 == 0 ? Eigen::Vector2d(-a.Direction()) : a.Direction();
+        const double sine = out.x() * u.y() - out.y() * u.x();
+        if (std::abs(sine) < kMinCornerSine) return true;
+        // X = ae + gap * out on A's line, and on B's line: (X - e) . qb = 0.
+        const double gap = (e - ae).dot(qb) / out.dot(qb);
+        if (gap <= options_.max_gap || gap > max_bridge) return true;
+        const Eigen::Vector2d corner = ae + gap * out;
+        if ((corner - e).norm() > options_.max_gap) return true;
+        const Eigen::Vector2d w = -out;
+        if (std::abs(w.dot(u)) > cos_min_angle) return true;
+        const double angle = std::atan2(w.y(), w.x());
+        for (const auto& [end, taken] : branch_angles) {
+          if (end == i && std::abs(std::remainder(taken - angle, 2 * M_PI)) < kMinBranchSeparation)
+            return true;
+        }
+        Bridge bridge;
+        bridge.end = i;
+        bridge.corner = corner;
+        bridge.w = w;
+        bridge.gap = gap;
+        bridge.fit_rms = a.fit_rms;
+        bridges.push_back(bridge);
+        return true;
+      });
+    }
+    if (bridges.empty()) return 0;
+    const double log10_tests = std::log10(2.0 * static_cast<double>(bridges.size()));
+    std::vector<Bridge> accepted;
+    for (Bridge& bridge : bridges) {
+      const Eigen::Vector2d normal(-bridge.w.y(), bridge.w.x());
+      const int last_sample = static_cast<int>(std::floor(bridge.gap)) - kFirstSample;
+      int samples = 0, aligned = 0, covered = 0, strongest = 0, polarity = 0, first = 0, last = 0;
+      for (int r = kFirstSample; r <= last_sample; ++r) {
+        int x, y;
+        if (!PixelAt(bridge.corner + r * bridge.w, &x, &y)) break;
+        ++samples;
+        if (Covered(x, y)) ++covered;
+        const size_t i = static_cast<size_t>(y) * cols_ + x;
+        const double g_x = gx_[i], g_y = gy_[i];
+        const double along = g_x * normal.x() + g_y * normal.y();
+        const bool parallel =
+            mag_[i] >= low_ && along * along >= kAlignedCos2 * (g_x * g_x + g_y * g_y) && along != 0;
+        if (polarity == 0 && parallel) polarity = along > 0 ? 1 : -1;
+        if (parallel && along * polarity > 0) {
+          if (aligned++ == 0) first = r;
+          last = r;
+          strongest = std::max(strongest, static_cast<int>(mag_[i]));
+        }
+      }
+      if (samples == 0 || aligned < 2 || 2 * covered > samples || strongest < high_) continue;
+      bridge.log10_nfa = log10_tests + tail_[samples * (max_sample_ + 1) + aligned];
+      if (bridge.log10_nfa > options_.fast.log10_nfa_max) continue;
+      bridge.first = first;
+      bridge.last = last;
+      bridge.polarity = polarity;
+      accepted.push_back(bridge);
+    }
+    // Strongest first; one bridge per direction of an end, and at most kMaxBranchesPerEnd
+    // branches and bridges together.
+    std::stable_sort(accepted.begin(), accepted.end(),
+                     [](const Bridge& a, const Bridge& b) { return a.log10_nfa < b.log10_nfa; });
+    std::vector<std::pair<int, double>> taken = branch_angles;
+    int appended = 0;
+    for (const Bridge& bridge : accepted) {
+      const double angle = std::atan2(bridge.w.y(), bridge.w.x());
+      int at_end = 0;
+      bool apart = true;
+      for (const auto& [end, a] : taken) {
+        if (end != bridge.end) continue;
+        ++at_end;
+        apart = apart && std::abs(std::remainder(a - angle, 2 * M_PI)) >= kMinBranchSeparation;
+      }
+      if (!apart || at_end >= kMaxBranchesPerEnd) continue;
+      taken.push_back({bridge.end, angle});
+      LineSegment piece;
+      piece.p0 = bridge.corner + bridge.first * bridge.w;
+      piece.p1 = bridge.corner + bridge.last * bridge.w;
+      piece.support = bridge.last - bridge.first + 1;
+      piece.fit_rms = bridge.fit_rms;
+      const Eigen::Vector2d normal(-bridge.w.y(), bridge.w.x());
+      // Brighter side along Normal() (segment_detector.h).
+      if (piece.Normal().dot(bridge.polarity * normal) < 0) std::swap(piece.p0, piece.p1);
+      segments->push_back(piece);
+      ++appended;
+    }
+    return appended;
   }
 
   // Whether an edge other than the segment's own passes the ray origin: one of the 3 x 3 pixels
@@ -391,10 +564,49 @@ class BranchSearch {
     return c->log10_nfa <= options_.fast.log10_nfa_max;
   }
 
+  // A branch whose far end stops at another corner (fast.branches_to_far_corners): how far beyond
+  // its far end-point `far` (direction d) its line meets the line of another segment (not
+  // `exclude`, the segment it starts from) at a corner, or 0. As the short sides between two corners
+  // (docs/segments.md, step 7): a rounded corner takes 1-2 px off each end of a side, so a side of
+  // 10-12 px between two corners gives a branch of 7-9 px, and it is measured from corner to corner.
+  // The far corner lies within max_gap of `far` and within max_gap of an end-point of the other
+  // segment (an L), or on its interior (the branch ends on it, a T); lines at least 11.5 degrees
+  // apart (so a 0.2 px line error moves the corner by under 1 px).
+  double FarCornerBeyond(const Eigen::Vector2d& far, const Eigen::Vector2d& d, int exclude) const {
+    const double gap = options_.max_gap;
+    double best = 0;
+    grid_->ForEachNear(far, 1, [&](int j) {
+      if (j / 2 == exclude) return true;
+      const LineSegment& other = grid_->Segments()[j / 2];
+      const Eigen::Vector2d& end = grid_->EndPoint(j);
+      if ((end - far).squaredNorm() > 4 * gap * gap) return true;
+      const Eigen::Vector2d od = other.Direction();
+      const double sine = d.x() * od.y() - d.y() * od.x();
+      if (std::abs(sine) < kMinCornerSine) return true;
+      // Y = far + beyond * d on the other segment's line: (Y - end) . normal = 0.
+      const Eigen::Vector2d on = other.Normal();
+      const double beyond = (end - far).dot(on) / d.dot(on);
+      const Eigen::Vector2d y = far + beyond * d;
+      if (std::abs(beyond) > gap || (y - end).norm() > gap) return true;
+      best = std::max(best, beyond);
+      return true;
+    });
+    // A T: the points 1..max_gap px beyond the far end run into another segment's interior.
+    for (int r = 1; r <= static_cast<int>(gap); ++r) {
+      int x, y;
+      if (!PixelAt(far + r * d, &x, &y)) break;
+      if (Covered(x, y)) {
+        best = std::max(best, static_cast<double>(r));
+        break;
+      }
+    }
+    return best;
+  }
+
   // The branch of candidate c: a line fitted to the sub-pixel edge points across the ray, checked
   // for its corner with `segment` (end-point e) and its length from that corner.
-  bool Branch(const LineSegment& segment, const Eigen::Vector2d& e, const Eigen::Vector2d& origin,
-              const Candidate& c, LineSegment* branch) const {
+  bool Branch(const LineSegment& segment, int segment_index, const Eigen::Vector2d& e,
+              const Eigen::Vector2d& origin, const Candidate& c, LineSegment* branch) const {
     const Eigen::Vector2d v(std::cos(c.angle), std::sin(c.angle)), normal(-v.y(), v.x());
     // Across the ray: along the image axis closest to its normal (as the chains' sub-pixel points).
     const bool across_y = std::abs(normal.y()) >= std::abs(normal.x());
@@ -460,7 +672,10 @@ class BranchSearch {
     if ((corner - e).norm() > options_.max_gap) return false;
     *branch = SegmentOnLine(line, kept.front(), kept.back(), fit.count());
     const Eigen::Vector2d far = line.Project(kept.back());
-    if ((far - corner).dot(line.direction) < options_.min_length) return false;
+    double length = (far - corner).dot(line.direction);
+    if (length < options_.min_length && options_.fast.branches_to_far_corners)
+      length += FarCornerBeyond(far, line.direction, segment_index);
+    if (length < options_.min_length) return false;
     // Brighter side along Normal() (segment_detector.h): the gradient's polarity across the ray.
     if (branch->Normal().dot(c.polarity * normal) < 0) std::swap(branch->p0, branch->p1);
     return true;
@@ -477,6 +692,7 @@ class BranchSearch {
   std::vector<double>& tail_;
   std::vector<uint64_t>& covered_;
   std::vector<double> blocked_;             // directions of one end already explained (Run)
+  const EndGrid* grid_ = nullptr;           // the input segments' end-points (Run)
   std::vector<Eigen::Vector2d> rotations_;  // cosine and sine of each direction's angle from the segment
   // The edge thresholds in |gx| + |gy| units: as on a chain, every aligned sample reaches the low
   // one and the branch's strongest edge point the high one (an anchor).

@@ -17,6 +17,7 @@ struct BranchSearchStats {
   int free_ends = 0;       // end-points searched
   double log10_tests = 0;  // log10 of the number of candidate rays the NFA counts
   int accepted = 0;        // branches appended
+  int bridges = 0;         // bridges appended (fast.bridges_past_corners)
 };
 
 // Appends to `segments` the branches found at their free end-points. gx, gy: the CV_16S Sobel

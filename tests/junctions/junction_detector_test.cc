@@ -210,6 +210,36 @@ TEST(JunctionDetectorTest, ConflictingEndPointGoesToTheBestOverallReading) {
   EXPECT_NEAR(junctions[0].score + junctions[1].score, std::exp(-1.6) + std::exp(-1.0), 1e-12);
 }
 
+// choose_by_end_likelihood (the fitted default model, lambda 0.844, mu 0.353, threshold 0.0205). c
+// and d meet at the origin (both 1 px short, f = 0.703 each); a stops 5 px short of it (f = 0.171)
+// and runs 0.5 px past a vertical b at (-5.5, 0), which stops 4 px short there (f = 0.244). The
+// paper's score prefers the 3-junction a-c-d (0.494 + 2 x 0.120 = 0.734) to the L a-b plus c-d
+// (0.160 + 0.494 = 0.654), since a's weak pairs count twice; the end-points' log-likelihood ratios
+// (ln f + 1.943 each, positive part) prefer the L plus c-d (1.52 + 0.53 + 2 x 1.59 = 5.23) to a-c-d
+// (0.18 + 2 x 1.59 = 3.36): two junctions, at (-5.5, 0) and at the origin, to 1e-9 px.
+TEST(JunctionDetectorTest, EndLikelihoodChoiceCountsEachEndPointOnce) {
+  const LineSegments segments = {Segment(-40, 0, -5, 0), Segment(-5.5, 44, -5.5, 4), Segment(0, -40, 0, -1),
+                                 Segment(28.2843, 28.2843, 0.707107, 0.707107)};
+  JunctionDetectorOptions options;
+  const Junctions by_score = DetectJunctions(segments, options);
+  ASSERT_EQ(by_score.size(), 1u);
+  EXPECT_NEAR(by_score[0].location.norm(), 0, 1e-6);
+  EXPECT_EQ(by_score[0].segments.size(), 3u);
+  options.choose_by_end_likelihood = true;
+  const Junctions by_likelihood = DetectJunctions(segments, options);
+  ASSERT_EQ(by_likelihood.size(), 2u);
+  std::vector<std::pair<double, double>> found;
+  for (const Junction& j : by_likelihood) {
+    EXPECT_EQ(j.segments.size(), 2u);
+    found.emplace_back(j.location.x(), j.location.y());
+  }
+  std::sort(found.begin(), found.end());
+  EXPECT_NEAR(found[0].first, -5.5, 1e-9);
+  EXPECT_NEAR(found[0].second, 0, 1e-9);
+  EXPECT_NEAR(found[1].first, 0, 1e-6);
+  EXPECT_NEAR(found[1].second, 0, 1e-6);
+}
+
 TEST(JunctionDetectorTest, BarHoldsATAndEndsInAnL) {
   const Junctions junctions =
       DetectJunctions({Segment(0, 50, 100, 50), Segment(50, 100, 50, 53), Segment(0, 100, 0, 52)}, Options());

@@ -127,10 +127,117 @@ TEST(BranchSegmentsTest, LeavesEndsThatMeetOtherSegmentsAlone) {
   }
 }
 
+// Bridges past corners (fast.bridges_past_corners). A vertical edge A (x = 80.5) stops at W =
+// (80.5, 72.5), where a horizontal edge D leaves it to the right, and goes on with the other
+// polarity for 8 px to V = (80.5, 80.5), where the free end of a horizontal segment B stops 1.5 px
+// short (case 0067 of the benchmark's not-joined misses). A's end-point has D's nearby, so W's
+// junction takes it and A-B cannot make V's; the 8 px piece is under min_length and no branch can
+// reach min_length from V. With the bridge: exactly one new segment, on A's line (within 0.05 px),
+// covering the gap from within 3 px of V to within 3 px of W, its brighter side (120 against 60)
+// along Normal(). Without it, or when D is not there (A's end is free: the pair test joins A and B
+// directly), no bridge.
+TEST(BranchSegmentsTest, BridgesALineContinuedPastACornerToAFreeEnd) {
+  SyntheticImageOptions image;
+  image.width = 160;
+  image.height = 160;
+  image.background = 120;
+  image.blur_sigma = 0.7;
+  const std::vector<Polygon> scene = {{{{80.5, 10}, {150, 10}, {150, 72.5}, {80.5, 72.5}}, 200},
+                                      {{{80.5, 72.5}, {150, 72.5}, {150, 150}, {80.5, 150}}, 60},
+                                      {{{10, 80.5}, {80.5, 80.5}, {80.5, 150}, {10, 150}}, 60}};
+  LineSegments segments(3);
+  segments[0].p0 = {80.5, 15};  // A, ending 1.5 px short of W
+  segments[0].p1 = {80.5, 71};
+  segments[1].p0 = {82, 72.5};  // D, from W to the right
+  segments[1].p1 = {145, 72.5};
+  segments[2].p0 = {15, 80.5};  // B, ending 1.5 px short of V
+  segments[2].p1 = {79, 80.5};
+  for (int seed = 1; seed <= 3; ++seed) {
+    SCOPED_TRACE("seed " + std::to_string(seed));
+    image.seed = seed;
+    SegmentDetectorOptions options;
+    options.fast.bridges_past_corners = false;
+    options.fast.branches_to_far_corners = false;
+    const Gradient g = GradientOf(testing::RenderPolygons(scene, image), options);
+    LineSegments off = segments;
+    AppendBranchSegments(g.gx, g.gy, g.magnitude, g.low, g.high, options, &off);
+    EXPECT_EQ(off.size(), segments.size());
+    options.fast.bridges_past_corners = true;
+    LineSegments on = segments;
+    const BranchSearchStats stats =
+        AppendBranchSegments(g.gx, g.gy, g.magnitude, g.low, g.high, options, &on);
+    ASSERT_EQ(on.size(), segments.size() + 1);
+    EXPECT_EQ(stats.bridges, 1);
+    const LineSegment& bridge = on.back();
+    EXPECT_LT(std::abs(bridge.p0.x() - 80.5), 0.05);
+    EXPECT_LT(std::abs(bridge.p1.x() - 80.5), 0.05);
+    EXPECT_GT(std::max(bridge.p0.y(), bridge.p1.y()), 80.5 - 3);
+    EXPECT_LT(std::min(bridge.p0.y(), bridge.p1.y()), 72.5 + 3);
+    EXPECT_LT(bridge.Normal().x(), -0.99);
+    LineSegments no_corner = {segments[0], segments[2]};
+    const BranchSearchStats alone =
+        AppendBranchSegments(g.gx, g.gy, g.magnitude, g.low, g.high, options, &no_corner);
+    EXPECT_EQ(alone.bridges, 0);
+  }
+}
+
+// Branches measured from corner to corner (fast.branches_to_far_corners). A dark box's top side
+// runs 10 px from its corner V = (60.5, 80.5), where the free end of its left side B stops, to
+// x = 70.5, where a vertical edge C ends on it and the side goes on with the other polarity (a
+// darker block above). The ray from B's end loses 1-2 px at each corner, so the branch is 7-9 px,
+// under min_length (9 px); measured from V to its meeting with C's line it is 10 px. With the rule:
+// one branch on the side's line (within 0.3 px at both ends); without it: none.
+TEST(BranchSegmentsTest, MeasuresABranchEndingAtAnotherCornerFromCornerToCorner) {
+  SyntheticImageOptions image;
+  image.width = 160;
+  image.height = 160;
+  image.background = 150;
+  image.blur_sigma = 0.7;
+  const std::vector<Polygon> scene = {{{{70.5, 20}, {140, 20}, {140, 80.5}, {70.5, 80.5}}, 20},
+                                      {{{60.5, 80.5}, {140, 80.5}, {140, 140}, {60.5, 140}}, 40}};
+  LineSegments segments(3);
+  segments[0].p0 = {60.5, 135};  // B, the box's left side, ending 1.5 px short of V
+  segments[0].p1 = {60.5, 82};
+  segments[1].p0 = {70.5, 25};  // C, ending 1.5 px short of the top side
+  segments[1].p1 = {70.5, 79};
+  segments[2].p0 = {72, 80.5};  // the top side beyond C (the other polarity)
+  segments[2].p1 = {138, 80.5};
+  for (int seed = 1; seed <= 3; ++seed) {
+    SCOPED_TRACE("seed " + std::to_string(seed));
+    image.seed = seed;
+    SegmentDetectorOptions options;
+    options.fast.branches_to_far_corners = false;
+    options.fast.bridges_past_corners = false;  // which would bridge V to the top side beyond C
+    const Gradient g = GradientOf(testing::RenderPolygons(scene, image), options);
+    // The new segments with an end-point within 4 px of V (the other free ends, at the scene's
+    // other corners, may get branches of their own).
+    const Eigen::Vector2d v(60.5, 80.5);
+    auto at_v = [&](const LineSegments& out) {
+      LineSegments near;
+      for (size_t k = segments.size(); k < out.size(); ++k) {
+        if (std::min((out[k].p0 - v).norm(), (out[k].p1 - v).norm()) < 4) near.push_back(out[k]);
+      }
+      return near;
+    };
+    LineSegments off = segments;
+    AppendBranchSegments(g.gx, g.gy, g.magnitude, g.low, g.high, options, &off);
+    EXPECT_TRUE(at_v(off).empty());
+    options.fast.branches_to_far_corners = true;
+    LineSegments on = segments;
+    AppendBranchSegments(g.gx, g.gy, g.magnitude, g.low, g.high, options, &on);
+    const LineSegments branches = at_v(on);
+    ASSERT_EQ(branches.size(), 1u);
+    EXPECT_LT(std::abs(branches[0].p0.y() - 80.5), 0.3);
+    EXPECT_LT(std::abs(branches[0].p1.y() - 80.5), 0.3);
+    EXPECT_LT(std::max(branches[0].p0.x(), branches[0].p1.x()), 70.5);
+  }
+}
+
 // The a-contrario bound: in pure noise of twice the camera's sigma (4 grey levels, the rule of
 // min_length), 100 random segments per 640 x 480 image give at most one branch per image on
 // average (the NFA threshold is 1 per image). 20 images; measured: 0 branches.
 TEST(BranchSegmentsTest, FindsAtMostOneBranchPerImageInHeavyNoise) {
+  // The defaults: with the bridges and the corner-to-corner length (measured: 0 branches, 0 bridges).
   const SegmentDetectorOptions options;
   SyntheticImageOptions image;
   image.width = 640;
@@ -153,7 +260,7 @@ TEST(BranchSegmentsTest, FindsAtMostOneBranchPerImageInHeavyNoise) {
     }
     const BranchSearchStats stats =
         AppendBranchSegments(g.gx, g.gy, g.magnitude, g.low, g.high, options, &segments);
-    branches += stats.accepted;
+    branches += stats.accepted + stats.bridges;
   }
   EXPECT_LE(branches, 20);
 }
