@@ -98,6 +98,9 @@ DEFINE_string(floor_prior, FloorPriorName(kDefaults.bundle_adjustment_options.fl
 DEFINE_bool(floor_base_prior, kDefaults.bundle_adjustment_options.floor_base_prior,
             "Bundle adjustment: with the floor prior applied and the odometry on the floor plane, also hold every "
             "base pose's height and tilt there (floor sigma, and floor sigma / camera height rad).");
+DEFINE_bool(floor_rescale_start, kDefaults.bundle_adjustment_options.floor_rescale_start,
+            "Bundle adjustment: with the floor prior applied, start its solves from the coarse map scaled so that "
+            "the floor found on it is at z = 0 (and the odometry's scale factor to match).");
 DEFINE_string(
     odometry_rotation_bias,
     kDefaults.bundle_adjustment_options.estimate_odometry_rotation_bias            ? "on"
@@ -162,6 +165,7 @@ bool OptionsFromFlags(sfm::PipelineOptions* options, std::string* error) {
   options->triangulation.wireframe.pose_error_from_bundle_adjustment = FLAGS_wireframe_ba_pose_error;
   options->triangulation.wireframe.line_sigma_subtracts_plane_noise = FLAGS_wireframe_plane_noise;
   options->bundle_adjustment_options.floor_base_prior = FLAGS_floor_base_prior;
+  options->bundle_adjustment_options.floor_rescale_start = FLAGS_floor_rescale_start;
   if (FLAGS_floor_prior == "auto") {
     options->bundle_adjustment_options.floor_prior = sfm::FloorPriorMode::kAuto;
   } else if (FLAGS_floor_prior == "on") {

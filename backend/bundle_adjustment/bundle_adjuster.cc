@@ -151,6 +151,7 @@ class BundleAdjuster {
     if (CountObservations() == 0) return RevertToOdometry("no landmark left observable on the refined poses");
     // 5. The floor prior, decided on the coarse map (its floor is where the odometry's scale put it).
     SelectFloor(/*first=*/true);
+    if (options_.floor_rescale_start) RescaleToFloor();
     // A solve that an outlier round follows stops at the looser intermediate tolerance; the
     // returned result always comes from a solve at function_tolerance.
     bool loose = options_.outlier_rounds > 0;
@@ -267,11 +268,7 @@ class BundleAdjuster {
     FloorPlane plane = FindFloorPlane(*landmarks_, camera_z_m, half_width_m, options_.floor_min_landmarks,
                                       first ? std::nullopt : std::optional<double>(0.0));
     if (!plane.found) return skip(plane.why);
-    // The floor of a map whose trajectory is s times too long is at (1 - s) * camera height
-    // (the map scaled about the cameras, which the rig holds at their height); the noise model
-    // allows |s - 1| up to 3 translation sigmas, and the slab's half width is the plane's own
-    // resolution.
-    const double allowed_m = 3 * noise_.translation_sigma * camera_height_m + half_width_m;
+    const double allowed_m = AllowedFloorHeight();
     if (automatic && plane.z_m < -allowed_m) {
       // Mis-triangulated landmarks under the floor can gather in a slab, but not outnumber the
       // floor: a plane where the noise model allows it, holding more, is the floor.
@@ -300,6 +297,42 @@ class BundleAdjuster {
                                    " landmarks below the cameras), " + std::to_string(floor_.points.size()) +
                                    " points and " + std::to_string(floor_.lines.size()) + " lines held" +
                                    (base_on_floor_ ? ", base poses held on it" : "") + stray_slab_note_;
+  }
+
+  // How far from z = 0 the floor of a map at the odometry's scale may be: a map whose trajectory is
+  // s times too long has its floor at (1 - s) * camera height (the map scaled about the cameras,
+  // which the rig holds at their height); the noise model allows |s - 1| up to 3 translation
+  // sigmas, and the slab's half width (3 floor sigmas) is the plane's own resolution.
+  double AllowedFloorHeight() const {
+    return 3 * noise_.translation_sigma * base_T_camera_.translation.z() + 3 * options_.floor_sigma_m;
+  }
+
+  // With the floor prior applied, the coarse map (at the odometry's scale) scaled about the first
+  // camera, whose pose is held, so that the floor found on it lies at z = 0, and the odometry's
+  // scale factor set to the same gain: the start the floor's scale implies. Why: from the
+  // odometry's scale the joint solves must move every pose and landmark along one shallow
+  // direction (a low camera's floor observes the scale weakly), and they end by their function
+  // tolerance with the scale still part-way there, biased towards the odometry's
+  // (docs/bundle_adjustment.md, "Floor scale bias: the start").
+  void RescaleToFloor() {
+    // A floor the noise model does not allow (applied with --floor_prior=on) says nothing of scale.
+    if (!scale_free_ || !summary_->floor_plane_z_m || !(std::abs(*summary_->floor_plane_z_m) <= AllowedFloorHeight())) {
+      return;
+    }
+    const Eigen::Vector3d centre = (poses_[0].ToPose() * base_T_camera_).translation;
+    const double gain = FloorScaleGain(centre.z(), *summary_->floor_plane_z_m);
+    if (gain == 1) return;
+    for (size_t f = 1; f < poses_.size(); ++f) {
+      Pose3 camera = poses_[f].ToPose() * base_T_camera_;
+      camera.translation = centre + gain * (camera.translation - centre);
+      poses_[f] = PoseParameters::FromPose(camera * base_T_camera_.Inverse());
+    }
+    ScaleLandmarksAbout(centre, gain, landmarks_);
+    for (auto& anchors : floor_anchors_) {
+      for (Eigen::Vector3d& anchor : anchors) anchor = centre + gain * (anchor - centre);
+    }
+    odometry_scale_ *= gain;
+    summary_->floor_prior_report += "; started at odometry scale " + std::to_string(odometry_scale_);
   }
 
   // The odometry's scale factor is a block of the problem: freed by the floor prior, or held at a

@@ -89,6 +89,13 @@ struct BundleAdjustmentOptions {
   // tilt with floor_sigma_m / camera height (the tilt that moves the floor under the camera by one
   // sigma, the rig check's own tolerance). docs/bundle_adjustment.md, "Floor prior".
   bool floor_base_prior = true;
+  // When the floor prior applies, start its solves from the coarse map scaled about the first
+  // camera so that the floor found on it lies at z = 0, with the odometry's scale factor set to
+  // match (the floor's height on the coarse map measures the odometry's scale error). Without it
+  // the fine solves start at the odometry's scale and stop, by their function tolerance, before
+  // the shallow scale direction has converged (docs/bundle_adjustment.md, "Floor scale bias:
+  // the start").
+  bool floor_rescale_start = true;
   // Landmarks a floor plane needs at least (besides being a peak of the height distribution).
   int floor_min_landmarks = 10;
 
