@@ -296,7 +296,7 @@ class BundleAdjuster {
                                    std::to_string(plane.support) + " of " + std::to_string(plane.below_camera) +
                                    " landmarks below the cameras), " + std::to_string(floor_.points.size()) +
                                    " points and " + std::to_string(floor_.lines.size()) + " lines held" +
-                                   (base_on_floor_ ? ", base poses held on it" : "") + stray_slab_note_;
+                                   (base_on_floor_ ? ", base poses held on it" : "") + stray_slab_note_ + start_note_;
   }
 
   // How far from z = 0 the floor of a map at the odometry's scale may be: a map whose trajectory is
@@ -332,7 +332,8 @@ class BundleAdjuster {
       for (Eigen::Vector3d& anchor : anchors) anchor = centre + gain * (anchor - centre);
     }
     odometry_scale_ *= gain;
-    summary_->floor_prior_report += "; started at odometry scale " + std::to_string(odometry_scale_);
+    start_note_ = "; started at odometry scale " + std::to_string(odometry_scale_);
+    summary_->floor_prior_report += start_note_;
   }
 
   // The odometry's scale factor is a block of the problem: freed by the floor prior, or held at a
@@ -810,6 +811,7 @@ class BundleAdjuster {
   bool scale_free_ = false;
   bool base_on_floor_ = false;  // BaseOnFloorCost on every pose but the first while scale_free_
   std::string stray_slab_note_;  // the report's note when the first selection passed over a stray slab
+  std::string start_note_;  // the report's note of the scale the floor's start set (floor_rescale_start)
   FloorLandmarks floor_;
   std::vector<std::array<Eigen::Vector3d, 2>> floor_anchors_;
   double odometry_scale_ = 1;
