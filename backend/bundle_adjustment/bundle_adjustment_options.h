@@ -93,9 +93,9 @@ struct BundleAdjustmentOptions {
   // camera so that the floor found on it lies at z = 0, with the odometry's scale factor set to
   // match (the floor's height on the coarse map measures the odometry's scale error). Without it
   // the fine solves start at the odometry's scale and stop, by their function tolerance, before
-  // the shallow scale direction has converged (docs/bundle_adjustment.md, "Floor scale bias:
-  // the start").
-  bool floor_rescale_start = true;
+  // the shallow scale direction has converged, part of the odometry's scale error left. Off: on
+  // held-out sequences it was neutral (docs/bundle_adjustment.md, "Floor scale bias: the start").
+  bool floor_rescale_start = false;
   // Landmarks a floor plane needs at least (besides being a peak of the height distribution).
   int floor_min_landmarks = 10;
 

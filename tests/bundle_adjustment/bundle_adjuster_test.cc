@@ -560,7 +560,9 @@ struct FloorRun {
 // `camera_height` m above the base origin.
 FloorRun RunFloorLoop(double floor_z, double camera_height, FloorPriorMode mode, bool base_prior = true,
                       const std::vector<Eigen::Vector3d>& extra_points = {}, bool bias_on_floor = true,
-                      double scale_error = kScaleError, bool rescale_start = true, double function_tolerance = 0) {
+                      double scale_error = kScaleError,
+                      bool rescale_start = BundleAdjustmentOptions().floor_rescale_start,
+                      double function_tolerance = 0) {
   Calibration calibration = RoomCalibration(kSmallDriftRad);
   calibration.base_T_camera.translation.z() = camera_height;
   const std::vector<Pose3> truth = testing::LoopTrajectory(60);
@@ -672,6 +674,17 @@ TEST(FloorPriorTest, TheStartAtTheFloorsScaleDoesNotKeepTheOdometrysError) {
               kLooseTolerance, long_with, short_with, long_without, short_without);
   EXPECT_LE(std::abs(long_with - short_with), 0.005);
   EXPECT_GT(std::abs(long_without - short_without), 0.005);  // the leak the start removes
+}
+
+// A floor the noise model does not allow says nothing of the scale: forced on (--floor_prior=on)
+// with the floor 0.5 m below the base origin, the prior is applied but the map is not rescaled
+// to it (the first plane is found at about -0.52 m: a gain of about 0.5 under the camera 0.5 m
+// above the base; without the guard the test fails).
+TEST(FloorPriorTest, NoStartAtTheScaleOfAFloorTheNoiseModelDoesNotAllow) {
+  const FloorRun forced = RunFloorLoop(-0.5, 0.5, FloorPriorMode::kOn, true, {}, true, kScaleError, true);
+  EXPECT_TRUE(forced.summary.floor_prior_used) << forced.summary.floor_prior_report;
+  EXPECT_EQ(forced.summary.floor_prior_report.find("started at odometry scale"), std::string::npos)
+      << forced.summary.floor_prior_report;
 }
 
 // FloorScaleGain and ScaleLandmarksAbout on hand values: a floor found 2 cm below z = 0 under a
