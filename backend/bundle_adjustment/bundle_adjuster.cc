@@ -171,6 +171,7 @@ class BundleAdjuster {
     if (loose) {
       SFM_RETURN_IF_ERROR(Solve(options_.robust_loss_scale_px, /*with_lines=*/true, options_.function_tolerance));
     }
+    if (options_.floor_scale_line_search) SFM_RETURN_IF_ERROR(SearchScale());
     ComputeRms();
     FinishFloorSummary();
     return Status::Ok();
@@ -319,9 +320,20 @@ class BundleAdjuster {
     if (!scale_free_ || !summary_->floor_plane_z_m || !(std::abs(*summary_->floor_plane_z_m) <= AllowedFloorHeight())) {
       return;
     }
-    const Eigen::Vector3d centre = (poses_[0].ToPose() * base_T_camera_).translation;
-    const double gain = FloorScaleGain(centre.z(), *summary_->floor_plane_z_m);
+    const double gain =
+        FloorScaleGain((poses_[0].ToPose() * base_T_camera_).translation.z(), *summary_->floor_plane_z_m);
     if (gain == 1) return;
+    ScaleMapAboutFirstCamera(gain);
+    start_note_ = "; started at odometry scale " + std::to_string(odometry_scale_);
+    summary_->floor_prior_report += start_note_;
+  }
+
+  // The map scaled by `gain` about the first camera's centre (its pose is held): the cameras'
+  // centres (rotations kept), every landmark, the floor lines' anchors and the odometry's scale
+  // factor. The images see no change (cameras at the first camera's height keep it); only the
+  // floor's height and the scale prior do.
+  void ScaleMapAboutFirstCamera(double gain) {
+    const Eigen::Vector3d centre = (poses_[0].ToPose() * base_T_camera_).translation;
     for (size_t f = 1; f < poses_.size(); ++f) {
       Pose3 camera = poses_[f].ToPose() * base_T_camera_;
       camera.translation = centre + gain * (camera.translation - centre);
@@ -332,8 +344,63 @@ class BundleAdjuster {
       for (Eigen::Vector3d& anchor : anchors) anchor = centre + gain * (anchor - centre);
     }
     odometry_scale_ *= gain;
-    start_note_ = "; started at odometry scale " + std::to_string(odometry_scale_);
-    summary_->floor_prior_report += start_note_;
+  }
+
+  // The line search on the odometry's scale factor after the last joint solve
+  // (floor_scale_line_search; docs/bundle_adjustment.md, "Floor scale bias: the line search"). The
+  // joint solves stop, by their function tolerance, with the scale part-way along its shallow
+  // direction; with lambda held, the same solves converge. So: the map scaled to lambda (1 - d),
+  // lambda and lambda (1 + d), each solved with lambda held (at the intermediate tolerance), a
+  // parabola through the three costs, and the map solved once more (at function_tolerance) at its
+  // minimum, at most 2 d away (where the three samples still describe the cost). d is lambda's
+  // standard error through the per-step priors, translation_sigma / sqrt(steps): the change of
+  // scale the odometry itself cannot tell. The result is kept only if its cost is below the last
+  // solve's.
+  Status SearchScale() {
+    if (!scale_free_ || (floor_.points.empty() && floor_.lines.empty()) || poses_.size() < 2) return Status::Ok();
+    const std::vector<PoseParameters> poses = poses_;
+    const Landmarks landmarks = *landmarks_;
+    const std::array<double, 3> bias = rotation_bias_;
+    const std::vector<std::array<Eigen::Vector3d, 2>> anchors = floor_anchors_;
+    const double scale = odometry_scale_, cost = summary_->final_cost;
+    const std::string solver_report = summary_->solver_report;
+    const bool converged = summary_->converged;
+    auto restore = [&] {
+      poses_ = poses;
+      *landmarks_ = landmarks;
+      rotation_bias_ = bias;
+      floor_anchors_ = anchors;
+      odometry_scale_ = scale;
+    };
+    auto cost_at = [&](double target, double tolerance, double* result) -> Status {
+      restore();
+      ScaleMapAboutFirstCamera(target / scale);
+      hold_scale_ = true;
+      const Status status = Solve(options_.robust_loss_scale_px, /*with_lines=*/true, tolerance);
+      hold_scale_ = false;
+      *result = summary_->final_cost;
+      return status;
+    };
+    const double step = noise_.translation_sigma / std::sqrt(static_cast<double>(poses_.size() - 1));
+    const double loose = std::max(options_.intermediate_function_tolerance, options_.function_tolerance);
+    double below = 0, centre = 0, above = 0, found = 0;
+    SFM_RETURN_IF_ERROR(cost_at(scale * (1 - step), loose, &below));
+    SFM_RETURN_IF_ERROR(cost_at(scale, loose, &centre));
+    SFM_RETURN_IF_ERROR(cost_at(scale * (1 + step), loose, &above));
+    const double x = ParabolaMinimumStep(below, centre, above, /*max_steps=*/2);
+    const double target = scale * (1 + x * step);
+    SFM_RETURN_IF_ERROR(cost_at(target, options_.function_tolerance, &found));
+    if (!(found < cost)) {
+      restore();
+      summary_->final_cost = cost;
+      summary_->solver_report = solver_report;
+      summary_->converged = converged;
+      scale_search_note_ = "; scale line search kept " + std::to_string(scale);
+    } else {
+      scale_search_note_ = "; scale line search " + std::to_string(scale) + " -> " + std::to_string(target);
+    }
+    summary_->floor_prior_report += scale_search_note_;
+    return Status::Ok();
   }
 
   // The odometry's scale factor is a block of the problem: freed by the floor prior, or held at a
@@ -627,7 +694,7 @@ class BundleAdjuster {
     if (scaled) {
       problem.AddParameterBlock(&odometry_scale_, 1);
       ordering->AddElementToGroup(&odometry_scale_, 1);
-      if (!scale_free_) problem.SetParameterBlockConstant(&odometry_scale_);
+      if (!scale_free_ || hold_scale_) problem.SetParameterBlockConstant(&odometry_scale_);
     }
     if (scale_free_) {
       for (int point : floor_.points) {
@@ -812,6 +879,8 @@ class BundleAdjuster {
   bool base_on_floor_ = false;  // BaseOnFloorCost on every pose but the first while scale_free_
   std::string stray_slab_note_;  // the report's note when the first selection passed over a stray slab
   std::string start_note_;  // the report's note of the scale the floor's start set (floor_rescale_start)
+  std::string scale_search_note_;  // the report's note of the scale line search (floor_scale_line_search)
+  bool hold_scale_ = false;  // the odometry's scale factor held in Solve (the line search's samples)
   FloorLandmarks floor_;
   std::vector<std::array<Eigen::Vector3d, 2>> floor_anchors_;
   double odometry_scale_ = 1;

@@ -63,4 +63,9 @@ double FloorScaleGain(double camera_z_m, double plane_z_m);
 // about `centre`.
 void ScaleLandmarksAbout(const Eigen::Vector3d& centre, double gain, Landmarks* landmarks);
 
+// The minimum of the parabola through three costs sampled one step apart (at -1, 0, +1 steps), in
+// steps, clamped to [-max_steps, max_steps]; when the parabola is not convex, the step of the
+// lowest sample (-1, 0 or +1; 0 on ties with the centre).
+double ParabolaMinimumStep(double cost_below, double cost_centre, double cost_above, double max_steps);
+
 }  // namespace sfm
