@@ -314,7 +314,7 @@ class BundleAdjuster {
   // odometry's scale the joint solves must move every pose and landmark along one shallow
   // direction (a low camera's floor observes the scale weakly), and they end by their function
   // tolerance with the scale still part-way there, biased towards the odometry's
-  // (docs/bundle_adjustment.md, "Floor scale bias: the start").
+  // (docs/bundle_adjustment.md, "Floor scale bias: the start and the line search").
   void RescaleToFloor() {
     // A floor the noise model does not allow (applied with --floor_prior=on) says nothing of scale.
     if (!scale_free_ || !summary_->floor_plane_z_m || !(std::abs(*summary_->floor_plane_z_m) <= AllowedFloorHeight())) {
@@ -347,9 +347,9 @@ class BundleAdjuster {
   }
 
   // The line search on the odometry's scale factor after the last joint solve
-  // (floor_scale_line_search; docs/bundle_adjustment.md, "Floor scale bias: the line search"). The
-  // joint solves stop, by their function tolerance, with the scale part-way along its shallow
-  // direction; with lambda held, the same solves converge. So: the map scaled to lambda (1 - d),
+  // (floor_scale_line_search; docs/bundle_adjustment.md, "Floor scale bias: the start and the line
+  // search"). The joint solves stop, by their function tolerance, with the scale part-way along its
+  // shallow direction; with lambda held, the same solves converge. So: the map scaled to lambda (1 - d),
   // lambda and lambda (1 + d), each solved with lambda held (at the intermediate tolerance), a
   // parabola through the three costs, and the map solved once more (at function_tolerance) at its
   // minimum, at most 2 d away (where the three samples still describe the cost). d is lambda's

@@ -94,14 +94,15 @@ struct BundleAdjustmentOptions {
   // match (the floor's height on the coarse map measures the odometry's scale error). Without it
   // the fine solves start at the odometry's scale and stop, by their function tolerance, before
   // the shallow scale direction has converged, part of the odometry's scale error left. Off: on
-  // held-out sequences it was neutral (docs/bundle_adjustment.md, "Floor scale bias: the start").
+  // held-out sequences it was neutral (docs/bundle_adjustment.md, "Floor scale bias: the start
+  // and the line search").
   bool floor_rescale_start = false;
   // When the floor prior applies, after the last joint solve, a line search on the odometry's
   // scale factor: three solves with it held at lambda and lambda (1 +- translation_sigma /
   // sqrt(steps)), a parabola through their costs, a last solve at its minimum (at most two such
   // steps away), kept if its cost is lower. The joint solves stop with the scale part-way along its
-  // shallow direction; held, they converge (docs/bundle_adjustment.md, "Floor scale bias: the line
-  // search").
+  // shallow direction; held, they converge (docs/bundle_adjustment.md, "Floor scale bias: the start
+  // and the line search").
   bool floor_scale_line_search = true;
   // Landmarks a floor plane needs at least (besides being a peak of the height distribution).
   int floor_min_landmarks = 10;

@@ -654,7 +654,7 @@ TEST(FloorPriorTest, RotationBiasIsEstimatedWhereTheFloorPriorMayApply) {
 // The start at the floor's scale (floor_rescale_start): the odometry 3 % too long and 3 % too short,
 // the camera 0.5 m above the floor, every solve ended at a loose function tolerance (1e-2) as the
 // pipeline's solves end before the shallow scale direction has converged (docs/bundle_adjustment.md,
-// "Floor scale bias: the start"). The odometry's scale factor times (1 + error) is the trajectory's
+// "Floor scale bias: the start and the line search"). The odometry's scale factor times (1 + error) is the trajectory's
 // length against the truth; it should not depend on the sign of the odometry's error. Figure
 // protected: the gap between the two runs at most 0.005 started at the floor's scale (observed
 // 0.0036: 0.99676 / 0.99314), and more than that started at the odometry's (observed 0.0103:
