@@ -110,6 +110,12 @@ DEFINE_string(floor_prior, FloorPriorName(kDefaults.bundle_adjustment_options.fl
 DEFINE_bool(floor_base_prior, kDefaults.bundle_adjustment_options.floor_base_prior,
             "Bundle adjustment: with the floor prior applied and the odometry on the floor plane, also hold every "
             "base pose's height and tilt there (floor sigma, and floor sigma / camera height rad).");
+DEFINE_bool(floor_rescale_start, kDefaults.bundle_adjustment_options.floor_rescale_start,
+            "Bundle adjustment: with the floor prior applied, start its solves from the coarse map scaled so that "
+            "the floor found on it is at z = 0 (and the odometry's scale factor to match).");
+DEFINE_bool(floor_scale_line_search, kDefaults.bundle_adjustment_options.floor_scale_line_search,
+            "Bundle adjustment: with the floor prior applied, after the last solve, a line search on the odometry's "
+            "scale factor (three solves with it held, a parabola, a last solve at its minimum).");
 DEFINE_string(
     odometry_rotation_bias,
     kDefaults.bundle_adjustment_options.estimate_odometry_rotation_bias            ? "on"
@@ -178,6 +184,8 @@ bool OptionsFromFlags(sfm::PipelineOptions* options, std::string* error) {
   options->triangulation.wireframe.pose_error_from_bundle_adjustment = FLAGS_wireframe_ba_pose_error;
   options->triangulation.wireframe.line_sigma_subtracts_plane_noise = FLAGS_wireframe_plane_noise;
   options->bundle_adjustment_options.floor_base_prior = FLAGS_floor_base_prior;
+  options->bundle_adjustment_options.floor_rescale_start = FLAGS_floor_rescale_start;
+  options->bundle_adjustment_options.floor_scale_line_search = FLAGS_floor_scale_line_search;
   if (FLAGS_floor_prior == "auto") {
     options->bundle_adjustment_options.floor_prior = sfm::FloorPriorMode::kAuto;
   } else if (FLAGS_floor_prior == "on") {

@@ -151,6 +151,7 @@ class BundleAdjuster {
     if (CountObservations() == 0) return RevertToOdometry("no landmark left observable on the refined poses");
     // 5. The floor prior, decided on the coarse map (its floor is where the odometry's scale put it).
     SelectFloor(/*first=*/true);
+    if (options_.floor_rescale_start) RescaleToFloor();
     // A solve that an outlier round follows stops at the looser intermediate tolerance; the
     // returned result always comes from a solve at function_tolerance.
     bool loose = options_.outlier_rounds > 0;
@@ -170,6 +171,7 @@ class BundleAdjuster {
     if (loose) {
       SFM_RETURN_IF_ERROR(Solve(options_.robust_loss_scale_px, /*with_lines=*/true, options_.function_tolerance));
     }
+    if (options_.floor_scale_line_search) SFM_RETURN_IF_ERROR(SearchScale());
     ComputeRms();
     FinishFloorSummary();
     return Status::Ok();
@@ -267,11 +269,7 @@ class BundleAdjuster {
     FloorPlane plane = FindFloorPlane(*landmarks_, camera_z_m, half_width_m, options_.floor_min_landmarks,
                                       first ? std::nullopt : std::optional<double>(0.0));
     if (!plane.found) return skip(plane.why);
-    // The floor of a map whose trajectory is s times too long is at (1 - s) * camera height
-    // (the map scaled about the cameras, which the rig holds at their height); the noise model
-    // allows |s - 1| up to 3 translation sigmas, and the slab's half width is the plane's own
-    // resolution.
-    const double allowed_m = 3 * noise_.translation_sigma * camera_height_m + half_width_m;
+    const double allowed_m = AllowedFloorHeight();
     if (automatic && plane.z_m < -allowed_m) {
       // Mis-triangulated landmarks under the floor can gather in a slab, but not outnumber the
       // floor: a plane where the noise model allows it, holding more, is the floor.
@@ -299,7 +297,110 @@ class BundleAdjuster {
                                    std::to_string(plane.support) + " of " + std::to_string(plane.below_camera) +
                                    " landmarks below the cameras), " + std::to_string(floor_.points.size()) +
                                    " points and " + std::to_string(floor_.lines.size()) + " lines held" +
-                                   (base_on_floor_ ? ", base poses held on it" : "") + stray_slab_note_;
+                                   (base_on_floor_ ? ", base poses held on it" : "") + stray_slab_note_ + start_note_;
+  }
+
+  // How far from z = 0 the floor of a map at the odometry's scale may be: a map whose trajectory is
+  // s times too long has its floor at (1 - s) * camera height (the map scaled about the cameras,
+  // which the rig holds at their height); the noise model allows |s - 1| up to 3 translation
+  // sigmas, and the slab's half width (3 floor sigmas) is the plane's own resolution.
+  double AllowedFloorHeight() const {
+    return 3 * noise_.translation_sigma * base_T_camera_.translation.z() + 3 * options_.floor_sigma_m;
+  }
+
+  // With the floor prior applied, the coarse map (at the odometry's scale) scaled about the first
+  // camera, whose pose is held, so that the floor found on it lies at z = 0, and the odometry's
+  // scale factor set to the same gain: the start the floor's scale implies. Why: from the
+  // odometry's scale the joint solves must move every pose and landmark along one shallow
+  // direction (a low camera's floor observes the scale weakly), and they end by their function
+  // tolerance with the scale still part-way there, biased towards the odometry's
+  // (docs/bundle_adjustment.md, "Floor scale bias: the start and the line search").
+  void RescaleToFloor() {
+    // A floor the noise model does not allow (applied with --floor_prior=on) says nothing of scale.
+    if (!scale_free_ || !summary_->floor_plane_z_m || !(std::abs(*summary_->floor_plane_z_m) <= AllowedFloorHeight())) {
+      return;
+    }
+    const double gain =
+        FloorScaleGain((poses_[0].ToPose() * base_T_camera_).translation.z(), *summary_->floor_plane_z_m);
+    if (gain == 1) return;
+    ScaleMapAboutFirstCamera(gain);
+    start_note_ = "; started at odometry scale " + std::to_string(odometry_scale_);
+    summary_->floor_prior_report += start_note_;
+  }
+
+  // The map scaled by `gain` about the first camera's centre (its pose is held): the cameras'
+  // centres (rotations kept), every landmark, the floor lines' anchors and the odometry's scale
+  // factor. The images see no change (cameras at the first camera's height keep it); only the
+  // floor's height and the scale prior do.
+  void ScaleMapAboutFirstCamera(double gain) {
+    const Eigen::Vector3d centre = (poses_[0].ToPose() * base_T_camera_).translation;
+    for (size_t f = 1; f < poses_.size(); ++f) {
+      Pose3 camera = poses_[f].ToPose() * base_T_camera_;
+      camera.translation = centre + gain * (camera.translation - centre);
+      poses_[f] = PoseParameters::FromPose(camera * base_T_camera_.Inverse());
+    }
+    ScaleLandmarksAbout(centre, gain, landmarks_);
+    for (auto& anchors : floor_anchors_) {
+      for (Eigen::Vector3d& anchor : anchors) anchor = centre + gain * (anchor - centre);
+    }
+    odometry_scale_ *= gain;
+  }
+
+  // The line search on the odometry's scale factor after the last joint solve
+  // (floor_scale_line_search; docs/bundle_adjustment.md, "Floor scale bias: the start and the line
+  // search"). The joint solves stop, by their function tolerance, with the scale part-way along its
+  // shallow direction; with lambda held, the same solves converge. So: the map scaled to lambda (1 - d),
+  // lambda and lambda (1 + d), each solved with lambda held (at the intermediate tolerance), a
+  // parabola through the three costs, and the map solved once more (at function_tolerance) at its
+  // minimum, at most 2 d away (where the three samples still describe the cost). d is lambda's
+  // standard error through the per-step priors, translation_sigma / sqrt(steps): the change of
+  // scale the odometry itself cannot tell. The result is kept only if its cost is below the last
+  // solve's.
+  Status SearchScale() {
+    if (!scale_free_ || (floor_.points.empty() && floor_.lines.empty()) || poses_.size() < 2) return Status::Ok();
+    const std::vector<PoseParameters> poses = poses_;
+    const Landmarks landmarks = *landmarks_;
+    const std::array<double, 3> bias = rotation_bias_;
+    const std::vector<std::array<Eigen::Vector3d, 2>> anchors = floor_anchors_;
+    const double scale = odometry_scale_, cost = summary_->final_cost;
+    const std::string solver_report = summary_->solver_report;
+    const bool converged = summary_->converged;
+    auto restore = [&] {
+      poses_ = poses;
+      *landmarks_ = landmarks;
+      rotation_bias_ = bias;
+      floor_anchors_ = anchors;
+      odometry_scale_ = scale;
+    };
+    auto cost_at = [&](double target, double tolerance, double* result) -> Status {
+      restore();
+      ScaleMapAboutFirstCamera(target / scale);
+      hold_scale_ = true;
+      const Status status = Solve(options_.robust_loss_scale_px, /*with_lines=*/true, tolerance);
+      hold_scale_ = false;
+      *result = summary_->final_cost;
+      return status;
+    };
+    const double step = noise_.translation_sigma / std::sqrt(static_cast<double>(poses_.size() - 1));
+    const double loose = std::max(options_.intermediate_function_tolerance, options_.function_tolerance);
+    double below = 0, centre = 0, above = 0, found = 0;
+    SFM_RETURN_IF_ERROR(cost_at(scale * (1 - step), loose, &below));
+    SFM_RETURN_IF_ERROR(cost_at(scale, loose, &centre));
+    SFM_RETURN_IF_ERROR(cost_at(scale * (1 + step), loose, &above));
+    const double x = ParabolaMinimumStep(below, centre, above, /*max_steps=*/2);
+    const double target = scale * (1 + x * step);
+    SFM_RETURN_IF_ERROR(cost_at(target, options_.function_tolerance, &found));
+    if (!(found < cost)) {
+      restore();
+      summary_->final_cost = cost;
+      summary_->solver_report = solver_report;
+      summary_->converged = converged;
+      scale_search_note_ = "; scale line search kept " + std::to_string(scale);
+    } else {
+      scale_search_note_ = "; scale line search " + std::to_string(scale) + " -> " + std::to_string(target);
+    }
+    summary_->floor_prior_report += scale_search_note_;
+    return Status::Ok();
   }
 
   // The odometry's scale factor is a block of the problem: freed by the floor prior, or held at a
@@ -593,7 +694,7 @@ class BundleAdjuster {
     if (scaled) {
       problem.AddParameterBlock(&odometry_scale_, 1);
       ordering->AddElementToGroup(&odometry_scale_, 1);
-      if (!scale_free_) problem.SetParameterBlockConstant(&odometry_scale_);
+      if (!scale_free_ || hold_scale_) problem.SetParameterBlockConstant(&odometry_scale_);
     }
     if (scale_free_) {
       for (int point : floor_.points) {
@@ -777,6 +878,9 @@ class BundleAdjuster {
   bool scale_free_ = false;
   bool base_on_floor_ = false;  // BaseOnFloorCost on every pose but the first while scale_free_
   std::string stray_slab_note_;  // the report's note when the first selection passed over a stray slab
+  std::string start_note_;  // the report's note of the scale the floor's start set (floor_rescale_start)
+  std::string scale_search_note_;  // the report's note of the scale line search (floor_scale_line_search)
+  bool hold_scale_ = false;  // the odometry's scale factor held in Solve (the line search's samples)
   FloorLandmarks floor_;
   std::vector<std::array<Eigen::Vector3d, 2>> floor_anchors_;
   double odometry_scale_ = 1;

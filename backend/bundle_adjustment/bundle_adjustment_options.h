@@ -89,6 +89,21 @@ struct BundleAdjustmentOptions {
   // tilt with floor_sigma_m / camera height (the tilt that moves the floor under the camera by one
   // sigma, the rig check's own tolerance). docs/bundle_adjustment.md, "Floor prior".
   bool floor_base_prior = true;
+  // When the floor prior applies, start its solves from the coarse map scaled about the first
+  // camera so that the floor found on it lies at z = 0, with the odometry's scale factor set to
+  // match (the floor's height on the coarse map measures the odometry's scale error). Without it
+  // the fine solves start at the odometry's scale and stop, by their function tolerance, before
+  // the shallow scale direction has converged, part of the odometry's scale error left. Off: on
+  // held-out sequences it was neutral (docs/bundle_adjustment.md, "Floor scale bias: the start
+  // and the line search").
+  bool floor_rescale_start = false;
+  // When the floor prior applies, after the last joint solve, a line search on the odometry's
+  // scale factor: three solves with it held at lambda and lambda (1 +- translation_sigma /
+  // sqrt(steps)), a parabola through their costs, a last solve at its minimum (at most two such
+  // steps away), kept if its cost is lower. The joint solves stop with the scale part-way along its
+  // shallow direction; held, they converge (docs/bundle_adjustment.md, "Floor scale bias: the start
+  // and the line search").
+  bool floor_scale_line_search = true;
   // Landmarks a floor plane needs at least (besides being a peak of the height distribution).
   int floor_min_landmarks = 10;
 

@@ -135,4 +135,30 @@ FloorLandmarks SelectFloorLandmarks(const Landmarks& landmarks, double plane_z_m
   return selected;
 }
 
+double FloorScaleGain(double camera_z_m, double plane_z_m) {
+  if (!(camera_z_m > plane_z_m)) return 1;
+  return camera_z_m / (camera_z_m - plane_z_m);
+}
+
+void ScaleLandmarksAbout(const Eigen::Vector3d& centre, double gain, Landmarks* landmarks) {
+  auto scaled = [&](const Eigen::Vector3d& x) -> Eigen::Vector3d { return centre + gain * (x - centre); };
+  for (PointLandmark& point : landmarks->points) point.position = scaled(point.position);
+  for (LineLandmark& line : landmarks->lines) {
+    line.point = scaled(line.point);
+    line.end0 = scaled(line.end0);
+    line.end1 = scaled(line.end1);
+  }
+}
+
+double ParabolaMinimumStep(double cost_below, double cost_centre, double cost_above, double max_steps) {
+  // c(x) = a x^2 + b x + c0 through (-1, below), (0, centre), (1, above).
+  const double a = (cost_above + cost_below - 2 * cost_centre) / 2;
+  const double b = (cost_above - cost_below) / 2;
+  if (a > 0) return std::clamp(-b / (2 * a), -max_steps, max_steps);
+  // Not convex: the three samples say nothing of a minimum beyond them; the lowest one.
+  if (cost_below < cost_centre && cost_below <= cost_above) return -1;
+  if (cost_above < cost_centre && cost_above < cost_below) return 1;
+  return 0;
+}
+
 }  // namespace sfm

@@ -53,4 +53,19 @@ struct FloorLandmarks {
 // The landmarks within half_width_m of height plane_z_m (lines: both ends).
 FloorLandmarks SelectFloorLandmarks(const Landmarks& landmarks, double plane_z_m, double half_width_m);
 
+// The gain that scales a map about a camera centre at height camera_z_m so that a floor plane
+// found at plane_z_m goes to z = 0: camera_z_m / (camera_z_m - plane_z_m). A map whose trajectory
+// is s times too long has its floor at (1 - s) camera_z_m, so this gain is 1 / s. 1 when the plane
+// is not below the camera.
+double FloorScaleGain(double camera_z_m, double plane_z_m);
+
+// Every landmark (points; lines' point, end0 and end1; directions unchanged) scaled by `gain`
+// about `centre`.
+void ScaleLandmarksAbout(const Eigen::Vector3d& centre, double gain, Landmarks* landmarks);
+
+// The minimum of the parabola through three costs sampled one step apart (at -1, 0, +1 steps), in
+// steps, clamped to [-max_steps, max_steps]; when the parabola is not convex, the step of the
+// lowest sample (-1, 0 or +1; 0 on ties with the centre).
+double ParabolaMinimumStep(double cost_below, double cost_centre, double cost_above, double max_steps);
+
 }  // namespace sfm
