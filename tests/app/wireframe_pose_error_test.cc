@@ -20,7 +20,8 @@ namespace {
 namespace fs = std::filesystem;
 
 // With the option on, the selection uses the covariance (metrics.json says so and how long it
-// took: under 0.2 s, measured 0.02-0.03 s on 60 frames), and the covariance is calibrated frame
+// took; measured 0.02-0.03 s on 60 frames, but a unit test does not bound time: the machine may be
+// shared, or the build a sanitizer's), and the covariance is calibrated frame
 // to frame: over all consecutive pairs the predicted RMS relative rotation error is within
 // 0.7-1.6 times the refined trajectory's actual one, and the camera centre's within 0.5-2 times
 // (measured here 1.09 and 1.52; 0.8-1.3 for both on the benchmark's default-noise and held-out
@@ -44,8 +45,7 @@ TEST(WireframePoseError, BundleAdjustmentCovarianceIsUsedAndCalibratedFrameToFra
   const Status status = RunPipeline(options, &result);
   ASSERT_TRUE(status.ok()) << status.message();
   EXPECT_EQ(result.wireframe_selection.pose_error_model, "bundle_adjustment");
-  EXPECT_GT(result.wireframe_selection.pose_covariance_seconds, 0);
-  EXPECT_LT(result.wireframe_selection.pose_covariance_seconds, 0.2);
+  EXPECT_GT(result.wireframe_selection.pose_covariance_seconds, 0);  // recorded
   std::ifstream metrics(scratch / "output" / "metrics.json");
   std::stringstream text;
   text << metrics.rdbuf();
