@@ -137,6 +137,12 @@ DEFINE_string(
 DEFINE_bool(wireframe_ba_pose_error, kDefaults.triangulation.wireframe.pose_error_from_bundle_adjustment,
             "Wireframe selection: the pose error of the determination test from bundle adjustment's own pose "
             "covariance instead of the fixed random walk.");
+DEFINE_double(wireframe_tolerance_m, kDefaults.triangulation.wireframe.tolerance_m,
+              "Wireframe selection: an accuracy asked of the drawn map, metres (0: off): the least determined "
+              "vertices are dropped until the predicted share within it is --wireframe_tolerance_share "
+              "(docs/tracks_and_triangulation.md, \"An accuracy asked of the map\").");
+DEFINE_double(wireframe_tolerance_share, kDefaults.triangulation.wireframe.tolerance_share,
+              "Wireframe selection: the share of drawn vertices asked to be within --wireframe_tolerance_m.");
 DEFINE_bool(wireframe_plane_noise, kDefaults.triangulation.wireframe.line_sigma_subtracts_plane_noise,
             "Wireframe selection: a line vertex's sigma subtracts the information its planes' own noise "
             "fakes (a line whose planes spread no more than that noise is undetermined).");
@@ -183,6 +189,8 @@ bool OptionsFromFlags(sfm::PipelineOptions* options, std::string* error) {
   options->bundle_adjustment_options.num_threads = FLAGS_threads;
   options->triangulation.wireframe.pose_error_from_bundle_adjustment = FLAGS_wireframe_ba_pose_error;
   options->triangulation.wireframe.line_sigma_subtracts_plane_noise = FLAGS_wireframe_plane_noise;
+  options->triangulation.wireframe.tolerance_m = FLAGS_wireframe_tolerance_m;
+  options->triangulation.wireframe.tolerance_share = FLAGS_wireframe_tolerance_share;
   options->bundle_adjustment_options.floor_base_prior = FLAGS_floor_base_prior;
   options->bundle_adjustment_options.floor_rescale_start = FLAGS_floor_rescale_start;
   options->bundle_adjustment_options.floor_scale_line_search = FLAGS_floor_scale_line_search;

@@ -116,6 +116,9 @@ std::string WireframeJson(const PipelineResult& result) {
          ", \"lines_undetermined\": " +
          std::to_string(report.lines_uncertain_end0 + report.lines_uncertain_end1) +
          ", \"lines_unbounded\": " + std::to_string(report.lines_unbounded) +
+         ", \"points_beyond_tolerance\": " + std::to_string(report.points_beyond_tolerance) +
+         ", \"lines_beyond_tolerance\": " + std::to_string(report.lines_beyond_tolerance) +
+         ", \"predicted_share\": " + JsonNumber(report.predicted_share) +
          ", \"pose_error_model\": " + JsonString(report.pose_error_model) +
          ", \"pose_covariance_s\": " + JsonNumber(report.pose_covariance_seconds) + "}";
 }

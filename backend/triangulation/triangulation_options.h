@@ -130,12 +130,25 @@ struct WireframeOptions {
   // end-points' noise makes is undetermined, however its noisy estimate happens to look.
   // docs/tracks_and_triangulation.md, "Plane noise in the line sigma".
   bool line_sigma_subtracts_plane_noise = true;
+  // An accuracy the user asks of the drawn map, in the world's units: at least tolerance_share of
+  // the drawn vertices within tolerance_m of their true position, as the vertex sigmas predict it.
+  // The rules above are relative to depth (a vertex 6 m away may be off by 20 cm and pass); with
+  // tolerance_m > 0 the least determined vertices are then dropped, largest sigma first, until the
+  // predicted share of drawn vertices within tolerance_m is at least tolerance_share (a vertex
+  // within it with probability 1 - exp(-tolerance_m^2 / (2 sigma^2)): its error across the true
+  // edge as a two-dimensional Gaussian of its worst-direction sigma in both directions, an upper
+  // bound on its miss probability). Nothing is dropped where the prediction already meets the
+  // share. 0: off. docs/tracks_and_triangulation.md, "An accuracy asked of the map".
+  double tolerance_m = 0;
+  double tolerance_share = 0.9;  // in (0, 1)
 
   Status Check() const {
     auto bad = [](const std::string& what) { return Status::Error("WireframeOptions: " + what); };
     if (occlusion_candidate_min_views < 2) return bad("occlusion_candidate_min_views must be >= 2");
     if (!(pixel_sigma_px > 0 && std::isfinite(pixel_sigma_px))) return bad("pixel_sigma_px must be finite and > 0");
     if (!(consistency_level > 0 && consistency_level < 1)) return bad("consistency_level must be in (0, 1)");
+    if (!(tolerance_m >= 0 && std::isfinite(tolerance_m))) return bad("tolerance_m must be finite and >= 0");
+    if (!(tolerance_share > 0 && tolerance_share < 1)) return bad("tolerance_share must be in (0, 1)");
     if (!(min_equivalent_parallax_deg > 0 && min_equivalent_parallax_deg < 90)) {
       return bad("min_equivalent_parallax_deg must be in (0, 90)");
     }

@@ -40,6 +40,88 @@ bool BoundOnFinalPoses(const Eigen::Matrix3d& K, const std::vector<LineView>& vi
   return BoundLine(K, views, Line3{line.point, line.direction}, junction_point, options, segment) == LineStatus::kOk;
 }
 
+// The probability that a vertex of worst-direction sigma lies within `tolerance` of its true
+// position across the edge: its error there taken as a two-dimensional Gaussian with that sigma in
+// both directions (Rayleigh), which no error with smaller sigmas in some direction exceeds.
+double WithinTolerance(double sigma, double tolerance) {
+  if (!(sigma > 0)) return 1;
+  return 1 - std::exp(-tolerance * tolerance / (2 * sigma * sigma));
+}
+
+// WireframeOptions::tolerance_m: drops the landmarks of the least determined vertices, largest
+// sigma first, until the predicted share of the remaining vertices within the tolerance is at least
+// options.tolerance_share. A point takes the lines drawn from it with it (their edge starts at
+// the point). point_sigma[i] is kept point i's sigma; end0_sigma[j] (negative: end0 is a point)
+// and end1_sigma[j] kept line j's.
+void DropBeyondTolerance(const WireframeOptions& options, const std::vector<double>& point_sigma,
+                         const std::vector<double>& end0_sigma, const std::vector<double>& end1_sigma,
+                         Landmarks* selected, WireframeSelectionReport* counts) {
+  struct Vertex {
+    double sigma;
+    bool point;
+    int index;
+  };
+  std::vector<Vertex> vertices;
+  double expected = 0;
+  for (size_t i = 0; i < point_sigma.size(); ++i) vertices.push_back({point_sigma[i], true, static_cast<int>(i)});
+  for (size_t j = 0; j < end1_sigma.size(); ++j) {
+    vertices.push_back({end1_sigma[j], false, static_cast<int>(j)});
+    if (end0_sigma[j] >= 0) vertices.push_back({end0_sigma[j], false, static_cast<int>(j)});
+  }
+  for (const Vertex& v : vertices) expected += WithinTolerance(v.sigma, options.tolerance_m);
+  int count = static_cast<int>(vertices.size());
+  std::vector<std::vector<int>> lines_of_point(point_sigma.size());
+  for (size_t j = 0; j < selected->lines.size(); ++j) {
+    if (selected->lines[j].point_landmark >= 0) lines_of_point[selected->lines[j].point_landmark].push_back(j);
+  }
+  std::sort(vertices.begin(), vertices.end(), [](const Vertex& a, const Vertex& b) { return a.sigma > b.sigma; });
+  std::vector<bool> point_dropped(point_sigma.size(), false), line_dropped(end1_sigma.size(), false);
+  auto drop_line = [&](int j) {
+    line_dropped[j] = true;
+    expected -= WithinTolerance(end1_sigma[j], options.tolerance_m);
+    --count;
+    if (end0_sigma[j] >= 0) {
+      expected -= WithinTolerance(end0_sigma[j], options.tolerance_m);
+      --count;
+    }
+  };
+  for (const Vertex& v : vertices) {
+    if (count == 0 || expected >= options.tolerance_share * count) break;
+    if (v.point ? point_dropped[v.index] : line_dropped[v.index]) continue;
+    if (!v.point) {
+      drop_line(v.index);
+      continue;
+    }
+    point_dropped[v.index] = true;
+    expected -= WithinTolerance(v.sigma, options.tolerance_m);
+    --count;
+    for (int j : lines_of_point[v.index]) {
+      if (!line_dropped[j]) drop_line(j);
+    }
+  }
+  Landmarks kept;
+  std::vector<int> new_index(point_sigma.size(), -1);
+  for (size_t i = 0; i < selected->points.size(); ++i) {
+    if (point_dropped[i]) {
+      ++counts->points_beyond_tolerance;
+      continue;
+    }
+    new_index[i] = static_cast<int>(kept.points.size());
+    kept.points.push_back(std::move(selected->points[i]));
+  }
+  for (size_t j = 0; j < selected->lines.size(); ++j) {
+    if (line_dropped[j]) {
+      ++counts->lines_beyond_tolerance;
+      continue;
+    }
+    LineLandmark line = std::move(selected->lines[j]);
+    if (line.point_landmark >= 0) line.point_landmark = new_index[line.point_landmark];
+    kept.lines.push_back(std::move(line));
+  }
+  counts->predicted_share = count > 0 ? expected / count : 1;
+  *selected = std::move(kept);
+}
+
 }  // namespace
 
 double MaxVertexSigma(const WireframeOptions& options, double fx, double depth) {
@@ -119,6 +201,9 @@ Landmarks SelectWireframeLandmarks(const Eigen::Matrix3d& K, const std::vector<P
   WireframeSelectionReport counts;
   Landmarks selected;
   std::vector<int> new_index(landmarks.points.size(), -1);
+  // The drawn vertices' sigmas, for the accuracy asked (tolerance_m): kept points', and kept lines'
+  // end0 (negative when it is a point) and end1.
+  std::vector<double> point_sigmas, end0_sigmas, end1_sigmas;
   for (size_t i = 0; i < landmarks.points.size(); ++i) {
     const PointLandmark& point = landmarks.points[i];
     std::vector<Pose3> cameras;
@@ -144,11 +229,12 @@ Landmarks SelectWireframeLandmarks(const Eigen::Matrix3d& K, const std::vector<P
       ++counts.points_occlusion_untested;
       continue;
     }
-    if (!determined(PointPositionSigma(K, cameras, frames, point.position, sigma_px, drift),
-                    SmallestDepth(cameras, point.position))) {
+    const double point_sigma = PointPositionSigma(K, cameras, frames, point.position, sigma_px, drift);
+    if (!determined(point_sigma, SmallestDepth(cameras, point.position))) {
       ++counts.points_uncertain;
       continue;
     }
+    point_sigmas.push_back(point_sigma);
     new_index[i] = static_cast<int>(selected.points.size());
     selected.points.push_back(point);
   }
@@ -191,20 +277,26 @@ Landmarks SelectWireframeLandmarks(const Eigen::Matrix3d& K, const std::vector<P
     kept.direction = (segment.end1 - segment.end0).normalized();
     kept.end0 = kept.point_landmark >= 0 ? line.end0 : segment.end0;
     kept.end1 = segment.end1;
-    if (kept.point_landmark < 0 &&
-        !determined(LinePositionSigma(K, views, kept.end0, kept.direction, sigma_px, drift,
-                                      options.line_sigma_subtracts_plane_noise),
-                    SmallestDepth(cameras, kept.end0))) {
+    const double end0_sigma =
+        kept.point_landmark < 0 ? LinePositionSigma(K, views, kept.end0, kept.direction, sigma_px, drift,
+                                                    options.line_sigma_subtracts_plane_noise)
+                                : -1;
+    if (kept.point_landmark < 0 && !determined(end0_sigma, SmallestDepth(cameras, kept.end0))) {
       ++counts.lines_uncertain_end0;
       continue;
     }
-    if (!determined(LinePositionSigma(K, views, kept.end1, kept.direction, sigma_px, drift,
-                                      options.line_sigma_subtracts_plane_noise),
-                    SmallestDepth(cameras, kept.end1))) {
+    const double end1_sigma = LinePositionSigma(K, views, kept.end1, kept.direction, sigma_px, drift,
+                                                options.line_sigma_subtracts_plane_noise);
+    if (!determined(end1_sigma, SmallestDepth(cameras, kept.end1))) {
       ++counts.lines_uncertain_end1;
       continue;
     }
+    end0_sigmas.push_back(end0_sigma);
+    end1_sigmas.push_back(end1_sigma);
     selected.lines.push_back(std::move(kept));
+  }
+  if (options.tolerance_m > 0) {
+    DropBeyondTolerance(options, point_sigmas, end0_sigmas, end1_sigmas, &selected, &counts);
   }
   counts.pixel_sigma_px = sigma_px;
   counts.points_kept = static_cast<int>(selected.points.size());

@@ -28,6 +28,9 @@ struct WireframeSelectionReport {
   int lines_uncertain_end0 = 0;   // the junction end (the line's own, or a dropped point's) too uncertain
   int lines_uncertain_end1 = 0;   // the far end too uncertain
   int lines_unbounded = 0;        // no extent of positive length in front of the cameras on the final poses
+  int points_beyond_tolerance = 0;  // dropped by the accuracy asked (WireframeOptions::tolerance_m)
+  int lines_beyond_tolerance = 0;   // the same, lines (with their own vertex, or their point's)
+  double predicted_share = 0;       // the drawn vertices' predicted share within tolerance_m (0: off)
   int points_kept = 0, lines_kept = 0;
   double pixel_sigma_px = 0;      // the noise the chi-square tests used
   // Set by the pipeline: the pose error model of the determination test ("random_walk" or

@@ -372,6 +372,63 @@ TEST_F(WireframeSelectionTest, RotationDriftAlongThePathMakesAVertexUndetermined
   EXPECT_EQ(SelectWireframeLandmarks(K_, cameras, landmarks, pixel_only, &without).points.size(), 1u);
 }
 
+// An accuracy asked of the map (WireframeOptions::tolerance_m), on the five cameras of the fixture
+// (1 m of path, the default pose drift): eight corners 3 m ahead (sigma 9.7 mm) and two 8 m and
+// 9 m ahead, which pass the depth-relative bound (sigma 6.1 and 7.7 cm against 29 and 32 cm) but
+// are each within 5 cm of the truth with probability 1 - exp(-t^2 / (2 sigma^2)) = 0.28 and 0.19
+// only; a line leaves the 9 m corner. Predicted share of the 11 vertices within 5 cm: about 0.79.
+// Asked 0.9: the least determined vertices go, largest sigma first, with their landmarks (the 9 m
+// corner takes its line with it), until the prediction for the rest, (8 + 0.28) / 9 = 0.92, meets
+// it; the 8 m corner stays. Without the option, or asked 0.5, all are drawn. The predicted share
+// is the Rayleigh formula's to 1e-9 (a one-dimensional Gaussian's gives 0.95).
+TEST_F(WireframeSelectionTest, AnAccuracyAskedDropsTheLeastDeterminedVerticesOnly) {
+  Landmarks landmarks;
+  for (int i = 0; i < 8; ++i) landmarks.points.push_back(Point({-0.5 + 0.25 * i, 0.2, 3}));
+  landmarks.points.push_back(Point({0.5, 0.2, 8}));
+  landmarks.points.push_back(Point({0.5, 0.2, 9}));
+  landmarks.lines.push_back(Line({0.5, 0.2, 9}, {0.5, -1.0, 9}, 9));
+  WireframeOptions options;
+  WireframeSelectionReport report;
+  Landmarks kept = SelectWireframeLandmarks(K_, cameras_, landmarks, options, &report);
+  EXPECT_EQ(kept.points.size(), 10u);
+  EXPECT_EQ(kept.lines.size(), 1u);
+  EXPECT_EQ(report.predicted_share, 0);  // off
+
+  // The model's figures, computed here from the same sigmas.
+  const PoseDrift drift = WireframePoseDrift(options, cameras_);
+  const std::vector<int> frames = {0, 1, 2, 3, 4};
+  auto within = [](double sigma) { return 1 - std::exp(-0.05 * 0.05 / (2 * sigma * sigma)); };
+  const double near = PointPositionSigma(K_, cameras_, frames, {0.5, 0.2, 3}, 0.3, drift);
+  const double at8 = PointPositionSigma(K_, cameras_, frames, {0.5, 0.2, 8}, 0.3, drift);
+  const double at9 = PointPositionSigma(K_, cameras_, frames, {0.5, 0.2, 9}, 0.3, drift);
+  EXPECT_NEAR(near, 0.0097, 0.0005);
+  EXPECT_NEAR(at8, 0.0613, 0.0005);
+  EXPECT_NEAR(at9, 0.0772, 0.0005);
+  EXPECT_LT(at9, MaxVertexSigma(options, 450, 9));  // the relative bound passes it
+
+  options.tolerance_m = 0.05;
+  kept = SelectWireframeLandmarks(K_, cameras_, landmarks, options, &report);
+  ASSERT_EQ(kept.points.size(), 9u);
+  EXPECT_EQ(kept.points[8].position, Eigen::Vector3d(0.5, 0.2, 8));
+  EXPECT_TRUE(kept.lines.empty());  // drawn from the dropped corner
+  EXPECT_EQ(report.points_beyond_tolerance, 1);
+  EXPECT_EQ(report.lines_beyond_tolerance, 1);
+  double expected = within(at8);
+  for (int i = 0; i < 8; ++i) {
+    expected += within(PointPositionSigma(K_, cameras_, frames, landmarks.points[i].position, 0.3, drift));
+  }
+  EXPECT_NEAR(report.predicted_share, expected / 9, 1e-9);
+  EXPECT_GE(report.predicted_share, 0.9);
+
+  // Asked less than the prediction already gives: nothing is dropped.
+  options.tolerance_share = 0.5;
+  kept = SelectWireframeLandmarks(K_, cameras_, landmarks, options, &report);
+  EXPECT_EQ(kept.points.size(), 10u);
+  EXPECT_EQ(kept.lines.size(), 1u);
+  EXPECT_LT(report.predicted_share, 0.9);
+  EXPECT_GT(report.predicted_share, 0.5);
+}
+
 TEST(WireframeOptionsTest, BadOptionsAreRejected) {
   WireframeOptions options;
   EXPECT_TRUE(options.Check().ok());
@@ -385,6 +442,12 @@ TEST(WireframeOptionsTest, BadOptionsAreRejected) {
   EXPECT_FALSE(options.Check().ok());
   options = WireframeOptions();
   options.pose_rotation_step_rad = -1e-4;
+  EXPECT_FALSE(options.Check().ok());
+  options = WireframeOptions();
+  options.tolerance_m = -0.05;
+  EXPECT_FALSE(options.Check().ok());
+  options = WireframeOptions();
+  options.tolerance_share = 1;
   EXPECT_FALSE(options.Check().ok());
 }
 
