@@ -70,7 +70,8 @@ struct Workspace {
 };
 
 // The end-points (2 * segment + 0 or 1) of a segment list bucketed in square cells, for the
-// searches of nearby ends (FreeEnds, Bridges).
+// searches of nearby ends (FreeEnds, Bridges, FarCornerBeyond). The points are copied in cell order,
+// so that a search reads them in sequence rather than from the segments scattered in memory.
 class EndGrid {
  public:
   EndGrid(const LineSegments& s, int rows, int cols, double cell) : s_(s), cell_(cell) {
@@ -79,26 +80,36 @@ class EndGrid {
     const int m = static_cast<int>(2 * s.size());
     begin_.assign(static_cast<size_t>(grid_cols_) * grid_rows_ + 1, 0);
     order_.resize(m);
+    points_.resize(m);
     for (int i = 0; i < m; ++i) ++begin_[CellOf(EndPoint(i)) + 1];
     for (size_t c = 1; c < begin_.size(); ++c) begin_[c] += begin_[c - 1];
     std::vector<int> fill(begin_.begin(), begin_.end() - 1);
-    for (int i = 0; i < m; ++i) order_[fill[CellOf(EndPoint(i))]++] = i;
+    for (int i = 0; i < m; ++i) {
+      const int k = fill[CellOf(EndPoint(i))]++;
+      order_[k] = i;
+      points_[k] = EndPoint(i);
+    }
   }
 
   const Eigen::Vector2d& EndPoint(int i) const { return i % 2 == 0 ? s_[i / 2].p0 : s_[i / 2].p1; }
   const LineSegments& Segments() const { return s_; }
 
-  // Calls visit(j) for every end-point j in the cells within `reach` cells of p's, until it returns
-  // false; returns false if it did.
+  // Calls visit(j, end-point j) for the end-points j in the cells that meet the square of half-side
+  // radius + 1 px around p, cell rows in order and each cell's points in order, until it returns
+  // false; returns false if it did. Every end-point within `radius` of p is visited (the 1 px margin
+  // keeps the rounding of p -+ radius from excluding one at exactly that distance); so is any
+  // other end-point of those cells, which the caller must reject by its distance. Visiting a
+  // sub-rectangle of cells keeps the order of the points a larger one would visit.
   template <typename Visit>
-  bool ForEachNear(const Eigen::Vector2d& p, int reach, Visit&& visit) const {
-    int cx, cy;
-    CellXY(p, &cx, &cy);
-    for (int y = std::max(cy - reach, 0); y <= std::min(cy + reach, grid_rows_ - 1); ++y) {
-      for (int x = std::max(cx - reach, 0); x <= std::min(cx + reach, grid_cols_ - 1); ++x) {
-        const int c = y * grid_cols_ + x;
+  bool ForEachWithin(const Eigen::Vector2d& p, double radius, Visit&& visit) const {
+    const Eigen::Vector2d corner(radius + 1, radius + 1);
+    int x0, y0, x1, y1;
+    CellXY(p - corner, &x0, &y0);
+    CellXY(p + corner, &x1, &y1);
+    for (int y = y0; y <= y1; ++y) {
+      for (int c = y * grid_cols_ + x0, last = y * grid_cols_ + x1; c <= last; ++c) {
         for (int k = begin_[c]; k < begin_[c + 1]; ++k) {
-          if (!visit(order_[k])) return false;
+          if (!visit(order_[k], points_[k])) return false;
         }
       }
     }
@@ -106,6 +117,8 @@ class EndGrid {
   }
 
  private:
+  // Truncation and clamping are monotonic in p, so the cells of p -+ (radius + 1) bound those of
+  // every point between them (ForEachWithin).
   void CellXY(const Eigen::Vector2d& p, int* cx, int* cy) const {
     *cx = std::clamp(static_cast<int>(p.x() / cell_), 0, grid_cols_ - 1);
     *cy = std::clamp(static_cast<int>(p.y() / cell_), 0, grid_rows_ - 1);
@@ -120,6 +133,7 @@ class EndGrid {
   double cell_;
   int grid_cols_ = 0, grid_rows_ = 0;
   std::vector<int> begin_, order_;
+  std::vector<Eigen::Vector2d> points_;  // end-point order_[k], in cell order
 };
 
 class BranchSearch {
@@ -260,8 +274,9 @@ class BranchSearch {
     for (int i = 0; i < m; ++i) {
       const Eigen::Vector2d& p = grid.EndPoint(i);
       if (!(s[i / 2].Length() > 0)) continue;
-      bool alone = grid.ForEachNear(
-          p, 1, [&](int j) { return j / 2 == i / 2 || (grid.EndPoint(j) - p).squaredNorm() > gap * gap; });
+      bool alone = grid.ForEachWithin(p, gap, [&](int j, const Eigen::Vector2d& q) {
+        return j / 2 == i / 2 || (q - p).squaredNorm() > gap * gap;
+      });
       // An end that runs into another segment's interior within max_gap (a T's stem, or an L
       // whose other side continues past the corner) has its junction too. From 2 px on: the 3 x 3
       // pixels around a point 1 px beyond the end could hold the segment's own last marked pixel.
@@ -313,16 +328,14 @@ class BranchSearch {
     const double cos_min_angle = std::cos(kMinBranchAngle);
     // A's end-point lies within max_bridge of the corner, the corner within max_gap of B's end.
     const double reach_px = max_bridge + options_.max_gap;
-    const int reach = static_cast<int>(std::ceil(reach_px / (4 * options_.max_gap)));
     std::vector<Bridge> bridges;
     for (const int i : free_ends) {
       const LineSegment b = (*segments)[i / 2];
       const Eigen::Vector2d e = grid.EndPoint(i);
       const Eigen::Vector2d u = i % 2 == 0 ? Eigen::Vector2d(-b.Direction()) : b.Direction();
       const Eigen::Vector2d qb = b.Normal();
-      grid.ForEachNear(e, reach, [&](int j) {
+      grid.ForEachWithin(e, reach_px, [&](int j, const Eigen::Vector2d& ae) {
         if (j / 2 == i / 2 || is_free[j]) return true;
-        const Eigen::Vector2d& ae = grid.EndPoint(j);
         if ((ae - e).squaredNorm() > reach_px * reach_px) return true;
         const LineSegment& a = (*segments)[j / 2];
         const Eigen::Vector2d out = j % 2 == 0 ? Eigen::Vector2d(-a.Direction()) : a.Direction();
@@ -575,11 +588,10 @@ class BranchSearch {
   double FarCornerBeyond(const Eigen::Vector2d& far, const Eigen::Vector2d& d, int exclude) const {
     const double gap = options_.max_gap;
     double best = 0;
-    grid_->ForEachNear(far, 1, [&](int j) {
+    grid_->ForEachWithin(far, 2 * gap, [&](int j, const Eigen::Vector2d& end) {
       if (j / 2 == exclude) return true;
-      const LineSegment& other = grid_->Segments()[j / 2];
-      const Eigen::Vector2d& end = grid_->EndPoint(j);
       if ((end - far).squaredNorm() > 4 * gap * gap) return true;
+      const LineSegment& other = grid_->Segments()[j / 2];
       const Eigen::Vector2d od = other.Direction();
       const double sine = d.x() * od.y() - d.y() * od.x();
       if (std::abs(sine) < kMinCornerSine) return true;
