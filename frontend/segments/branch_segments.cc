@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <optional>
 #include <vector>
 
@@ -483,7 +484,8 @@ class BranchSearch {
   // a ray from an end-point, which starts beyond it, then never meets its own segment's marks. A
   // bit per pixel, so that the map stays in cache (a 512 x 512 image: 32 KB).
   void MarkCovered(const LineSegments& s) {
-    covered_.assign((static_cast<size_t>(rows_) * cols_ + 63) / 64, 0);
+    // One word more, so that ThreeCoveredBits may load 8 bytes from any pixel's byte.
+    covered_.assign((static_cast<size_t>(rows_) * cols_ + 63) / 64 + 1, 0);
     for (const LineSegment& segment : s) {
       const double length = segment.Length();
       if (!(length > 2 * kEndMargin)) continue;
@@ -514,15 +516,20 @@ class BranchSearch {
   }
 
   // Whether a segment passes within about a pixel of pixel (x, y) (not on the border): one of its
-  // 3 x 3 pixels is marked.
+  // 3 x 3 pixels is marked. Three 3-bit loads rather than nine tests, which mispredicted often.
   bool Covered(int x, int y) const {
-    for (int dy = -1; dy <= 1; ++dy) {
-      for (int dx = -1; dx <= 1; ++dx) {
-        const size_t index = static_cast<size_t>(y + dy) * cols_ + x + dx;
-        if ((covered_[index >> 6] >> (index & 63)) & 1) return true;
-      }
-    }
-    return false;
+    const size_t index = static_cast<size_t>(y) * cols_ + x;
+    return (ThreeCoveredBits(index - cols_ - 1) | ThreeCoveredBits(index - 1) |
+            ThreeCoveredBits(index + cols_ - 1)) != 0;
+  }
+
+  // Bits first .. first + 2 of the covered map, from an unaligned 8-byte load (bit i of the map is
+  // bit i % 8 of byte i / 8 on a little-endian machine; MarkCovered pads the map by a word).
+  uint64_t ThreeCoveredBits(size_t first) const {
+    static_assert(__BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__, "the covered map is read by bytes");
+    uint64_t word;
+    std::memcpy(&word, reinterpret_cast<const unsigned char*>(covered_.data()) + (first >> 3), sizeof word);
+    return (word >> (first & 7)) & 7;
   }
 
   // The pixel nearest p, or false when it lies within a pixel of the border.
