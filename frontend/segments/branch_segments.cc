@@ -48,6 +48,8 @@ constexpr double kMinCornerSine = 0.2;
 // Sub-pixel edge points across a ray are gathered this far from it, px; a point farther than this
 // from the fitted line is dropped before the refit.
 constexpr double kGatherDistance = 1.5;
+// PromisingDirections' inner ring: the pixels 1.5-3 px from the origin's (squared distance).
+constexpr double kInnerRing2 = 9;
 
 struct Candidate {
   double log10_nfa = 0;
@@ -66,6 +68,7 @@ struct RingPixel {
 // Buffers kept per thread between images (fresh ones cost page faults and the tails' lgamma calls).
 struct Workspace {
   std::vector<RingPixel> ring;    // offsets 1.5-4.5 px from a pixel, with squared length and angle
+  int inner_ring = 0;             // the first inner_ring of them are 1.5-3 px away, the rest 3-4.5 px
   std::vector<double> tail;       // log10 binomial tail of (samples, aligned), (max_sample + 1)^2
   std::vector<uint64_t> covered;  // one bit per pixel: a segment passes through it
 };
@@ -181,7 +184,11 @@ class BranchSearch {
             ring_.push_back({dx, dy, r2, std::atan2(dy, dx), 0});
         }
       }
+      const auto outer = std::stable_partition(ring_.begin(), ring_.end(),
+                                               [](const RingPixel& q) { return q.r2 <= kInnerRing2; });
+      workspace->inner_ring = static_cast<int>(outer - ring_.begin());
     }
+    inner_ring_ = workspace->inner_ring;
     for (RingPixel& q : ring_) q.offset = static_cast<std::ptrdiff_t>(q.dy) * cols_ + q.dx;
   }
 
@@ -452,32 +459,46 @@ class BranchSearch {
   // the origin's pixel and of one 3-4.5 px from it, each with its gradient aligned with the normal
   // of the direction from there to it. A side of a corner has edge pixels at both distances. Only
   // a pruning: a ray whose first samples miss such pixels stops at once, and the NFA still counts
-  // every direction.
+  // every direction. The inner ring first: where it marks nothing, or nothing on one side, the
+  // outer ring's marks there would be masked away, so its pixels are not tested.
   void PromisingDirections(const Eigen::Vector2d& origin, double base, uint64_t promising[2]) const {
-    uint64_t marks[2][2] = {{0, 0}, {0, 0}};  // [inner or outer ring][side]
     promising[0] = promising[1] = 0;
     int cx, cy;
     if (!PixelAt(origin, &cx, &cy) || cx < 5 || cy < 5 || cx >= cols_ - 5 || cy >= rows_ - 5) return;
     const size_t centre = static_cast<size_t>(cy) * cols_ + cx;
+    const uint64_t every[2] = {~uint64_t{0}, ~uint64_t{0}};
+    uint64_t inner[2] = {0, 0}, outer[2] = {0, 0};  // [side]
+    MarkRing(centre, base, ring_.data(), ring_.data() + inner_ring_, every, inner);
+    if ((inner[0] | inner[1]) == 0) return;
+    MarkRing(centre, base, ring_.data() + inner_ring_, ring_.data() + ring_.size(), inner, outer);
+    promising[0] = inner[0] & outer[0];
+    promising[1] = inner[1] & outer[1];
+  }
+
+  // ORs into marks[side] the directions near the edge pixels among [first, last) of the ring
+  // around pixel `centre` (PromisingDirections); pixels on a side where `needed` has no bit are
+  // skipped.
+  void MarkRing(size_t centre, double base, const RingPixel* first, const RingPixel* last,
+                const uint64_t needed[2], uint64_t marks[2]) const {
     const double max_offset = kMinBranchAngle + (directions_per_side_ + 1) * step_;
-    for (const RingPixel& q : ring_) {
-      const size_t i = centre + q.offset;
+    for (const RingPixel* q = first; q != last; ++q) {
+      const size_t i = centre + q->offset;
       if (mag_[i] < low_) continue;
-      double offset = q.angle - base;
+      double offset = q->angle - base;
       if (offset > M_PI) offset -= 2 * M_PI;
       if (offset < -M_PI) offset += 2 * M_PI;
       const double from_min = std::abs(offset) - kMinBranchAngle;
       if (from_min < -2.5 * step_ || std::abs(offset) > max_offset) continue;
+      const int side = offset < 0 ? 0 : 1;
+      if (needed[side] == 0) continue;
       const int g_x = gx_[i], g_y = gy_[i];
-      const double along = g_y * q.dx - g_x * q.dy;
-      if (along * along < kAlignedCos2 * (g_x * g_x + g_y * g_y) * q.r2) continue;
+      const double along = g_y * q->dx - g_x * q->dy;
+      if (along * along < kAlignedCos2 * (g_x * g_x + g_y * g_y) * q->r2) continue;
       const int k = static_cast<int>(from_min / step_ + 2.5) - 2;  // rounded, for k >= -2
       const int low = std::max(k - kSpread, 0), high = std::min(k + kSpread, directions_per_side_ - 1);
       if (low > high) continue;
-      marks[q.r2 > 9 ? 1 : 0][offset < 0 ? 0 : 1] |= ((~uint64_t{0}) >> (63 - (high - low))) << low;
+      marks[side] |= ((~uint64_t{0}) >> (63 - (high - low))) << low;
     }
-    promising[0] = marks[0][0] & marks[1][0];
-    promising[1] = marks[0][1] & marks[1][1];
   }
 
   // Marks the pixels along every segment (one per step of the major axis), 1 px in from each end:
@@ -708,6 +729,7 @@ class BranchSearch {
   int max_sample_ = 0, directions_per_side_ = 0;
   double step_ = 0, log10_tests_ = 0;
   std::vector<RingPixel>& ring_;
+  int inner_ring_ = 0;  // ring_[0, inner_ring_): the pixels 1.5-3 px away
   std::vector<double>& tail_;
   std::vector<uint64_t>& covered_;
   std::vector<double> blocked_;             // directions of one end already explained (Run)
