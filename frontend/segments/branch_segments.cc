@@ -482,18 +482,20 @@ class BranchSearch {
                 const uint64_t needed[2], uint64_t marks[2]) const {
     const double max_offset = kMinBranchAngle + (directions_per_side_ + 1) * step_;
     for (const RingPixel* q = first; q != last; ++q) {
+      // Every test computed and combined before a single branch: one at each test mispredicted
+      // often (each passes for a varying part of the ring).
       const size_t i = centre + q->offset;
-      if (mag_[i] < low_) continue;
-      double offset = q->angle - base;
-      if (offset > M_PI) offset -= 2 * M_PI;
-      if (offset < -M_PI) offset += 2 * M_PI;
-      const double from_min = std::abs(offset) - kMinBranchAngle;
-      if (from_min < -2.5 * step_ || std::abs(offset) > max_offset) continue;
-      const int side = offset < 0 ? 0 : 1;
-      if (needed[side] == 0) continue;
       const int g_x = gx_[i], g_y = gy_[i];
+      double offset = q->angle - base;
+      offset = offset > M_PI ? offset - 2 * M_PI : offset;
+      offset = offset < -M_PI ? offset + 2 * M_PI : offset;
+      const double from_min = std::abs(offset) - kMinBranchAngle;
+      const int side = offset < 0 ? 0 : 1;
       const double along = g_y * q->dx - g_x * q->dy;
-      if (along * along < kAlignedCos2 * (g_x * g_x + g_y * g_y) * q->r2) continue;
+      const bool marked = (mag_[i] >= low_) & !(from_min < -2.5 * step_) & !(std::abs(offset) > max_offset) &
+                          (needed[side] != 0) &
+                          !(along * along < kAlignedCos2 * (g_x * g_x + g_y * g_y) * q->r2);
+      if (!marked) continue;
       const int k = static_cast<int>(from_min / step_ + 2.5) - 2;  // rounded, for k >= -2
       const int low = std::max(k - kSpread, 0), high = std::min(k + kSpread, directions_per_side_ - 1);
       if (low > high) continue;
