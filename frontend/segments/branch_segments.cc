@@ -509,17 +509,27 @@ class BranchSearch {
   void MarkCovered(const LineSegments& s) {
     // One word more, so that ThreeCoveredBits may load 8 bytes from any pixel's byte.
     covered_.assign((static_cast<size_t>(rows_) * cols_ + 63) / 64 + 1, 0);
+    uint64_t* bits = covered_.data();
     for (const LineSegment& segment : s) {
       const double length = segment.Length();
       if (!(length > 2 * kEndMargin)) continue;
       const Eigen::Vector2d a = segment.p0 + kEndMargin / length * (segment.p1 - segment.p0);
       const Eigen::Vector2d d = (length - 2 * kEndMargin) / length * (segment.p1 - segment.p0);
       const int steps = static_cast<int>(std::max(std::abs(d.x()), std::abs(d.y()))) + 1;
+      // Every step lies between the first and the last one (each coordinate and its rounding are
+      // monotonic in i), so when both are inside, no step needs the border test.
+      int x, y;
+      const bool inside = PixelAt(a, &x, &y) && PixelAt(a + d, &x, &y);
       for (int i = 0; i <= steps; ++i) {
-        int x, y;
-        if (!PixelAt(a + d * (static_cast<double>(i) / steps), &x, &y)) continue;
+        const Eigen::Vector2d p = a + d * (static_cast<double>(i) / steps);
+        if (inside) {
+          x = static_cast<int>(p.x() + 0.5);
+          y = static_cast<int>(p.y() + 0.5);
+        } else if (!PixelAt(p, &x, &y)) {
+          continue;
+        }
         const size_t index = static_cast<size_t>(y) * cols_ + x;
-        covered_[index >> 6] |= uint64_t{1} << (index & 63);
+        bits[index >> 6] |= uint64_t{1} << (index & 63);
       }
     }
   }
