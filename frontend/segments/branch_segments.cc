@@ -487,8 +487,10 @@ class BranchSearch {
       const size_t i = centre + q->offset;
       const int g_x = gx_[i], g_y = gy_[i];
       double offset = q->angle - base;
-      offset = offset > M_PI ? offset - 2 * M_PI : offset;
-      offset = offset < -M_PI ? offset + 2 * M_PI : offset;
+      // Wrapped by arithmetic (GCC branched on the conditional forms); subtracting or adding an exact
+      // 0 leaves the value unchanged.
+      offset -= static_cast<double>(offset > M_PI) * (2 * M_PI);
+      offset += static_cast<double>(offset < -M_PI) * (2 * M_PI);
       const double from_min = std::abs(offset) - kMinBranchAngle;
       const int side = offset < 0 ? 0 : 1;
       const double along = g_y * q->dx - g_x * q->dy;
