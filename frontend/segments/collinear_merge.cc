@@ -8,11 +8,7 @@ namespace sfm {
 namespace {
 
 // Pieces whose end-points are within max_gap of each other lie in the same or adjacent cells of a
-// grid of square cells of side max_gap. The end-points (piece indices) are stored by cell, cells in
-// row-major order, so that the three adjacent cells of a row are one run (a loop per cell, with its
-// mispredicted exit, cost more than the joins); within a cell the later end-point (2 * piece + 0
-// for first, 1 for last) comes first, as in the linked lists this replaced: the order decides which
-// of several joinable pieces is joined first.
+// grid of square cells of side max_gap. Each cell holds a list of end-points (piece indices).
 class EndGrid {
  public:
   EndGrid(const std::vector<LinePiece>& pieces, double cell_size) : cell_size_(cell_size) {
@@ -24,46 +20,42 @@ class EndGrid {
     origin_ = low;
     cols_ = static_cast<int>((high.x() - low.x()) / cell_size_) + 1;
     rows_ = static_cast<int>((high.y() - low.y()) / cell_size_) + 1;
-    const int ends = static_cast<int>(2 * pieces.size());
-    // Counts at start_[c + 1], summed into the end of cell c there; each entry is then placed by
-    // decrementing its cell's end, so that start_[c + 1] becomes the start of cell c, and
-    // start_[c + 2] (the start of cell c + 1, or the total) its end.
-    start_.assign(static_cast<size_t>(cols_) * rows_ + 2, 0);
-    for (int e = 0; e < ends; ++e) ++start_[CellOf(EndOf(pieces, e)) + 1];
-    for (size_t c = 1; c < start_.size(); ++c) start_[c] += start_[c - 1];
-    piece_.resize(ends);
-    for (int e = 0; e < ends; ++e) piece_[--start_[CellOf(EndOf(pieces, e)) + 1]] = e / 2;
+    head_.assign(static_cast<size_t>(cols_) * rows_, -1);
+    for (size_t i = 0; i < pieces.size(); ++i) {
+      Insert(pieces[i].first, static_cast<int>(i));
+      Insert(pieces[i].last, static_cast<int>(i));
+    }
   }
 
   // Calls f(piece index) for every end-point entry in the cells around p, until f returns true.
   template <typename F>
   bool AnyNear(const Eigen::Vector2d& p, F f) const {
     const int cx = Cell(p.x() - origin_.x(), cols_), cy = Cell(p.y() - origin_.y(), rows_);
-    const int x0 = std::max(cx - 1, 0), x1 = std::min(cx + 1, cols_ - 1);
     for (int y = std::max(cy - 1, 0); y <= std::min(cy + 1, rows_ - 1); ++y) {
-      const size_t row = static_cast<size_t>(y) * cols_;
-      for (int k = start_[row + x0 + 1], last = start_[row + x1 + 2]; k < last; ++k) {
-        if (f(piece_[k])) return true;
+      for (int x = std::max(cx - 1, 0); x <= std::min(cx + 1, cols_ - 1); ++x) {
+        for (int e = head_[static_cast<size_t>(y) * cols_ + x]; e >= 0; e = next_[e]) {
+          if (f(piece_[e])) return true;
+        }
       }
     }
     return false;
   }
 
  private:
-  static const Eigen::Vector2d& EndOf(const std::vector<LinePiece>& pieces, int e) {
-    return e % 2 == 0 ? pieces[e / 2].first : pieces[e / 2].last;
-  }
   int Cell(double offset, int size) const {
     return std::clamp(static_cast<int>(offset / cell_size_), 0, size - 1);
   }
-  size_t CellOf(const Eigen::Vector2d& p) const {
-    return static_cast<size_t>(Cell(p.y() - origin_.y(), rows_)) * cols_ + Cell(p.x() - origin_.x(), cols_);
+  void Insert(const Eigen::Vector2d& p, int piece) {
+    const size_t cell = static_cast<size_t>(Cell(p.y() - origin_.y(), rows_)) * cols_ + Cell(p.x() - origin_.x(), cols_);
+    next_.push_back(head_[cell]);
+    piece_.push_back(piece);
+    head_[cell] = static_cast<int>(piece_.size()) - 1;
   }
 
   double cell_size_;
   Eigen::Vector2d origin_;
   int cols_ = 0, rows_ = 0;
-  std::vector<int> start_, piece_;  // piece_[start_[c + 1] .. start_[c + 2]): the entries of cell c
+  std::vector<int> head_, next_, piece_;
 };
 
 // Whether pieces a and b (with fitted lines line_a and line_b) continue each other; if so, the
