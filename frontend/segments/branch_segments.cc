@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <optional>
 #include <vector>
 
@@ -47,6 +48,8 @@ constexpr double kMinCornerSine = 0.2;
 // Sub-pixel edge points across a ray are gathered this far from it, px; a point farther than this
 // from the fitted line is dropped before the refit.
 constexpr double kGatherDistance = 1.5;
+// PromisingDirections' inner ring: the pixels 1.5-3 px from the origin's (squared distance).
+constexpr double kInnerRing2 = 9;
 
 struct Candidate {
   double log10_nfa = 0;
@@ -65,12 +68,14 @@ struct RingPixel {
 // Buffers kept per thread between images (fresh ones cost page faults and the tails' lgamma calls).
 struct Workspace {
   std::vector<RingPixel> ring;    // offsets 1.5-4.5 px from a pixel, with squared length and angle
+  int inner_ring = 0;             // the first inner_ring of them are 1.5-3 px away, the rest 3-4.5 px
   std::vector<double> tail;       // log10 binomial tail of (samples, aligned), (max_sample + 1)^2
   std::vector<uint64_t> covered;  // one bit per pixel: a segment passes through it
 };
 
 // The end-points (2 * segment + 0 or 1) of a segment list bucketed in square cells, for the
-// searches of nearby ends (FreeEnds, Bridges).
+// searches of nearby ends (FreeEnds, Bridges, FarCornerBeyond). The points are copied in cell order,
+// so that a search reads them in sequence rather than from the segments scattered in memory.
 class EndGrid {
  public:
   EndGrid(const LineSegments& s, int rows, int cols, double cell) : s_(s), cell_(cell) {
@@ -79,33 +84,45 @@ class EndGrid {
     const int m = static_cast<int>(2 * s.size());
     begin_.assign(static_cast<size_t>(grid_cols_) * grid_rows_ + 1, 0);
     order_.resize(m);
+    points_.resize(m);
     for (int i = 0; i < m; ++i) ++begin_[CellOf(EndPoint(i)) + 1];
     for (size_t c = 1; c < begin_.size(); ++c) begin_[c] += begin_[c - 1];
     std::vector<int> fill(begin_.begin(), begin_.end() - 1);
-    for (int i = 0; i < m; ++i) order_[fill[CellOf(EndPoint(i))]++] = i;
+    for (int i = 0; i < m; ++i) {
+      const int k = fill[CellOf(EndPoint(i))]++;
+      order_[k] = i;
+      points_[k] = EndPoint(i);
+    }
   }
 
   const Eigen::Vector2d& EndPoint(int i) const { return i % 2 == 0 ? s_[i / 2].p0 : s_[i / 2].p1; }
   const LineSegments& Segments() const { return s_; }
 
-  // Calls visit(j) for every end-point j in the cells within `reach` cells of p's, until it returns
-  // false; returns false if it did.
+  // Calls visit(j, end-point j) for the end-points j in the cells that meet the square of half-side
+  // radius + 1 px around p, cell rows in order and each cell's points in order, until it returns
+  // false; returns false if it did. Every end-point within `radius` of p is visited (the 1 px margin
+  // keeps the rounding of p -+ radius from excluding one at exactly that distance); so is any
+  // other end-point of those cells, which the caller must reject by its distance. Visiting a
+  // sub-rectangle of cells keeps the order of the points a larger one would visit.
   template <typename Visit>
-  bool ForEachNear(const Eigen::Vector2d& p, int reach, Visit&& visit) const {
-    int cx, cy;
-    CellXY(p, &cx, &cy);
-    for (int y = std::max(cy - reach, 0); y <= std::min(cy + reach, grid_rows_ - 1); ++y) {
-      for (int x = std::max(cx - reach, 0); x <= std::min(cx + reach, grid_cols_ - 1); ++x) {
-        const int c = y * grid_cols_ + x;
-        for (int k = begin_[c]; k < begin_[c + 1]; ++k) {
-          if (!visit(order_[k])) return false;
-        }
+  bool ForEachWithin(const Eigen::Vector2d& p, double radius, Visit&& visit) const {
+    const Eigen::Vector2d corner(radius + 1, radius + 1);
+    int x0, y0, x1, y1;
+    CellXY(p - corner, &x0, &y0);
+    CellXY(p + corner, &x1, &y1);
+    for (int y = y0; y <= y1; ++y) {
+      // The cells x0 .. x1 of a row are consecutive in order_: one run, without a loop (and its
+      // mispredicted exit) per cell.
+      for (int k = begin_[y * grid_cols_ + x0], last = begin_[y * grid_cols_ + x1 + 1]; k < last; ++k) {
+        if (!visit(order_[k], points_[k])) return false;
       }
     }
     return true;
   }
 
  private:
+  // Truncation and clamping are monotonic in p, so the cells of p -+ (radius + 1) bound those of
+  // every point between them (ForEachWithin).
   void CellXY(const Eigen::Vector2d& p, int* cx, int* cy) const {
     *cx = std::clamp(static_cast<int>(p.x() / cell_), 0, grid_cols_ - 1);
     *cy = std::clamp(static_cast<int>(p.y() / cell_), 0, grid_rows_ - 1);
@@ -120,6 +137,7 @@ class EndGrid {
   double cell_;
   int grid_cols_ = 0, grid_rows_ = 0;
   std::vector<int> begin_, order_;
+  std::vector<Eigen::Vector2d> points_;  // end-point order_[k], in cell order
 };
 
 class BranchSearch {
@@ -166,7 +184,11 @@ class BranchSearch {
             ring_.push_back({dx, dy, r2, std::atan2(dy, dx), 0});
         }
       }
+      const auto outer = std::stable_partition(ring_.begin(), ring_.end(),
+                                               [](const RingPixel& q) { return q.r2 <= kInnerRing2; });
+      workspace->inner_ring = static_cast<int>(outer - ring_.begin());
     }
+    inner_ring_ = workspace->inner_ring;
     for (RingPixel& q : ring_) q.offset = static_cast<std::ptrdiff_t>(q.dy) * cols_ + q.dx;
   }
 
@@ -260,8 +282,9 @@ class BranchSearch {
     for (int i = 0; i < m; ++i) {
       const Eigen::Vector2d& p = grid.EndPoint(i);
       if (!(s[i / 2].Length() > 0)) continue;
-      bool alone = grid.ForEachNear(
-          p, 1, [&](int j) { return j / 2 == i / 2 || (grid.EndPoint(j) - p).squaredNorm() > gap * gap; });
+      bool alone = grid.ForEachWithin(p, gap, [&](int j, const Eigen::Vector2d& q) {
+        return j / 2 == i / 2 || (q - p).squaredNorm() > gap * gap;
+      });
       // An end that runs into another segment's interior within max_gap (a T's stem, or an L
       // whose other side continues past the corner) has its junction too. From 2 px on: the 3 x 3
       // pixels around a point 1 px beyond the end could hold the segment's own last marked pixel.
@@ -313,16 +336,14 @@ class BranchSearch {
     const double cos_min_angle = std::cos(kMinBranchAngle);
     // A's end-point lies within max_bridge of the corner, the corner within max_gap of B's end.
     const double reach_px = max_bridge + options_.max_gap;
-    const int reach = static_cast<int>(std::ceil(reach_px / (4 * options_.max_gap)));
     std::vector<Bridge> bridges;
     for (const int i : free_ends) {
       const LineSegment b = (*segments)[i / 2];
       const Eigen::Vector2d e = grid.EndPoint(i);
       const Eigen::Vector2d u = i % 2 == 0 ? Eigen::Vector2d(-b.Direction()) : b.Direction();
       const Eigen::Vector2d qb = b.Normal();
-      grid.ForEachNear(e, reach, [&](int j) {
+      grid.ForEachWithin(e, reach_px, [&](int j, const Eigen::Vector2d& ae) {
         if (j / 2 == i / 2 || is_free[j]) return true;
-        const Eigen::Vector2d& ae = grid.EndPoint(j);
         if ((ae - e).squaredNorm() > reach_px * reach_px) return true;
         const LineSegment& a = (*segments)[j / 2];
         const Eigen::Vector2d out = j % 2 == 0 ? Eigen::Vector2d(-a.Direction()) : a.Direction();
@@ -438,50 +459,79 @@ class BranchSearch {
   // the origin's pixel and of one 3-4.5 px from it, each with its gradient aligned with the normal
   // of the direction from there to it. A side of a corner has edge pixels at both distances. Only
   // a pruning: a ray whose first samples miss such pixels stops at once, and the NFA still counts
-  // every direction.
+  // every direction. The inner ring first: where it marks nothing, or nothing on one side, the
+  // outer ring's marks there would be masked away, so its pixels are not tested.
   void PromisingDirections(const Eigen::Vector2d& origin, double base, uint64_t promising[2]) const {
-    uint64_t marks[2][2] = {{0, 0}, {0, 0}};  // [inner or outer ring][side]
     promising[0] = promising[1] = 0;
     int cx, cy;
     if (!PixelAt(origin, &cx, &cy) || cx < 5 || cy < 5 || cx >= cols_ - 5 || cy >= rows_ - 5) return;
     const size_t centre = static_cast<size_t>(cy) * cols_ + cx;
+    const uint64_t every[2] = {~uint64_t{0}, ~uint64_t{0}};
+    uint64_t inner[2] = {0, 0}, outer[2] = {0, 0};  // [side]
+    MarkRing(centre, base, ring_.data(), ring_.data() + inner_ring_, every, inner);
+    if ((inner[0] | inner[1]) == 0) return;
+    MarkRing(centre, base, ring_.data() + inner_ring_, ring_.data() + ring_.size(), inner, outer);
+    promising[0] = inner[0] & outer[0];
+    promising[1] = inner[1] & outer[1];
+  }
+
+  // ORs into marks[side] the directions near the edge pixels among [first, last) of the ring
+  // around pixel `centre` (PromisingDirections); pixels on a side where `needed` has no bit are
+  // skipped.
+  void MarkRing(size_t centre, double base, const RingPixel* first, const RingPixel* last,
+                const uint64_t needed[2], uint64_t marks[2]) const {
     const double max_offset = kMinBranchAngle + (directions_per_side_ + 1) * step_;
-    for (const RingPixel& q : ring_) {
-      const size_t i = centre + q.offset;
-      if (mag_[i] < low_) continue;
-      double offset = q.angle - base;
-      if (offset > M_PI) offset -= 2 * M_PI;
-      if (offset < -M_PI) offset += 2 * M_PI;
-      const double from_min = std::abs(offset) - kMinBranchAngle;
-      if (from_min < -2.5 * step_ || std::abs(offset) > max_offset) continue;
+    for (const RingPixel* q = first; q != last; ++q) {
+      // Every test computed and combined before a single branch: one at each test mispredicted
+      // often (each passes for a varying part of the ring).
+      const size_t i = centre + q->offset;
       const int g_x = gx_[i], g_y = gy_[i];
-      const double along = g_y * q.dx - g_x * q.dy;
-      if (along * along < kAlignedCos2 * (g_x * g_x + g_y * g_y) * q.r2) continue;
+      double offset = q->angle - base;
+      // Wrapped by arithmetic (GCC branched on the conditional forms); subtracting or adding an exact
+      // 0 leaves the value unchanged.
+      offset -= static_cast<double>(offset > M_PI) * (2 * M_PI);
+      offset += static_cast<double>(offset < -M_PI) * (2 * M_PI);
+      const double from_min = std::abs(offset) - kMinBranchAngle;
+      const int side = offset < 0 ? 0 : 1;
+      const double along = g_y * q->dx - g_x * q->dy;
+      const bool marked = (mag_[i] >= low_) & !(from_min < -2.5 * step_) & !(std::abs(offset) > max_offset) &
+                          (needed[side] != 0) &
+                          !(along * along < kAlignedCos2 * (g_x * g_x + g_y * g_y) * q->r2);
+      if (!marked) continue;
       const int k = static_cast<int>(from_min / step_ + 2.5) - 2;  // rounded, for k >= -2
       const int low = std::max(k - kSpread, 0), high = std::min(k + kSpread, directions_per_side_ - 1);
       if (low > high) continue;
-      marks[q.r2 > 9 ? 1 : 0][offset < 0 ? 0 : 1] |= ((~uint64_t{0}) >> (63 - (high - low))) << low;
+      marks[side] |= ((~uint64_t{0}) >> (63 - (high - low))) << low;
     }
-    promising[0] = marks[0][0] & marks[1][0];
-    promising[1] = marks[0][1] & marks[1][1];
   }
 
   // Marks the pixels along every segment (one per step of the major axis), 1 px in from each end:
   // a ray from an end-point, which starts beyond it, then never meets its own segment's marks. A
   // bit per pixel, so that the map stays in cache (a 512 x 512 image: 32 KB).
   void MarkCovered(const LineSegments& s) {
-    covered_.assign((static_cast<size_t>(rows_) * cols_ + 63) / 64, 0);
+    // One word more, so that ThreeCoveredBits may load 8 bytes from any pixel's byte.
+    covered_.assign((static_cast<size_t>(rows_) * cols_ + 63) / 64 + 1, 0);
+    uint64_t* bits = covered_.data();
     for (const LineSegment& segment : s) {
       const double length = segment.Length();
       if (!(length > 2 * kEndMargin)) continue;
       const Eigen::Vector2d a = segment.p0 + kEndMargin / length * (segment.p1 - segment.p0);
       const Eigen::Vector2d d = (length - 2 * kEndMargin) / length * (segment.p1 - segment.p0);
       const int steps = static_cast<int>(std::max(std::abs(d.x()), std::abs(d.y()))) + 1;
+      // Every step lies between the first and the last one (each coordinate and its rounding are
+      // monotonic in i), so when both are inside, no step needs the border test.
+      int x, y;
+      const bool inside = PixelAt(a, &x, &y) && PixelAt(a + d, &x, &y);
       for (int i = 0; i <= steps; ++i) {
-        int x, y;
-        if (!PixelAt(a + d * (static_cast<double>(i) / steps), &x, &y)) continue;
+        const Eigen::Vector2d p = a + d * (static_cast<double>(i) / steps);
+        if (inside) {
+          x = static_cast<int>(p.x() + 0.5);
+          y = static_cast<int>(p.y() + 0.5);
+        } else if (!PixelAt(p, &x, &y)) {
+          continue;
+        }
         const size_t index = static_cast<size_t>(y) * cols_ + x;
-        covered_[index >> 6] |= uint64_t{1} << (index & 63);
+        bits[index >> 6] |= uint64_t{1} << (index & 63);
       }
     }
   }
@@ -501,15 +551,20 @@ class BranchSearch {
   }
 
   // Whether a segment passes within about a pixel of pixel (x, y) (not on the border): one of its
-  // 3 x 3 pixels is marked.
+  // 3 x 3 pixels is marked. Three 3-bit loads rather than nine tests, which mispredicted often.
   bool Covered(int x, int y) const {
-    for (int dy = -1; dy <= 1; ++dy) {
-      for (int dx = -1; dx <= 1; ++dx) {
-        const size_t index = static_cast<size_t>(y + dy) * cols_ + x + dx;
-        if ((covered_[index >> 6] >> (index & 63)) & 1) return true;
-      }
-    }
-    return false;
+    const size_t index = static_cast<size_t>(y) * cols_ + x;
+    return (ThreeCoveredBits(index - cols_ - 1) | ThreeCoveredBits(index - 1) |
+            ThreeCoveredBits(index + cols_ - 1)) != 0;
+  }
+
+  // Bits first .. first + 2 of the covered map, from an unaligned 8-byte load (bit i of the map is
+  // bit i % 8 of byte i / 8 on a little-endian machine; MarkCovered pads the map by a word).
+  uint64_t ThreeCoveredBits(size_t first) const {
+    static_assert(__BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__, "the covered map is read by bytes");
+    uint64_t word;
+    std::memcpy(&word, reinterpret_cast<const unsigned char*>(covered_.data()) + (first >> 3), sizeof word);
+    return (word >> (first & 7)) & 7;
   }
 
   // The pixel nearest p, or false when it lies within a pixel of the border.
@@ -575,11 +630,10 @@ class BranchSearch {
   double FarCornerBeyond(const Eigen::Vector2d& far, const Eigen::Vector2d& d, int exclude) const {
     const double gap = options_.max_gap;
     double best = 0;
-    grid_->ForEachNear(far, 1, [&](int j) {
+    grid_->ForEachWithin(far, 2 * gap, [&](int j, const Eigen::Vector2d& end) {
       if (j / 2 == exclude) return true;
-      const LineSegment& other = grid_->Segments()[j / 2];
-      const Eigen::Vector2d& end = grid_->EndPoint(j);
       if ((end - far).squaredNorm() > 4 * gap * gap) return true;
+      const LineSegment& other = grid_->Segments()[j / 2];
       const Eigen::Vector2d od = other.Direction();
       const double sine = d.x() * od.y() - d.y() * od.x();
       if (std::abs(sine) < kMinCornerSine) return true;
@@ -689,6 +743,7 @@ class BranchSearch {
   int max_sample_ = 0, directions_per_side_ = 0;
   double step_ = 0, log10_tests_ = 0;
   std::vector<RingPixel>& ring_;
+  int inner_ring_ = 0;  // ring_[0, inner_ring_): the pixels 1.5-3 px away
   std::vector<double>& tail_;
   std::vector<uint64_t>& covered_;
   std::vector<double> blocked_;             // directions of one end already explained (Run)
