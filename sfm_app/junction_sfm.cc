@@ -101,6 +101,9 @@ DEFINE_bool(bundle_adjustment, kDefaults.bundle_adjustment,
             "Refine poses, points and lines with the Ceres bundle adjustment (false: outputs use the odometry).");
 DEFINE_double(ba_outlier_threshold, kDefaults.bundle_adjustment_options.outlier_threshold_px,
               "Bundle adjustment: observations with a larger error (px) are removed and the problem solved again.");
+DEFINE_int32(ba_observability_rounds, kDefaults.bundle_adjustment_options.observability_rounds,
+             "Bundle adjustment: after the last solve, drop the landmarks it made unobservable (a line behind or "
+             "through a camera, or without triangulation angle) and solve again, at most this many times.");
 DEFINE_double(ba_loss_scale, kDefaults.bundle_adjustment_options.robust_loss_scale_px,
               "Bundle adjustment: scale (px) of the robust loss on image residuals.");
 DEFINE_string(floor_prior, FloorPriorName(kDefaults.bundle_adjustment_options.floor_prior),
@@ -186,6 +189,7 @@ bool OptionsFromFlags(sfm::PipelineOptions* options, std::string* error) {
   options->bundle_adjustment = FLAGS_bundle_adjustment;
   options->bundle_adjustment_options.outlier_threshold_px = FLAGS_ba_outlier_threshold;
   options->bundle_adjustment_options.robust_loss_scale_px = FLAGS_ba_loss_scale;
+  options->bundle_adjustment_options.observability_rounds = FLAGS_ba_observability_rounds;
   options->bundle_adjustment_options.num_threads = FLAGS_threads;
   options->triangulation.wireframe.pose_error_from_bundle_adjustment = FLAGS_wireframe_ba_pose_error;
   options->triangulation.wireframe.line_sigma_subtracts_plane_noise = FLAGS_wireframe_plane_noise;

@@ -172,7 +172,9 @@ Status Refine(const Sequence& sequence, const PipelineOptions& options, Pipeline
   result->world_T_camera_refined = CamerasFromBases(world_T_base_refined, sequence.calibration.base_T_camera);
   LOG(INFO) << "bundle adjustment: " << summary.points << " points, " << summary.lines << " lines, "
             << summary.observations << " observations; " << summary.observations_removed
-            << " outlier observations removed, " << summary.lines_unobservable << " more lines unobservable; "
+            << " outlier observations removed, " << summary.lines_unobservable << " more lines unobservable ("
+            << summary.landmarks_unobservable_after_last_solve << " landmarks after the last solve, "
+            << summary.observability_solves << " solves more); "
             << "RMS " << summary.point_rms_px << " px (points), " << summary.line_rms_px << " px (lines); "
             << summary.solver_report;
   LOG(INFO) << summary.floor_prior_report

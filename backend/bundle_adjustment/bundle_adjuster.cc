@@ -171,6 +171,19 @@ class BundleAdjuster {
     if (loose) {
       SFM_RETURN_IF_ERROR(Solve(options_.robust_loss_scale_px, /*with_lines=*/true, options_.function_tolerance));
     }
+    // 6. The last solve's own landmarks under the rules every earlier solve's passed: a landmark it
+    //    made unobservable (on Strecha, lines slid behind or through a camera, which their images
+    //    cannot show, and still holding the poses) is dropped, and the rest solved again.
+    for (int round = 0; round < options_.observability_rounds; ++round) {
+      const int unobservable = DropUnobservableLandmarks(/*refined=*/true);
+      RemoveLandmarksWithFewViews();
+      if (unobservable == 0) break;
+      summary_->landmarks_unobservable_after_last_solve += unobservable;
+      ++summary_->observability_solves;
+      if (CountObservations() == 0) return RevertToOdometry("every landmark was removed after solving");
+      SelectFloor(/*first=*/false);
+      SFM_RETURN_IF_ERROR(Solve(options_.robust_loss_scale_px, /*with_lines=*/true, options_.function_tolerance));
+    }
     if (options_.floor_scale_line_search) SFM_RETURN_IF_ERROR(SearchScale());
     ComputeRms();
     FinishFloorSummary();

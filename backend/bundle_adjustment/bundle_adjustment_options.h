@@ -52,6 +52,13 @@ struct BundleAdjustmentOptions {
   bool inner_iterations = true;
   double outlier_threshold_px = 3.0;  // px, an observation's error (norm of its 2 residuals)
   int outlier_rounds = 1;             // remove-outliers-and-solve-again rounds after the joint solve
+  // Rounds after the last joint solve: the landmarks that solve itself made unobservable (a line
+  // whose estimate slid behind or through a camera that sees it, or lost its triangulation angle;
+  // the rules applied before every solve) are dropped and the problem solved again, until none is
+  // (at most this many solves; 0: the last solve's landmarks are not checked, the rule before
+  // session 5). Such a line still fits its views (its image does not tell front from back) while
+  // it holds the poses (docs/bundle_adjustment.md, "Robust loss, stages and outliers", step 7).
+  int observability_rounds = 3;
   BundleAdjustmentLinearSolver linear_solver = BundleAdjustmentLinearSolver::kAuto;
   int dense_schur_max_frames = 100;  // frames, kAuto's switch to SPARSE_SCHUR
   int num_threads = 1;               // Ceres threads
@@ -133,6 +140,10 @@ struct BundleAdjustmentSummary {
   // Dropped with a triangulation angle below the minimum (before solving, or on refined poses).
   int points_unobservable = 0;
   int lines_unobservable = 0;
+  // Of those, dropped after the last joint solve (options.observability_rounds), and the solves
+  // that followed.
+  int landmarks_unobservable_after_last_solve = 0;
+  int observability_solves = 0;
   double point_rms_px = 0;    // RMS reprojection error of the point observations kept, at the end
   double line_rms_px = 0;     // RMS end-point-to-line distance of the line observations kept
   // Floor prior: used in the last solve or not, the landmarks it held there, the floor's height
