@@ -33,7 +33,7 @@ struct PairRefinementSettings {
   // When the lowest truncated objective lies beyond the prior's 99 % ellipsoid, search again for
   // the lowest one inside it (the MAP pose among the poses the prior admits) instead of falling
   // back at once (docs/matching.md, "Refinement fall-backs"). The estimate still has to pass the
-  // same tests.
+  // same tests. (The struct's default is off, the function as it was; MatchingOptions turns it on.)
   bool constrain_to_prior_gate = false;
 };
 
