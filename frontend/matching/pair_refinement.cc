@@ -218,8 +218,7 @@ struct Fit {
   int iterations = 0;
 };
 
-//
-// With a finite `radius_squared` the steps are kept inside the ball |z|^2 <= radius_squared (the
+// Consensus: with a finite `radius_squared` the steps are kept inside the ball |z|^2 <= radius_squared (the
 // prior's 99 % ellipsoid in whitened coordinates): a step that would leave it is halved until it
 // does not, so from a start inside, the result is a local minimum of the truncated objective over
 // the poses the prior admits (PairRefinementSettings::constrain_to_prior_gate).
@@ -432,7 +431,8 @@ PairRefinement RefinePairGeometry(const PairGeometry& prior, const std::vector<E
   if (settings.constrain_to_prior_gate && best.z.squaredNorm() > prior_gate) {
     const auto into_ellipsoid = [&](const Vector6& start) -> Vector6 {
       const double norm_squared = start.squaredNorm();
-      // A start on the surface would leave no room for the first step; 0.99 of the radius.
+      // A start on the surface would leave no room for the first step, so just inside it (0.99 of
+      // the radius; any factor below 1 serves, the start only seeds Consensus).
       return norm_squared > prior_gate ? Vector6(start * (0.99 * std::sqrt(prior_gate / norm_squared))) : start;
     };
     Fit constrained = Consensus(model, x1, x2, Vector6::Zero(), sigma, settings.gate_sigmas, prior_gate);
