@@ -104,6 +104,9 @@ DEFINE_bool(match_refine, kMatchingDefaults.refine_geometry,
 DEFINE_double(match_refine_gate, kMatchingDefaults.refine_gate_sigmas, "With --match_refine: the gate, in sigmas.");
 DEFINE_int32(match_refine_min_inliers, kMatchingDefaults.refine_min_inliers,
              "With --match_refine: fewer supporting matches and the first pass is kept.");
+DEFINE_bool(match_refine_constrain, kMatchingDefaults.refine_constrain_to_prior_gate,
+            "With --match_refine: when the refined pose lies beyond the odometry's 99 % ellipsoid, take the best pose "
+            "inside it before falling back.");
 DEFINE_int32(match_depth_range_neighbours, kMatchingDefaults.depth_range_neighbours,
              "With --match_refine: the local depth range test's neighbours (0: off).");
 DEFINE_bool(match_depth_range_screen, kMatchingDefaults.depth_range_screen_verified,
@@ -593,6 +596,7 @@ RefinementCase VggRefinementCase(const VggData& d, int i, int j, const PairGeome
   settings.location_sigma_px = matching.location_sigma_px;
   settings.gate_sigmas = matching.refine_gate_sigmas;
   settings.min_inliers = matching.refine_min_inliers;
+  settings.constrain_to_prior_gate = matching.refine_constrain_to_prior_gate;
   const PairRefinement from_truth = RefinePairGeometry(odometry, x1, x2, settings);
   c.true_matches = static_cast<int>(x1.size());
   c.true_match_distance = from_truth.prior_distance_squared;
@@ -920,6 +924,7 @@ int main(int argc, char** argv) {
   matching.refine_geometry = FLAGS_match_refine;
   matching.refine_gate_sigmas = FLAGS_match_refine_gate;
   matching.refine_min_inliers = FLAGS_match_refine_min_inliers;
+  matching.refine_constrain_to_prior_gate = FLAGS_match_refine_constrain;
   matching.match_partial = FLAGS_match_partial;
   matching.partial_rule_not_line_half = FLAGS_match_partial_rule_a;
   matching.partial_rule_same_lines = FLAGS_match_partial_rule_b;

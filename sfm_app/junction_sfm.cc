@@ -87,6 +87,9 @@ DEFINE_double(match_refine_gate, kDefaults.matching.refine_gate_sigmas,
               "Band of the guided second pass, in standard deviations of the refined epipolar distance.");
 DEFINE_int32(match_refine_min_inliers, kDefaults.matching.refine_min_inliers,
              "Fewest supporting first-pass matches for the refined pose; fewer: keep the first pass.");
+DEFINE_bool(match_refine_constrain, kDefaults.matching.refine_constrain_to_prior_gate,
+            "When the refined pose lies beyond the odometry's 99 % ellipsoid, take the best pose inside it before "
+            "keeping the first pass (docs/matching.md, \"Refinement fall-backs\").");
 DEFINE_bool(match_topology, kDefaults.matching.use_topology,
             "Match on sigma (junction topology, section 4.2) rather than on plain rho (34).");
 DEFINE_bool(
@@ -184,6 +187,7 @@ bool OptionsFromFlags(sfm::PipelineOptions* options, std::string* error) {
   options->matching.refine_geometry = FLAGS_match_refine;
   options->matching.refine_gate_sigmas = FLAGS_match_refine_gate;
   options->matching.refine_min_inliers = FLAGS_match_refine_min_inliers;
+  options->matching.refine_constrain_to_prior_gate = FLAGS_match_refine_constrain;
   options->matching.match_partial = FLAGS_match_partial;
   options->matching.partial_rule_not_line_half = FLAGS_match_partial_rule_a;
   options->bundle_adjustment = FLAGS_bundle_adjustment;

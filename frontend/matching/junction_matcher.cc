@@ -138,6 +138,7 @@ std::vector<JunctionMatch> MatchJunctions(const Junctions& a, const TopologyGrap
   settings.location_sigma_px = options.location_sigma_px;
   settings.gate_sigmas = options.refine_gate_sigmas;
   settings.min_inliers = options.refine_min_inliers;
+  settings.constrain_to_prior_gate = options.refine_constrain_to_prior_gate;
   report.refinement = RefinePairGeometry(geometry, x1, x2, settings);
   if (!report.refinement.Refined()) return first;
 

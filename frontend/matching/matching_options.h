@@ -62,6 +62,11 @@ struct MatchingOptions {
   double refine_gate_sigmas = 2.576;
   // Three matches per degree of freedom of an epipolar geometry (5).
   int refine_min_inliers = 15;
+  // When the refined pose lies beyond the prior's 99 % ellipsoid, take the MAP pose inside it before
+  // falling back (PairRefinementSettings::constrain_to_prior_gate; docs/matching.md, "Refinement
+  // fall-backs"; it changes nothing where the unconstrained estimate passes, i.e. on every pair of
+  // the default benchmarks, and refines the VGG pairs that fell back after a change of the junctions).
+  bool refine_constrain_to_prior_gate = true;
   // The local depth range test in the guided pass (docs/matching.md, "The local depth range"): a
   // candidate partner's depth along the epipolar line must lie within the range of inverse depths of
   // the depth_range_neighbours verified matches (refinement inliers) nearest to the junction in

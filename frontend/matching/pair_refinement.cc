@@ -218,8 +218,13 @@ struct Fit {
   int iterations = 0;
 };
 
+// Consensus: with a finite `radius_squared` the steps are kept inside the ball |z|^2 <= radius_squared (the
+// prior's 99 % ellipsoid in whitened coordinates): a step that would leave it is halved until it
+// does not, so from a start inside, the result is a local minimum of the truncated objective over
+// the poses the prior admits (PairRefinementSettings::constrain_to_prior_gate).
 Fit Consensus(const PoseModel& model, const std::vector<Eigen::Vector2d>& x1, const std::vector<Eigen::Vector2d>& x2,
-              const Vector6& start, double sigma, double gate) {
+              const Vector6& start, double sigma, double gate,
+              double radius_squared = std::numeric_limits<double>::infinity()) {
   Fit fit;
   fit.z = start;
   Eigen::VectorXd r, r_new, w, w_previous;
@@ -244,6 +249,7 @@ Fit Consensus(const PoseModel& model, const std::vector<Eigen::Vector2d>& x1, co
     Vector6 z_new;
     for (int halving = 0; halving < 20 && !improved; ++halving, dz /= 2) {
       z_new = fit.z + dz;
+      if (z_new.squaredNorm() > radius_squared) continue;
       Linearise(model, z_new, x1, x2, &r_new, &J_new);
       improved = selected_cost(z_new, r_new, w) <= cost;
     }
@@ -413,6 +419,56 @@ PairRefinement RefinePairGeometry(const PairGeometry& prior, const std::vector<E
     const Fit fit = Consensus(model, x1, x2, z, sigma, settings.gate_sigmas);
     iterations += fit.iterations;
     if (fit.cost < best.cost) best = fit;
+  }
+  // 3. When the lowest truncated objective lies beyond the prior's 99 % ellipsoid, the maximum a
+  //    posteriori pose among the poses the prior admits: the same search (starts from the prior,
+  //    from the Cauchy fit and from samples, each pulled into the ellipsoid along the ray from the
+  //    prior), with Consensus kept inside it. A group of wrong matches that agree with a pose
+  //    beyond the gate can then no longer carry the estimate there; the right matches, which
+  //    agree with a pose inside (the odometry's covariance covers its error), still can. The
+  //    result must pass the same tests below, so a pair whose matches fit nothing inside the
+  //    ellipsoid still falls back.
+  if (settings.constrain_to_prior_gate && best.z.squaredNorm() > prior_gate) {
+    const auto into_ellipsoid = [&](const Vector6& start) -> Vector6 {
+      const double norm_squared = start.squaredNorm();
+      // A start on the surface would leave no room for the first step, so just inside it (0.99 of
+      // the radius; any factor below 1 serves, the start only seeds Consensus).
+      return norm_squared > prior_gate ? Vector6(start * (0.99 * std::sqrt(prior_gate / norm_squared))) : start;
+    };
+    Fit constrained = Consensus(model, x1, x2, Vector6::Zero(), sigma, settings.gate_sigmas, prior_gate);
+    iterations += constrained.iterations;
+    const Fit from_cauchy =
+        Consensus(model, x1, x2, into_ellipsoid(best.z), sigma, settings.gate_sigmas, prior_gate);
+    iterations += from_cauchy.iterations;
+    if (from_cauchy.cost < constrained.cost) constrained = from_cauchy;
+    std::mt19937 constrained_rng(kSamplingSeed);
+    double best_constrained_sample = std::numeric_limits<double>::infinity();
+    for (int h = 0; h < RequiredSamples(constrained.inliers, n) && h < kMaxSamples; ++h) {
+      std::iota(order.begin(), order.end(), 0);
+      for (int k = 0; k < kSampleSize; ++k) {
+        std::swap(order[static_cast<size_t>(k)],
+                  order[static_cast<size_t>(
+                      k + static_cast<int>(constrained_rng() % static_cast<unsigned>(n - k)))]);
+        sample1[static_cast<size_t>(k)] = x1[static_cast<size_t>(order[static_cast<size_t>(k)])];
+        sample2[static_cast<size_t>(k)] = x2[static_cast<size_t>(order[static_cast<size_t>(k)])];
+      }
+      const Vector6 z = into_ellipsoid(
+          GaussNewton(model, sample1, sample2, Vector6::Zero(), sigma, kSampleIterations, &iterations));
+      Residuals(model, z, x1, x2, &r);
+      const double cost = TruncatedCost(z, r, sigma, settings.gate_sigmas);
+      if (!(cost < best_constrained_sample)) continue;
+      best_constrained_sample = cost;
+      const Fit fit = Consensus(model, x1, x2, z, sigma, settings.gate_sigmas, prior_gate);
+      iterations += fit.iterations;
+      if (fit.cost < constrained.cost) constrained = fit;
+    }
+    // Only a minimum of the objective itself counts: one held at the ellipsoid's surface by the
+    // constraint is where the matches would pull the pose further out (they disagree with the
+    // odometry, and the fall-back is the safe choice). So Consensus goes on from it without the
+    // constraint; the tests below then reject an estimate that leaves the ellipsoid.
+    best = Consensus(model, x1, x2, constrained.z, sigma, settings.gate_sigmas);
+    iterations += best.iterations;
+    result.constrained = true;
   }
   const Vector6& z = best.z;
   Matrix6 covariance = best.covariance;
