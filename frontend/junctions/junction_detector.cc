@@ -151,18 +151,19 @@ Junction MakeJunction(const Group& group, const std::vector<SegmentLine>& lines,
 // equal end-points at the threshold adds 0) when positive, else 0 (an end-point explained no
 // better than the threshold allows counts as free). An interior (a T's bar, an X's crossing) moves
 // nothing and adds nothing. A tiny floor keeps every weight positive (the branch and bound's
-// bound needs it).
+// bound needs it); a floor, not an addition, so that two junctions explaining the same end-points
+// as one (two L's where four ends meet, against the X) do not outweigh it by the floor twice.
 double EndLikelihoodWeight(const Group& group, const std::vector<SegmentLine>& lines,
                            const JunctionDetectorOptions& options) {
   const double baseline = 0.5 * std::log(options.min_probability);
   const Eigen::Vector2d at = group.Location();
-  double weight = 1e-9;
+  double weight = 0;
   for (int node : group.nodes) {
     if (ContactOf(node) == Contact::kThrough) continue;
     const double t = NearEndChange(lines[SegmentOf(node)], at).t;
     weight += std::max(0.0, std::log(options.endpoint_model.F(t)) - baseline);
   }
-  return weight;
+  return std::max(weight, 1e-9);
 }
 
 // Candidates conflict when they share an end-point node (an end-point belongs to one junction) or a
@@ -275,15 +276,19 @@ std::vector<int> ChooseJunctions(const std::vector<Group>& candidates, size_t nu
       continue;
     }
     // Branch and bound: take or leave each member in score order; prune when even taking all the
-    // rest cannot beat the best set found. Strict improvement keeps the earliest (greedy) set on ties.
+    // rest cannot beat the best set found. Strict improvement keeps the earliest (greedy) set on ties;
+    // a tie within rounding (kTie relative: sums of the same weights in another order) is a tie, so
+    // that the greedy set, whose first member is the strongest single candidate, keeps it: of two
+    // readings that explain the same end-points equally well, the one with fewer junctions.
     rest.assign(members.size() + 1, 0.0);
     for (int k = static_cast<int>(members.size()) - 1; k >= 0; --k) rest[k] = rest[k + 1] + candidates[members[k]].score;
     current.clear();
     best.clear();
     double best_score = -1;
+    constexpr double kTie = 1e-12;
     // A generic lambda calling itself (not std::function): no allocation, calls can be inlined.
     auto search = [&](auto& self, size_t k, double score) -> void {
-      if (score + rest[k] <= best_score) return;
+      if (score + rest[k] <= best_score + kTie * std::abs(best_score)) return;
       if (k == members.size()) {
         best_score = score;
         best = current;

@@ -46,12 +46,13 @@ struct JunctionDetectorOptions {
   // false: the largest total of the paper's score (the sum of pairwise probabilities). true: the
   // largest total log-likelihood ratio of the end-points explained, each end-point counted once,
   // ln f(t) - ln sqrt(min_probability) when positive (junction_detector.cc, EndLikelihoodWeight).
-  // The output score stays the paper's. Off by default: with it junction recall on generated
-  // vertices rises 85.3 -> 86.4 % (held-out 82.6 -> 84.6 %), precision 92.2 -> 93.4 %, median error
-  // 0.257 -> 0.248 px, but VGG consecutive matching precision falls under issue 4's 97 % on
-  // odometry seeds 1 and 3 (96.2 / 96.9 %): crossings (X) and 3-junctions give way to L's
-  // (docs/junction_results.md, "Session 5").
-  bool choose_by_end_likelihood = false;
+  // The output score stays the paper's. On by default (since the end of session 5): junction recall
+  // on generated vertices 85.3 -> 86.4 % (held-out 82.6 -> 84.6 %), precision 92.2 -> 93.4 %, median
+  // error 0.257 -> 0.248 px. It had cost VGG matching precision on some odometry seeds (96.7 % on
+  // seed 3) through the matcher's pair refinement falling back to the odometry's band, which the
+  // refinement's constrained search (MatchingOptions::refine_constrain_to_prior_gate) now avoids:
+  // every one of 16 seeds >= 98.1 % (docs/junction_results.md, docs/matching_results.md "Session 5").
+  bool choose_by_end_likelihood = true;
 
   Status Check() const {
     auto bad = [](const std::string& what) { return Status::Error("JunctionDetectorOptions: " + what); };
