@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <set>
 #include <utility>
 #include <vector>
@@ -262,7 +263,8 @@ std::vector<int> ChooseJunctions(const std::vector<Group>& candidates, size_t nu
       }
     }
     std::stable_sort(members.begin(), members.end(), [&](int a, int b) {
-      return candidates[a].score > candidates[b].score || (candidates[a].score == candidates[b].score && a < b);
+      return candidates[a].score > candidates[b].score ||
+             (candidates[a].score == candidates[b].score && a < b);
     });
     auto block = [&](int c, int delta) {
       for (int other : conflicts(c)) blocked[other] += delta;
@@ -281,7 +283,8 @@ std::vector<int> ChooseJunctions(const std::vector<Group>& candidates, size_t nu
     // that the greedy set, whose first member is the strongest single candidate, keeps it: of two
     // readings that explain the same end-points equally well, the one with fewer junctions.
     rest.assign(members.size() + 1, 0.0);
-    for (int k = static_cast<int>(members.size()) - 1; k >= 0; --k) rest[k] = rest[k + 1] + candidates[members[k]].score;
+    for (int k = static_cast<int>(members.size()) - 1; k >= 0; --k)
+      rest[k] = rest[k + 1] + candidates[members[k]].score;
     current.clear();
     best.clear();
     double best_score = -1;
@@ -312,6 +315,57 @@ std::vector<int> ChooseJunctions(const std::vector<Group>& candidates, size_t nu
     if (keep[c]) chosen.push_back(c);
   }
   return chosen;
+}
+
+// The paper's N-junction rule (junctions at one location are one junction), applied after the
+// end-likelihood choice: that choice counts each end-point once and may explain the ends meeting
+// at a vertex by two junctions, each at its own pair's intersection a fraction of a pixel better,
+// where the union of the two is itself a candidate (every pair between their segments passed the
+// test within max_gap of the group's location: the growth made it one junction). Such two are
+// replaced by their union, when no other chosen junction holds one of the union's pairs.
+void MergeCoincidingJunctions(const std::vector<Group>& candidates, double max_gap,
+                              std::vector<int>* chosen) {
+  std::map<std::vector<int>, int> grown_by_nodes;
+  for (int c = 0; c < static_cast<int>(candidates.size()); ++c) {
+    if (candidates[c].nodes.size() < 3) continue;
+    std::vector<int> key = candidates[c].nodes;
+    std::sort(key.begin(), key.end());
+    grown_by_nodes.emplace(std::move(key), c);
+  }
+  if (grown_by_nodes.empty()) return;
+  bool merged = true;
+  while (merged) {
+    merged = false;
+    std::vector<int>& kept = *chosen;
+    for (size_t i = 0; i < kept.size() && !merged; ++i) {
+      for (size_t j = i + 1; j < kept.size() && !merged; ++j) {
+        const Group& a = candidates[kept[i]];
+        const Group& b = candidates[kept[j]];
+        // A grown group's hits all lie within max_gap of its location, so the two parts' locations
+        // lie within 2 max_gap of each other: the cheap test first.
+        if ((a.Location() - b.Location()).squaredNorm() > 4 * max_gap * max_gap) continue;
+        std::vector<int> key = a.nodes;
+        key.insert(key.end(), b.nodes.begin(), b.nodes.end());
+        std::sort(key.begin(), key.end());
+        if (std::adjacent_find(key.begin(), key.end()) != key.end()) continue;  // a shared node
+        const auto found = grown_by_nodes.find(key);
+        if (found == grown_by_nodes.end()) continue;
+        const Group& both = candidates[found->second];
+        bool pair_taken = false;  // by a third chosen junction
+        for (size_t k = 0; k < kept.size() && !pair_taken; ++k) {
+          if (k == i || k == j) continue;
+          for (int h : candidates[kept[k]].hits) {
+            pair_taken |= std::find(both.hits.begin(), both.hits.end(), h) != both.hits.end();
+          }
+        }
+        if (pair_taken) continue;
+        kept[i] = found->second;
+        kept.erase(kept.begin() + static_cast<std::ptrdiff_t>(j));
+        merged = true;
+      }
+    }
+  }
+  std::sort(chosen->begin(), chosen->end());
 }
 
 }  // namespace
@@ -391,6 +445,7 @@ Junctions DetectJunctions(const LineSegments& segments, const JunctionDetectorOp
     std::vector<Group> weighted = candidates;
     for (Group& group : weighted) group.score = EndLikelihoodWeight(group, lines, options);
     chosen = ChooseJunctions(weighted, graph.hits().size(), 3 * n);
+    MergeCoincidingJunctions(candidates, options.max_gap_px, &chosen);
   } else {
     chosen = ChooseJunctions(candidates, graph.hits().size(), 3 * n);
   }

@@ -1,10 +1,10 @@
 #include "frontend/junctions/junction_detector.h"
 
+#include <gtest/gtest.h>
+
 #include <algorithm>
 #include <cmath>
 #include <random>
-
-#include <gtest/gtest.h>
 
 namespace sfm {
 namespace {
@@ -159,6 +159,26 @@ TEST(JunctionDetectorTest, XFromFourEnds) {
   }
 }
 
+// Four ends meeting at a vertex whose two lines are not exactly concurrent (the left spoke 0.6 px
+// lower): each L of two of them sits at its own intersection, so under the end-likelihood choice
+// two L's explain the four ends better than the X at their mean; but their union is a candidate
+// (every pair between them passes within max_gap), one junction by the paper's N-junction rule:
+// the output is the X (MergeCoincidingJunctions), not two L's 0.6 px apart.
+TEST(JunctionDetectorTest, NearlyConcurrentFourEndsAreOneX) {
+  const Eigen::Vector2d center(200, 150);
+  LineSegments segments = {Spoke(center, 0, 3), Spoke(center + Eigen::Vector2d(0, 0.6), 180, 3),
+                           Spoke(center, 90, 3), Spoke(center, 270, 3)};
+  for (bool by_end_likelihood : {false, true}) {
+    JunctionDetectorOptions options = Options();
+    options.choose_by_end_likelihood = by_end_likelihood;
+    const Junctions junctions = DetectJunctions(segments, options);
+    ASSERT_EQ(junctions.size(), 1u) << "by_end_likelihood " << by_end_likelihood;
+    EXPECT_EQ(junctions[0].type, JunctionType::kX);
+    EXPECT_EQ(junctions[0].NumSegments(), 4);
+    EXPECT_LT((junctions[0].location - (center + Eigen::Vector2d(0, 0.3))).norm(), 0.31);
+  }
+}
+
 TEST(JunctionDetectorTest, XFromTwoCrossingSegments) {
   const Junctions junctions = DetectJunctions({Segment(0, 0, 100, 100), Segment(0, 100, 100, 0)}, Options());
   ASSERT_EQ(junctions.size(), 1u);
@@ -204,9 +224,9 @@ TEST(JunctionDetectorTest, ConflictingEndPointGoesToTheBestOverallReading) {
   // short: e^-1.0 = 0.368). c and d alone fail (e^-2.6 < 0.1). Taking the strongest pair first
   // (a-b) would leave one junction, score 0.449, and lose both vertices at (9, 0) and (12, -2);
   // the best conflict-free set is a-c + b-d, score 0.570, every end-point used once.
-  const Junctions junctions = DetectJunctions({Segment(0, 0, 10, 0), Segment(12, -20, 12, -2), Segment(9, 20, 9, 3),
-                                               Segment(40, -2, 17, -2)},
-                                              Options());
+  const Junctions junctions = DetectJunctions(
+      {Segment(0, 0, 10, 0), Segment(12, -20, 12, -2), Segment(9, 20, 9, 3), Segment(40, -2, 17, -2)},
+      Options());
   ASSERT_EQ(junctions.size(), 2u);
   std::vector<std::pair<double, double>> found;
   for (const Junction& j : junctions) found.emplace_back(j.location.x(), j.location.y());
@@ -315,7 +335,6 @@ TEST(JunctionDetectorTest, ThirtyCubesAllVertices) {
     EXPECT_EQ(nearest->type, scene.types[v]) << v;
   }
   for (size_t j = 0; j < junctions.size(); ++j) EXPECT_EQ(junctions[j].id, static_cast<int>(j));
-
 }
 
 }  // namespace
