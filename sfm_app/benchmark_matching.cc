@@ -724,11 +724,12 @@ Status WriteVerdictPicture(const std::string& path, const LoadedFrame& a, const 
                            const std::vector<JunctionMatch>& matches, const Eigen::Matrix3d& F_true,
                            const SameFeature& same) {
   std::vector<bool> correct;
+  const std::vector<Eigen::Vector2d> judged_a = JudgedLocations(a), judged_b = JudgedLocations(b);
   // Partial matches included: DrawMatchOverlay pairs their segments by PartnerSegment and draws the
   // left-out one in grey.
   for (const JunctionMatch& m : matches) {
-    const MatchVerdicts v = JudgeMatches({{m.index_a, m.index_b}}, JudgedLocations(a),
-                                         JudgedLocations(b), F_true, FLAGS_epipolar_tolerance, same);
+    const MatchVerdicts v =
+        JudgeMatches({{m.index_a, m.index_b}}, judged_a, judged_b, F_true, FLAGS_epipolar_tolerance, same);
     correct.push_back(v.correct == 1);
   }
   return WritePng(path, DrawMatchOverlay(a.grey, a.features.junctions, b.grey, b.features.junctions, matches,

@@ -60,25 +60,28 @@ std::vector<Eigen::Vector3d> Centres(const std::vector<Pose3>& camera_T_world) {
 
 // The start: K off by 4 % in focal length and 20 px in the principal point, every pose turned by
 // ~0.01 rad and moved by ~0.05 units, every point moved by ~0.05 units.
-void Perturb(const Scene& scene, Eigen::Matrix3d* K, std::vector<Pose3>* poses,
-             std::vector<Eigen::Vector3d>* points) {
-  *K = scene.K;
-  (*K)(0, 0) *= 1.04;
-  (*K)(1, 1) *= 0.97;
-  (*K)(0, 2) += 20;
-  (*K)(1, 2) -= 15;
-  *poses = scene.camera_T_world;
-  for (size_t v = 1; v < poses->size(); ++v) {
+struct Start {
+  Eigen::Matrix3d K;
+  std::vector<Pose3> poses;
+  std::vector<Eigen::Vector3d> points;
+};
+Start Perturbed(const Scene& scene) {
+  Start start{scene.K, scene.camera_T_world, scene.points};
+  start.K(0, 0) *= 1.04;
+  start.K(1, 1) *= 0.97;
+  start.K(0, 2) += 20;
+  start.K(1, 2) -= 15;
+  for (size_t v = 1; v < start.poses.size(); ++v) {
     const double s = std::sin(3.0 * v);
-    (*poses)[v] =
+    start.poses[v] =
         Pose3(Eigen::Quaterniond(Eigen::AngleAxisd(0.01 * s, Eigen::Vector3d(1, s, 0.5).normalized())),
               Eigen::Vector3d(0.05 * s, -0.03, 0.04 * std::cos(2.0 * v))) *
-        (*poses)[v];
+        start.poses[v];
   }
-  *points = scene.points;
-  for (size_t p = 0; p < points->size(); ++p) {
-    (*points)[p] += 0.05 * Eigen::Vector3d(std::sin(1.0 * p), std::cos(1.7 * p), std::sin(2.3 * p));
+  for (size_t p = 0; p < start.points.size(); ++p) {
+    start.points[p] += 0.05 * Eigen::Vector3d(std::sin(1.0 * p), std::cos(1.7 * p), std::sin(2.3 * p));
   }
+  return start;
 }
 
 // The self-calibrating refit recovers a shared K, the poses and the points from a perturbed start
@@ -86,10 +89,7 @@ void Perturb(const Scene& scene, Eigen::Matrix3d* K, std::vector<Pose3>* poses,
 // reprojection to 1e-4 px (the start is tens of pixels off).
 TEST(SharedCameraRefitTest, RecoversSharedIntrinsicsPosesAndPoints) {
   const Scene scene = MakeScene(/*k1=*/0);
-  Eigen::Matrix3d K;
-  std::vector<Pose3> poses;
-  std::vector<Eigen::Vector3d> points;
-  Perturb(scene, &K, &poses, &points);
+  const auto [K, poses, points] = Perturbed(scene);
   SharedCameraRefit refit;
   ASSERT_TRUE(RefitSharedCamera(K, poses, points, scene.observations, Centres(scene.camera_T_world),
                                 SharedCameraRefitOptions(), &refit)
@@ -112,10 +112,7 @@ TEST(SharedCameraRefitTest, RecoversSharedIntrinsicsPosesAndPoints) {
 // 1e-5 and K to 1e-3 px.
 TEST(SharedCameraRefitTest, RecoversRadialDistortion) {
   const Scene scene = MakeScene(/*k1=*/-0.1);
-  Eigen::Matrix3d K;
-  std::vector<Pose3> poses;
-  std::vector<Eigen::Vector3d> points;
-  Perturb(scene, &K, &poses, &points);
+  const auto [K, poses, points] = Perturbed(scene);
   SharedCameraRefitOptions options;
   options.radial_k1 = true;
   SharedCameraRefit refit;
@@ -131,10 +128,7 @@ TEST(SharedCameraRefitTest, RecoversRadialDistortion) {
 // true one, so the exact observations are reproduced to 1e-4 px.
 TEST(SharedCameraRefitTest, HeldIntrinsicsStayAsGiven) {
   const Scene scene = MakeScene(/*k1=*/0);
-  Eigen::Matrix3d K;
-  std::vector<Pose3> poses;
-  std::vector<Eigen::Vector3d> points;
-  Perturb(scene, &K, &poses, &points);
+  const auto [K, poses, points] = Perturbed(scene);
   SharedCameraRefitOptions options;
   options.refine_focal = false;
   options.refine_principal_point = false;
@@ -162,10 +156,7 @@ TEST(SharedCameraRefitTest, HeldIntrinsicsStayAsGiven) {
 // are fitted to 1e-4 px; held at 0 instead, the same views leave pixels of error.
 TEST(SharedCameraRefitTest, HeldRadialDistortionStaysAsGiven) {
   const Scene scene = MakeScene(/*k1=*/-0.1);
-  Eigen::Matrix3d K;
-  std::vector<Pose3> poses;
-  std::vector<Eigen::Vector3d> points;
-  Perturb(scene, &K, &poses, &points);
+  const auto [K, poses, points] = Perturbed(scene);
   SharedCameraRefitOptions options;
   options.refine_focal = false;
   options.refine_principal_point = false;
@@ -191,10 +182,7 @@ TEST(SharedCameraRefitTest, HeldRadialDistortionStaysAsGiven) {
 // this also checks that the solve's own gauge (pose 0 held) does not leak into the result.
 TEST(SharedCameraRefitTest, ResultLiesInTheReferenceFrameAndUnits) {
   const Scene scene = MakeScene(/*k1=*/0);
-  Eigen::Matrix3d K;
-  std::vector<Pose3> poses;
-  std::vector<Eigen::Vector3d> points;
-  Perturb(scene, &K, &poses, &points);
+  const auto [K, poses, points] = Perturbed(scene);
   const double scale = 2.5;
   const Eigen::Quaterniond rotation(Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 3).normalized()));
   const Eigen::Vector3d translation(4, -1, 2);

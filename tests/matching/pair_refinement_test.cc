@@ -166,6 +166,20 @@ TEST(PairRefinementTest, RecoversAPerturbedPoseDespiteWrongMatches) {
   EXPECT_LE(refinement.prior_distance_squared, refinement.prior_gate);
 }
 
+// Prior: 0.005 rad per rotation axis, 3 mm per translation axis (the pair moves 0.32 m: 0.5 degrees
+// of direction); the odometry is (0.8, -1.2, 0.6, 0.67, -0.33, 0.5) sigmas off the truth: squared
+// Mahalanobis distance 3.2.
+PairGeometry PriorNearTheTruth(const testing::TwoViews& views, const Pose3& truth) {
+  PairGeometry prior;
+  prior.K = views.K;
+  const Eigen::Vector3d omega(0.004, -0.006, 0.003);
+  prior.camera2_T_camera1 = Pose3(
+      Eigen::Matrix3d(Eigen::AngleAxisd(omega.norm(), omega.normalized()).toRotationMatrix() * truth.RotationMatrix()),
+      truth.translation + Eigen::Vector3d(0.002, -0.001, 0.0015));
+  prior.covariance.diagonal() << 2.5e-5, 2.5e-5, 2.5e-5, 9e-6, 9e-6, 9e-6;
+  return prior;
+}
+
 // A group of wrong matches that one pose explains: correspondences exact under a decoy pose whose
 // translation is turned 3 degrees from the truth, each 2-6 px off the true epipolar lines (as wrong
 // partners of a first pass lie). Under forward motion the direction of translation is weakly seen
@@ -179,16 +193,7 @@ TEST(PairRefinementTest, NotCapturedByAGroupOfWrongMatches) {
   std::mt19937 rng(25);
   const testing::TwoViews views = testing::MakeTwoViews();
   const Pose3 truth = TruePose(views);
-  // Prior: 0.005 rad per rotation axis, 3 mm per translation axis (the pair moves 0.32 m: 0.5
-  // degrees of direction); the odometry is (0.8, -1.2, 0.6, 0.67, -0.33, 0.5) sigmas off: squared
-  // Mahalanobis distance 3.2.
-  PairGeometry prior;
-  prior.K = views.K;
-  const Eigen::Vector3d omega(0.004, -0.006, 0.003);
-  prior.camera2_T_camera1 = Pose3(
-      Eigen::Matrix3d(Eigen::AngleAxisd(omega.norm(), omega.normalized()).toRotationMatrix() * truth.RotationMatrix()),
-      truth.translation + Eigen::Vector3d(0.002, -0.001, 0.0015));
-  prior.covariance.diagonal() << 2.5e-5, 2.5e-5, 2.5e-5, 9e-6, 9e-6, 9e-6;
+  const PairGeometry prior = PriorNearTheTruth(views, truth);
   // The decoy: the same rotation, the translation turned 3 degrees about camera 2's y axis.
   const Pose3 decoy(truth.rotation, Eigen::AngleAxisd(3 / kDegrees, Eigen::Vector3d::UnitY()) * truth.translation);
   const Pose3 world_T_decoy2 = views.world_T_camera1 * decoy.Inverse();
@@ -245,13 +250,7 @@ TEST(PairRefinementTest, ConstrainedToThePriorGateWhenWrongMatchesPullBeyondIt) 
   std::mt19937 rng(26);
   const testing::TwoViews views = testing::MakeTwoViews();
   const Pose3 truth = TruePose(views);
-  PairGeometry prior;
-  prior.K = views.K;
-  const Eigen::Vector3d omega(0.004, -0.006, 0.003);
-  prior.camera2_T_camera1 = Pose3(
-      Eigen::Matrix3d(Eigen::AngleAxisd(omega.norm(), omega.normalized()).toRotationMatrix() * truth.RotationMatrix()),
-      truth.translation + Eigen::Vector3d(0.002, -0.001, 0.0015));
-  prior.covariance.diagonal() << 2.5e-5, 2.5e-5, 2.5e-5, 9e-6, 9e-6, 9e-6;
+  const PairGeometry prior = PriorNearTheTruth(views, truth);
   const Pose3 decoy(
       Eigen::Matrix3d(Eigen::AngleAxisd(kDecoyAngle / kDegrees, Eigen::Vector3d::UnitZ()).toRotationMatrix() *
                       truth.RotationMatrix()),
