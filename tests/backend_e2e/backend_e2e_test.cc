@@ -153,6 +153,13 @@ class BackendEndToEnd : public ::testing::Test {
   }
   fs::path sequence_dir() const { return scratch_ / "sequence"; }
   fs::path output_dir() const { return scratch_ / "output"; }
+  // The generator's default corridor, `num_frames` frames, without truth/, into sequence_dir().
+  Status GenerateCorridor(int num_frames) const {
+    GeneratorOptions generator;
+    generator.trajectory.num_frames = num_frames;
+    generator.write_truth = false;
+    return GenerateSequence(generator, sequence_dir().string(), /*overwrite=*/true);
+  }
   fs::path scratch_;
 };
 
@@ -256,10 +263,7 @@ TEST_F(BackendEndToEnd, BlankImagesGiveNoTracks) {
 
 // Two frames of a corridor: one pair, tracks of length two at most.
 TEST_F(BackendEndToEnd, TwoFrames) {
-  GeneratorOptions generator;
-  generator.trajectory.num_frames = 2;
-  generator.write_truth = false;
-  ASSERT_TRUE(GenerateSequence(generator, sequence_dir().string(), /*overwrite=*/true).ok());
+  ASSERT_TRUE(GenerateCorridor(2).ok());
   PipelineResult result;
   const Status status = RunOn(sequence_dir(), output_dir(), &result);
   ASSERT_TRUE(status.ok()) << status.message();
@@ -268,10 +272,7 @@ TEST_F(BackendEndToEnd, TwoFrames) {
 
 // One frame: refused with a one-line message (the sequence reader needs two frames).
 TEST_F(BackendEndToEnd, OneFrameIsRefusedWithOneLine) {
-  GeneratorOptions generator;
-  generator.trajectory.num_frames = 1;
-  generator.write_truth = false;
-  ASSERT_TRUE(GenerateSequence(generator, sequence_dir().string(), /*overwrite=*/true).ok());
+  ASSERT_TRUE(GenerateCorridor(1).ok());
   PipelineResult result;
   const Status status = RunOn(sequence_dir(), output_dir(), &result);
   ASSERT_FALSE(status.ok());
@@ -281,10 +282,7 @@ TEST_F(BackendEndToEnd, OneFrameIsRefusedWithOneLine) {
 
 // No frame at all (an images.txt without entries): refused with a one-line message.
 TEST_F(BackendEndToEnd, NoFrameIsRefusedWithOneLine) {
-  GeneratorOptions generator;
-  generator.trajectory.num_frames = 2;
-  generator.write_truth = false;
-  ASSERT_TRUE(GenerateSequence(generator, sequence_dir().string(), /*overwrite=*/true).ok());
+  ASSERT_TRUE(GenerateCorridor(2).ok());
   std::ofstream(sequence_dir() / "images.txt") << "# no frame\n";
   PipelineResult result;
   const Status status = RunOn(sequence_dir(), output_dir(), &result);
@@ -295,10 +293,7 @@ TEST_F(BackendEndToEnd, NoFrameIsRefusedWithOneLine) {
 // Straight down a corridor: its long edges (wall-floor, wall-ceiling, skirting) are parallel to the
 // motion, so unobservable; they are dropped and counted in metrics.json.
 TEST_F(BackendEndToEnd, CorridorLinesParallelToTheMotionAreCounted) {
-  GeneratorOptions generator;
-  generator.trajectory.num_frames = 12;
-  generator.write_truth = false;
-  ASSERT_TRUE(GenerateSequence(generator, sequence_dir().string(), /*overwrite=*/true).ok());
+  ASSERT_TRUE(GenerateCorridor(12).ok());
   PipelineResult result;
   const Status status = RunOn(sequence_dir(), output_dir(), &result);
   ASSERT_TRUE(status.ok()) << status.message();
