@@ -38,12 +38,7 @@ namespace fs = std::filesystem;
 using ::testing::HasSubstr;
 using ::testing::Not;
 
-std::string ReadText(const fs::path& path) {
-  std::ifstream in(path);
-  std::stringstream buffer;
-  buffer << in.rdbuf();
-  return buffer.str();
-}
+using testing::ReadFile;
 
 Pose3 BasePose(double x, double y, double yaw) {
   return Pose3(Eigen::Matrix3d(Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ())), Eigen::Vector3d(x, y, 0));
@@ -134,7 +129,7 @@ Status RunOn(const fs::path& sequence_dir, const fs::path& output_dir, PipelineR
   std::vector<StampedPose> refined;
   EXPECT_TRUE(ReadTumTrajectory((output_dir / "trajectory_refined.txt").string(), &refined).ok());
   EXPECT_EQ(refined.size(), n);
-  const std::string metrics = ReadText(output_dir / "metrics.json");
+  const std::string metrics = ReadFile(output_dir / "metrics.json");
   for (const char* key : {"frames", "junctions_per_frame", "matches_per_pair", "tracks", "points3d", "lines3d",
                           "unobservable_lines", "ate_odometry_m", "ate_refined_m", "rpe_odometry",
                           "rpe_refined", "time_s"}) {
@@ -299,7 +294,7 @@ TEST_F(BackendEndToEnd, CorridorLinesParallelToTheMotionAreCounted) {
   ASSERT_TRUE(status.ok()) << status.message();
   EXPECT_GT(result.unobservable_lines, 0);
   EXPECT_GT(result.landmarks.lines.size(), 0u);
-  EXPECT_THAT(ReadText(output_dir() / "metrics.json"),
+  EXPECT_THAT(ReadFile(output_dir() / "metrics.json"),
               HasSubstr("\"unobservable_lines\": " + std::to_string(result.unobservable_lines) + ","));
   // What is kept is not along the path (x): such a line would have no depth.
   int along_path = 0;
@@ -346,7 +341,7 @@ TEST_F(BackendEndToEnd, FloorPriorCorrectsTheOdometryScaleOnlyWithTheBaseOnTheFl
   EXPECT_NEAR(odometry_scale, 1 / 1.03, 0.01);
   EXPECT_TRUE(result.bundle_adjustment.floor_prior_used);
   EXPECT_NEAR(refined_scale, 1.0, 0.01);
-  EXPECT_THAT(ReadText(output_dir() / "metrics.json"), HasSubstr("\"floor_prior\": {\"used\": true"));
+  EXPECT_THAT(ReadFile(output_dir() / "metrics.json"), HasSubstr("\"floor_prior\": {\"used\": true"));
 
   Sequence sequence;
   ASSERT_TRUE(ReadSequence(sequence_dir().string(), &sequence).ok());
@@ -361,7 +356,7 @@ TEST_F(BackendEndToEnd, FloorPriorCorrectsTheOdometryScaleOnlyWithTheBaseOnTheFl
   EXPECT_FALSE(result.bundle_adjustment.floor_prior_used);
   EXPECT_THAT(result.bundle_adjustment.floor_prior_report, HasSubstr("not on the floor"));
   EXPECT_NEAR(not_on_floor_scale, 1 / 1.03, 0.01);
-  EXPECT_THAT(ReadText(output_dir() / "metrics.json"), HasSubstr("\"floor_prior\": {\"used\": false"));
+  EXPECT_THAT(ReadFile(output_dir() / "metrics.json"), HasSubstr("\"floor_prior\": {\"used\": false"));
 }
 
 }  // namespace
