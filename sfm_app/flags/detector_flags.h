@@ -18,7 +18,8 @@
 #include "frontend/matching/matching_options.h"
 #include "frontend/segments/segment_detector.h"
 
-// The apps that print the detector's name read it as given.
+// --segments as given, for the apps that print it (group sfm_flags_segment_method; benchmark_junctions
+// defines its own --segments, a list, which this declaration matches as well).
 DECLARE_string(segments);
 
 namespace sfm {
