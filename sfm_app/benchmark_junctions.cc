@@ -79,6 +79,11 @@ DEFINE_bool(branches_to_far_corners, sfm::SegmentDetectorOptions().fast.branches
 DEFINE_bool(bridges_past_corners, sfm::SegmentDetectorOptions().fast.bridges_past_corners,
             "Fast segments (with branches_at_free_ends): continue a segment's line across the gap to a "
             "free end when the gradient there is aligned with it.");
+DEFINE_bool(short_pieces_at_contacts, sfm::SegmentDetectorOptions().fast.short_pieces_at_contacts,
+            "Fast segments: keep a piece shorter than min_length that meets a long segment (an L or a T) "
+            "if its NFA against the family of such pieces passes.");
+DEFINE_double(min_contact_length, sfm::SegmentDetectorOptions().fast.min_contact_length,
+              "Fast segments (with short_pieces_at_contacts): shortest piece kept, px.");
 DEFINE_double(line_tolerance, sfm::SegmentDetectorOptions().fast.line_tolerance, "Fast segments: splitting tolerance, px.");
 DEFINE_string(overlay_dir, "", "If set, write overlays there (every 10th generated frame, every VGG image), "
                                "with missed true junctions circled in white.");
@@ -1029,6 +1034,8 @@ int main(int argc, char** argv) {
     method.options.fast.branches_at_free_ends = FLAGS_branches_at_free_ends;
     method.options.fast.bridges_past_corners = FLAGS_bridges_past_corners;
     method.options.fast.branches_to_far_corners = FLAGS_branches_to_far_corners;
+    method.options.fast.short_pieces_at_contacts = FLAGS_short_pieces_at_contacts;
+    method.options.fast.min_contact_length = FLAGS_min_contact_length;
     method.options.fast.presmooth_sigma = FLAGS_presmooth_sigma;
     if (name == "fast") {
       method.options.method = SegmentMethod::kFast;
