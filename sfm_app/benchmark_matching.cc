@@ -71,6 +71,11 @@ DEFINE_double(lbd_min_length, sfm::SegmentDetectorOptions().min_length, "LSD seg
 DEFINE_string(segments, "fast", "Our segment detector: 'fast' or 'reference'.");
 DEFINE_bool(branches_at_free_ends, sfm::SegmentDetectorOptions().fast.branches_at_free_ends,
             "Fast segments: look for a corner's missing side along rays from free segment end-points.");
+DEFINE_bool(short_pieces_at_contacts, sfm::SegmentDetectorOptions().fast.short_pieces_at_contacts,
+            "Fast segments: keep a piece shorter than min_length that meets a long segment (an L or a T) "
+            "if its NFA against the family of such pieces passes.");
+DEFINE_double(min_contact_length, sfm::SegmentDetectorOptions().fast.min_contact_length,
+              "Fast segments (with short_pieces_at_contacts): shortest piece kept, px.");
 DEFINE_bool(branches_to_far_corners, sfm::SegmentDetectorOptions().fast.branches_to_far_corners,
             "Fast segments (with branches_at_free_ends): a branch ending at another corner is measured "
             "from corner to corner.");
@@ -907,6 +912,8 @@ int main(int argc, char** argv) {
   settings.segments.fast.branches_at_free_ends = FLAGS_branches_at_free_ends;
   settings.segments.fast.bridges_past_corners = FLAGS_bridges_past_corners;
   settings.segments.fast.branches_to_far_corners = FLAGS_branches_to_far_corners;
+  settings.segments.fast.short_pieces_at_contacts = FLAGS_short_pieces_at_contacts;
+  settings.segments.fast.min_contact_length = FLAGS_min_contact_length;
   const EndpointModel model{FLAGS_endpoint_lambda, FLAGS_endpoint_mu};
   settings.junctions.endpoint_model = model;
   settings.junctions.min_probability = FLAGS_junction_min_probability;

@@ -46,6 +46,11 @@ DEFINE_bool(corners_between_chains, sfm::SegmentDetectorOptions().fast.corners_b
             "corner.");
 DEFINE_bool(branches_at_free_ends, sfm::SegmentDetectorOptions().fast.branches_at_free_ends,
             "Fast segments: look for a corner's missing side along rays from free segment end-points.");
+DEFINE_bool(short_pieces_at_contacts, sfm::SegmentDetectorOptions().fast.short_pieces_at_contacts,
+            "Fast segments: keep a piece shorter than min_length that meets a long segment (an L or a T) "
+            "if its NFA against the family of such pieces passes.");
+DEFINE_double(min_contact_length, sfm::SegmentDetectorOptions().fast.min_contact_length,
+              "Fast segments (with short_pieces_at_contacts): shortest piece kept, px.");
 DEFINE_bool(branches_to_far_corners, sfm::SegmentDetectorOptions().fast.branches_to_far_corners,
             "Fast segments (with branches_at_free_ends): a branch ending at another corner is measured "
             "from corner to corner.");
@@ -97,6 +102,8 @@ std::vector<Method> Methods() {
   fast.fast.branches_at_free_ends = FLAGS_branches_at_free_ends;
   fast.fast.bridges_past_corners = FLAGS_bridges_past_corners;
   fast.fast.branches_to_far_corners = FLAGS_branches_to_far_corners;
+  fast.fast.short_pieces_at_contacts = FLAGS_short_pieces_at_contacts;
+  fast.fast.min_contact_length = FLAGS_min_contact_length;
   methods.push_back(
       {"ours: fast (Sobel + chaining)", [fast](const cv::Mat& grey) { return DetectLineSegments(grey, fast); }});
   // The speed goal is for segments and junctions together, in the same run as cv::Canny.

@@ -42,6 +42,9 @@ DEFINE_int32(overlay_scale, 1, "Enlarge the overlay this many times (1..8), for 
 DEFINE_int32(frame, 0, "Frame index written into the JSON.");
 DEFINE_string(segments, "fast", "Segment detector: fast | reference (segment_detector.h).");
 DEFINE_double(min_segment_length, kSegmentDefaults.min_length, "Shortest segment kept, px.");
+DEFINE_bool(short_pieces_at_contacts, kSegmentDefaults.fast.short_pieces_at_contacts,
+            "Fast segments: keep a piece shorter than min_length that meets a long segment (an L or a T) "
+            "if its NFA against the family of such pieces passes.");
 DEFINE_double(lambda, kJunctionDefaults.endpoint_model.lambda,
               "End-point model eq. (5): decay for a detected end-point beyond the junction (t >= 0), 1/px.");
 DEFINE_double(mu, kJunctionDefaults.endpoint_model.mu,
@@ -101,6 +104,7 @@ int main(int argc, char** argv) {
     return Fail(2, "--segments must be fast or reference, not '" + FLAGS_segments + "'");
   }
   segment_options.min_length = FLAGS_min_segment_length;
+  segment_options.fast.short_pieces_at_contacts = FLAGS_short_pieces_at_contacts;
   sfm::JunctionDetectorOptions junction_options;
   junction_options.endpoint_model.lambda = FLAGS_lambda;
   junction_options.endpoint_model.mu = FLAGS_mu;

@@ -48,6 +48,11 @@ DEFINE_string(segments, "fast", "Line segment detector: 'fast' (anchored edge ch
                                 "(the paper's edge filter + Hough transform + sub-pixel fit).");
 DEFINE_bool(branches_at_free_ends, kDefaults.segments.fast.branches_at_free_ends,
             "Fast segments: look for a corner's missing side along rays from free segment end-points.");
+DEFINE_bool(short_pieces_at_contacts, kDefaults.segments.fast.short_pieces_at_contacts,
+            "Fast segments: keep a piece shorter than min_length that meets a long segment (an L or a T) "
+            "if its NFA against the family of such pieces passes.");
+DEFINE_double(min_contact_length, kDefaults.segments.fast.min_contact_length,
+              "Fast segments (with short_pieces_at_contacts): shortest piece kept, px.");
 DEFINE_bool(branches_to_far_corners, kDefaults.segments.fast.branches_to_far_corners,
             "Fast segments (with branches_at_free_ends): a branch ending at another corner is measured "
             "from corner to corner.");
@@ -171,6 +176,8 @@ bool OptionsFromFlags(sfm::PipelineOptions* options, std::string* error) {
   options->segments.fast.branches_at_free_ends = FLAGS_branches_at_free_ends;
   options->segments.fast.bridges_past_corners = FLAGS_bridges_past_corners;
   options->segments.fast.branches_to_far_corners = FLAGS_branches_to_far_corners;
+  options->segments.fast.short_pieces_at_contacts = FLAGS_short_pieces_at_contacts;
+  options->segments.fast.min_contact_length = FLAGS_min_contact_length;
   const sfm::EndpointModel endpoint_model{FLAGS_endpoint_lambda, FLAGS_endpoint_mu};
   options->junctions.endpoint_model = endpoint_model;
   options->junctions.min_probability = FLAGS_junction_min_probability;

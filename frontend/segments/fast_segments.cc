@@ -651,7 +651,8 @@ class FastDetector {
     const Eigen::Vector2d direction = (segment.p1 - segment.p0) / length;
     const Eigen::Vector2d first = segment.p0 + (0.5 * (length - sampled)) * direction;
     const Eigen::Vector2d step = samples > 1 ? Eigen::Vector2d(direction * (sampled / (samples - 1))) : Eigen::Vector2d::Zero();
-    int aligned = 0;
+    int aligned = 0, strong = 0;
+    const int16_t* mag = magnitude_.ptr<int16_t>();
     for (int i = 0; i < samples; ++i) {
       const Eigen::Vector2d p = first + i * step;
       // Rounding as truncation of p + 0.5 (p >= -0.5 here; a point farther out is clamped anyway).
@@ -660,7 +661,14 @@ class FastDetector {
       const double g_x = gx[y * cols_ + x], g_y = gy[y * cols_ + x];
       const double along = g_x * normal.x() + g_y * normal.y();
       if (along > 0 && along * along >= kAlignedCos2 * (g_x * g_x + g_y * g_y)) ++aligned;
+      if (contact && mag[y * cols_ + x] >= high_) ++strong;
     }
+    // A short piece at a contact must be an edge by the chains' own start rule at every sample (the
+    // high threshold, where a chain may start; the minimum contrast along the curve, as in
+    // a-contrario meaningful boundaries): its few samples are chosen by the routing, which follows
+    // the magnitude ridge, so their alignment alone says little in noise (pure noise of sigma 4:
+    // 1.5 false segments per image without this rule, 0.98 with it, 0.88 with the rule off).
+    if (contact && strong < samples) return;
     const double log10_tests = short_side ? log10_short_side_tests_ : contact ? log10_contact_tests_ : log10_tests_;
     if (Log10Nfa(samples, aligned, kAlignedProbability, log10_tests) > options_.fast.log10_nfa_max) return;
     segments->push_back(segment);
