@@ -59,8 +59,7 @@ double Rho1(double d, double d_prime, double R, Rho1Kind kind) {
   return 0;
 }
 
-JunctionSimilarity::Side JunctionSimilarity::MakeSide(const Junctions& junctions, const Eigen::Matrix3d& F,
-                                                     const MatchingOptions& options) {
+JunctionSimilarity::Side JunctionSimilarity::MakeSide(const Junctions& junctions, const Eigen::Matrix3d& F) {
   Side side;
   side.first.reserve(junctions.size());
   side.count.reserve(junctions.size());
@@ -81,24 +80,6 @@ JunctionSimilarity::Side JunctionSimilarity::MakeSide(const Junctions& junctions
       side.line_segments.push_back(segment.line_segment);
       side.epipolar.push_back(MakeEndpointEpipolar(F, side.segments.back()));
     }
-    if (options.short_arm_px > 0) {
-      // The long arms' lines: one line when every long arm is OneLine with the first.
-      const double min_sin = std::sin(options.cyclic_order_min_angle_deg * kPi / 180);
-      const int first = side.first.back();
-      int first_long = -1;
-      bool one_line = true;
-      for (int i = 0; i < junction.NumSegments(); ++i) {
-        if (side.segments[first + i].length < options.short_arm_px) continue;
-        if (first_long < 0) {
-          first_long = i;
-        } else {
-          one_line = one_line && OneLine(&side.directions[first], &side.line_segments[first], first_long, i, min_sin);
-        }
-      }
-      side.short_placed.push_back(!one_line ? Eigen::Vector2d::Zero()
-                                            : first_long < 0 ? Eigen::Vector2d(1, 0)
-                                                             : side.directions[first + first_long]);
-    }
   }
   return side;
 }
@@ -107,8 +88,8 @@ JunctionSimilarity::JunctionSimilarity(const Junctions& a, const Junctions& b, c
                                        const MatchingOptions& options)
     : options_(options),
       min_sin_(std::sin(options.cyclic_order_min_angle_deg * kPi / 180)),
-      side_a_(MakeSide(a, F, options)),
-      side_b_(MakeSide(b, F.transpose(), options)) {
+      side_a_(MakeSide(a, F)),
+      side_b_(MakeSide(b, F.transpose())) {
   b_x_.reserve(b.size());
   b_y_.reserve(b.size());
   for (const Junction& junction : b) {
@@ -287,20 +268,7 @@ bool JunctionSimilarity::LocationsAgree(int index_a, int index_b, Bands* bands, 
   }
   *d = DistanceToLine(side_b_.location_line[index_b], side_a_.location[index_a]);
   if (!(*d <= bands->in_image1)) return false;
-  return PassesCheirality(index_a, index_b) && ShortArmsPlaceWell(index_a, index_b);
-}
-
-bool JunctionSimilarity::ShortArmsPlaceWell(int index_a, int index_b) const {
-  if (options_.short_arm_px <= 0) return true;
-  const double max_sin = std::sin(options_.short_arm_epipolar_deg * kPi / 180);
-  // |sin| of the angle between a junction's line u and an epipolar line (a, b, c) in its image:
-  // the line's direction is (-b, a), so the sine is |u . (a, b)|.
-  auto placed_badly = [max_sin](const Eigen::Vector2d& u, const Eigen::Vector3d& line) {
-    return u.squaredNorm() > 0 && !(std::abs(u.dot(line.head<2>())) > max_sin);
-  };
-  // a's line against the epipolar line of b's location in image 1, b's against that of a's in image 2.
-  return !placed_badly(side_a_.short_placed[index_a], side_b_.location_line[index_b]) &&
-         !placed_badly(side_b_.short_placed[index_b], side_a_.location_line[index_a]);
+  return PassesCheirality(index_a, index_b);
 }
 
 PairSimilarity JunctionSimilarity::Rho(int index_a, int index_b) const {

@@ -112,14 +112,8 @@ class JunctionSimilarity {
     std::vector<Eigen::Vector2d> directions;      // segments[k].direction, contiguous for (36)-(37)
     std::vector<int> line_segments;               // JunctionSegment::line_segment of each
     std::vector<EndpointEpipolar> epipolar;       // of each end-point, into the other image
-    // With options.short_arm_px > 0, per junction: the unit direction of the one line its long
-    // arms lie on (zero when they lie on two or more lines; any unit vector when it has none).
-    std::vector<Eigen::Vector2d> short_placed;
   };
-  static Side MakeSide(const Junctions& junctions, const Eigen::Matrix3d& F, const MatchingOptions& options);
-  // options.short_arm_px: false when junction index_a or index_b is placed along a line by short
-  // arms only and that line is within short_arm_epipolar_deg of the other's epipolar line.
-  bool ShortArmsPlaceWell(int index_a, int index_b) const;
+  static Side MakeSide(const Junctions& junctions, const Eigen::Matrix3d& F);
   // side.parallax[index] under pose, computed on the first call.
   const ParallaxFrame& ParallaxOf(const Side& side, const PairGeometry& pose, int index) const;
 

@@ -98,15 +98,6 @@ struct MatchingOptions {
   // (a T without its stem is a line, not an L). Kept: without it VGG precision 97.7 -> 97.4 % for
   // +0.2 point of generated recall.
   bool partial_rule_same_lines = true;
-  // Junctions placed by short arms (docs/matching.md, "Short arms"): an arm shorter than
-  // short_arm_px (the segment detector's min_length; 0: off) comes from a piece kept only because
-  // it meets a long segment (fast.short_pieces_at_contacts). Where a junction's arms at least that
-  // long lie on one straight line, only its short arms fix the location along that line; the
-  // epipolar constraint checks that only as far as the line crosses the epipolar line, so a pair
-  // is unmatched when such a junction's line is within short_arm_epipolar_deg of the epipolar line
-  // of its partner's location (90: every such junction is unmatched). Pixels, >= 0; degrees, [0, 90].
-  double short_arm_px = 0.0;
-  double short_arm_epipolar_deg = 90.0;
 
   Status Check() const {
     auto bad = [](const std::string& what) { return Status::Error("MatchingOptions: " + what); };
@@ -130,10 +121,6 @@ struct MatchingOptions {
       return bad("refine_gate_sigmas must be finite and > 0");
     }
     if (refine_min_inliers < 0) return bad("refine_min_inliers must be >= 0");
-    if (!(short_arm_px >= 0 && std::isfinite(short_arm_px))) return bad("short_arm_px must be finite and >= 0");
-    if (!(short_arm_epipolar_deg >= 0 && short_arm_epipolar_deg <= 90)) {
-      return bad("short_arm_epipolar_deg must be in [0, 90]");
-    }
     if (depth_range_neighbours < 0) return bad("depth_range_neighbours must be >= 0");
     if (refine_geometry && !(location_sigma_px > 0)) {
       return bad("refine_geometry needs location_sigma_px > 0");

@@ -20,11 +20,6 @@ DEFINE_bool(
     match_refine_constrain, kDefaults.refine_constrain_to_prior_gate,
     "With --match_refine: when the refined pose lies beyond the odometry's 99 % ellipsoid, take the best "
     "pose inside it before keeping the first pass (docs/matching.md, \"Refinement fall-backs\").");
-DEFINE_double(match_short_arm_px, kDefaults.short_arm_px,
-              "Matching: arms shorter than this (px; 0: off) are short (docs/matching.md, \"Short arms\").");
-DEFINE_double(match_short_arm_epipolar_deg, kDefaults.short_arm_epipolar_deg,
-              "Matching (with match_short_arm_px): a junction whose long arms lie on one line within this "
-              "of the epipolar line is unmatched, degrees.");
 DEFINE_bool(match_partial, kDefaults.match_partial,
             "With --match_refine: in the guided pass, match junctions of k and k + 1 segments left unmatched "
             "through their best common subset (partial correspondence, docs/matching.md).");
@@ -41,8 +36,6 @@ void MatchingRefineFromFlags(MatchingOptions* matching) {
   matching->refine_constrain_to_prior_gate = FLAGS_match_refine_constrain;
   matching->match_partial = FLAGS_match_partial;
   matching->partial_rule_not_line_half = FLAGS_match_partial_rule_a;
-  matching->short_arm_px = FLAGS_match_short_arm_px;
-  matching->short_arm_epipolar_deg = FLAGS_match_short_arm_epipolar_deg;
 }
 
 }  // namespace sfm
