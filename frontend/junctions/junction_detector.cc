@@ -74,24 +74,17 @@ struct Group {
   double weight = 0;  // sum of the located hits' probabilities
   Eigen::Vector2d weighted_sum = Eigen::Vector2d::Zero();
   double score = 0;  // sum of all hits' probabilities
-  // The same sums over the located hits between two long segments (long_pair_location_px).
-  double long_weight = 0;
-  Eigen::Vector2d long_sum = Eigen::Vector2d::Zero();
 
-  void Add(const PairHit& hit, int index, bool long_pair = false) {
+  void Add(const PairHit& hit, int index) {
     hits.push_back(index);
     score += hit.probability;
     if (hit.location) {
       weight += hit.probability;
       weighted_sum += hit.probability * *hit.location;
-      if (long_pair) {
-        long_weight += hit.probability;
-        long_sum += hit.probability * *hit.location;
-      }
     }
   }
   bool Located() const { return weight > 0; }
-  Eigen::Vector2d Location() const { return long_weight > 0 ? long_sum / long_weight : weighted_sum / weight; }
+  Eigen::Vector2d Location() const { return weighted_sum / weight; }
   bool HasSegment(int segment) const {
     return std::any_of(nodes.begin(), nodes.end(), [&](int v) { return SegmentOf(v) == segment; });
   }
@@ -492,11 +485,7 @@ Junctions DetectJunctions(const LineSegments& segments, const JunctionDetectorOp
     const PairHit& hit = graph.hit(seed);
     Group pair;
     pair.nodes = {NodeA(hit), NodeB(hit)};
-    auto long_pair = [&](const PairHit& h) {
-      return options.long_pair_location_px > 0 && lines[h.segment_a].length >= options.long_pair_location_px &&
-             lines[h.segment_b].length >= options.long_pair_location_px;
-    };
-    pair.Add(hit, seed, long_pair(hit));
+    pair.Add(hit, seed);
     if (!pair.Located()) continue;
     // A joiner needs a pair with each member, so both nodes must have another pair.
     if (graph.degree(NodeA(hit)) > 1 && graph.degree(NodeB(hit)) > 1) {
@@ -504,14 +493,12 @@ Junctions DetectJunctions(const LineSegments& segments, const JunctionDetectorOp
       grown.hits.assign(pair.hits.begin(), pair.hits.end());
       grown.weight = pair.weight;
       grown.weighted_sum = pair.weighted_sum;
-      grown.long_weight = pair.long_weight;
-      grown.long_sum = pair.long_sum;
       grown.score = pair.score;
       while (true) {
         const int joiner = BestJoiner(graph, grown, options.max_gap_px, &joiner_hits, &joiner_scratch);
         if (joiner < 0) break;
         grown.nodes.push_back(joiner);
-        for (int h : joiner_hits) grown.Add(graph.hit(h), h, long_pair(graph.hit(h)));
+        for (int h : joiner_hits) grown.Add(graph.hit(h), h);
       }
       if (grown.nodes.size() > 2) {
         key.assign(grown.nodes.begin(), grown.nodes.end());

@@ -53,11 +53,6 @@ struct JunctionDetectorOptions {
   // refinement's constrained search (MatchingOptions::refine_constrain_to_prior_gate) now avoids:
   // every one of 16 seeds >= 98.1 % (docs/junction_results.md, docs/matching_results.md "Session 5").
   bool choose_by_end_likelihood = true;
-  // Experiment (session 6, docs/junction_results.md): a junction's location is the mean of its
-  // pairs' intersections weighted by probability; with this > 0, only the pairs of two segments at
-  // least this long locate a junction that has such a pair (a short piece's line is poorly
-  // determined, so its intersections scatter). Pixels; 0: every pair, as before.
-  double long_pair_location_px = 0.0;
 
   Status Check() const {
     auto bad = [](const std::string& what) { return Status::Error("JunctionDetectorOptions: " + what); };

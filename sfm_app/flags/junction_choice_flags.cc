@@ -10,16 +10,12 @@ DEFINE_bool(choose_by_end_likelihood, kDefaults.choose_by_end_likelihood,
 DEFINE_double(acute_shortfall_px, kDefaults.acute_shortfall_px,
               "Junctions: an L contact's end-point shortfall is reduced by this times (1 / sin(angle) - 1) "
               "before eq. (5), px (0: off).");
-DEFINE_double(long_pair_location_px, kDefaults.long_pair_location_px,
-              "Junctions: only pairs of segments at least this long locate a junction that has one, px "
-              "(0: every pair).");
 
 namespace sfm {
 
 void JunctionChoiceFromFlags(JunctionDetectorOptions* options) {
   options->choose_by_end_likelihood = FLAGS_choose_by_end_likelihood;
   options->acute_shortfall_px = FLAGS_acute_shortfall_px;
-  options->long_pair_location_px = FLAGS_long_pair_location_px;
 }
 
 }  // namespace sfm
