@@ -72,7 +72,7 @@ struct FastSegmentOptions {
   // (docs/segments.md, step 7). Off by default (session 6, docs/junction_results.md): junction
   // recall on generated vertices 86.4 -> 89.3 % (held-out 86.5 -> 88.3 %) at unchanged precision,
   // but VGG matching precision 98.2 -> 96.6 %, generated matching recall 91.2 -> 89.0 % and about
-  // 30 % more instructions for segments + junctions on VGG.
+  // 19 % more instructions for segments + junctions on VGG (session 6, part 2).
   bool short_pieces_at_contacts = false;
   double min_contact_length = 4.0;  // pixels: shortest piece short_pieces_at_contacts keeps
 };
