@@ -331,6 +331,13 @@ PairSimilarity JunctionSimilarity::PartialRho(int index_a, int index_b) const {
   const int k = std::min(n_a, n_b);
   // One segment of common support is no junction correspondence (its turn and (36) are gone).
   if (std::abs(n_a - n_b) != 1 || k < 2 || k + 1 > 16) return result;
+  if (options_.partial_min_arm_px > 0) {
+    for (const auto& [side, index] : {std::pair<const Side*, int>(&side_a_, index_a), {&side_b_, index_b}}) {
+      for (int i = 0; i < side->count[index]; ++i) {
+        if (side->segments[side->first[index] + i].length < options_.partial_min_arm_px) return result;
+      }
+    }
+  }
   Bands bands;
   double d = 0, d_prime = 0;
   if (!LocationsAgree(index_a, index_b, &bands, &d, &d_prime)) return result;
