@@ -331,14 +331,6 @@ PairSimilarity JunctionSimilarity::PartialRho(int index_a, int index_b) const {
   const int k = std::min(n_a, n_b);
   // One segment of common support is no junction correspondence (its turn and (36) are gone).
   if (std::abs(n_a - n_b) != 1 || k < 2 || k + 1 > 16) return result;
-  // partial_min_arm_px: the smaller junction's arms are all paired, so each must be long.
-  if (options_.partial_min_arm_px > 0) {
-    const Side& side = n_a < n_b ? side_a_ : side_b_;
-    const int index = n_a < n_b ? index_a : index_b;
-    for (int i = 0; i < side.count[index]; ++i) {
-      if (side.segments[side.first[index] + i].length < options_.partial_min_arm_px) return result;
-    }
-  }
   Bands bands;
   double d = 0, d_prime = 0;
   if (!LocationsAgree(index_a, index_b, &bands, &d, &d_prime)) return result;
@@ -368,15 +360,6 @@ PairSimilarity JunctionSimilarity::PartialRho(int index_a, int index_b) const {
                           (i != missing && OneLine(larger_directions, larger_lines, missing, i, min_sin_));
     }
     if (continues_another && options_.partial_rule_not_line_half) continue;
-    // partial_min_arm_px: the larger junction's paired arms must be long; the one left out may not.
-    if (options_.partial_min_arm_px > 0) {
-      bool short_paired = false;
-      for (int i = 0; i <= k; ++i) {
-        short_paired = short_paired ||
-                       (i != missing && larger.segments[first_larger + i].length < options_.partial_min_arm_px);
-      }
-      if (short_paired) continue;
-    }
     // The larger junction's segments without `missing`, in their (clockwise) order.
     for (int i = 0, j = 0; i <= k; ++i) {
       if (i != missing) subset[j++] = i;

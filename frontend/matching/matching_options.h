@@ -98,12 +98,6 @@ struct MatchingOptions {
   // (a T without its stem is a line, not an L). Kept: without it VGG precision 97.7 -> 97.4 % for
   // +0.2 point of generated recall.
   bool partial_rule_same_lines = true;
-  // Partial correspondence only between junctions whose arms (p0 to the far end-point) are all at
-  // least this long, pixels (0: no limit). An arm under the segment detector's min_length comes from
-  // a piece kept because it meets a long segment (fast.short_pieces_at_contacts): such a contact
-  // reading differs from frame to frame, and a partial pair stands for one segment missed, not for
-  // two readings of a cluttered contact (docs/junction_results.md, "Session 6, part 2").
-  double partial_min_arm_px = 0.0;
 
   Status Check() const {
     auto bad = [](const std::string& what) { return Status::Error("MatchingOptions: " + what); };
@@ -127,9 +121,6 @@ struct MatchingOptions {
       return bad("refine_gate_sigmas must be finite and > 0");
     }
     if (refine_min_inliers < 0) return bad("refine_min_inliers must be >= 0");
-    if (!(partial_min_arm_px >= 0 && std::isfinite(partial_min_arm_px))) {
-      return bad("partial_min_arm_px must be finite and >= 0");
-    }
     if (depth_range_neighbours < 0) return bad("depth_range_neighbours must be >= 0");
     if (refine_geometry && !(location_sigma_px > 0)) {
       return bad("refine_geometry needs location_sigma_px > 0");

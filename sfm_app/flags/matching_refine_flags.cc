@@ -20,9 +20,6 @@ DEFINE_bool(
     match_refine_constrain, kDefaults.refine_constrain_to_prior_gate,
     "With --match_refine: when the refined pose lies beyond the odometry's 99 % ellipsoid, take the best "
     "pose inside it before keeping the first pass (docs/matching.md, \"Refinement fall-backs\").");
-DEFINE_double(match_partial_min_arm, kDefaults.partial_min_arm_px,
-              "Matching: partial correspondence only between junctions whose arms are all at least this "
-              "long, px (0: no limit).");
 DEFINE_bool(match_partial, kDefaults.match_partial,
             "With --match_refine: in the guided pass, match junctions of k and k + 1 segments left unmatched "
             "through their best common subset (partial correspondence, docs/matching.md).");
@@ -39,7 +36,6 @@ void MatchingRefineFromFlags(MatchingOptions* matching) {
   matching->refine_constrain_to_prior_gate = FLAGS_match_refine_constrain;
   matching->match_partial = FLAGS_match_partial;
   matching->partial_rule_not_line_half = FLAGS_match_partial_rule_a;
-  matching->partial_min_arm_px = FLAGS_match_partial_min_arm;
 }
 
 }  // namespace sfm
