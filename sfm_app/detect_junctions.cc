@@ -79,6 +79,7 @@ int main(int argc, char** argv) {
   std::string flag_error;
   if (!sfm::SegmentMethodFromFlags(&segment_options, &flag_error)) return Fail(2, flag_error);
   segment_options.min_length = FLAGS_min_segment_length;
+  sfm::SegmentBranchesFromFlags(&segment_options.fast);
   sfm::JunctionDetectorOptions junction_options;
   sfm::JunctionDetectorFromFlags(&junction_options);
   sfm::JunctionChoiceFromFlags(&junction_options);

@@ -333,37 +333,109 @@ void MergeCoincidingJunctions(const std::vector<Group>& candidates, double max_g
     grown_by_nodes.emplace(std::move(key), c);
   }
   if (grown_by_nodes.empty()) return;
+  // The pairs are tried in the order of the plain double loop over `kept` (i < j, first i, then
+  // j), restarting after each merge, so the result is that loop's; but each pass finds the pairs
+  // within 2 max_gap through the locations sorted by x, not by testing all K^2 / 2 pairs; counts
+  // for each pair of segments the chosen junctions holding it, not by searching them all for each
+  // merge tested; and after a merge at (i, j) retests only what the merge can have changed: the
+  // rows before i failed, and stay failed except with the new junction at i, as long as no pair
+  // lost a holder (the union holds every pair its parts held, the usual case); otherwise it starts
+  // again from row 0. (With fast.short_pieces_at_contacts a cluttered image has 400 junctions, and
+  // the repeated quadratic scan was half of the junction step.)
+  const double reach = 2 * max_gap;
+  std::vector<Eigen::Vector2d> location;
+  std::vector<int> by_x, near;
+  // holders[h]: how many of the chosen junctions hold pair h.
+  int num_hits = 0;
+  for (const Group& group : candidates) {
+    for (int h : group.hits) num_hits = std::max(num_hits, h + 1);
+  }
+  std::vector<int> holders(num_hits);
+  for (int c : *chosen) {
+    for (int h : candidates[c].hits) ++holders[h];
+  }
+  auto holds = [](const Group& group, int h) {
+    return std::find(group.hits.begin(), group.hits.end(), h) != group.hits.end();
+  };
+  std::vector<double> sorted_x;
+  std::vector<int>& kept = *chosen;
+  // Merges kept[i] and kept[j] (i < j) if their union is a candidate whose pairs no third chosen
+  // junction holds; true if it did.
+  auto try_merge = [&](int i, int j) {
+    const Group& a = candidates[kept[i]];
+    const Group& b = candidates[kept[j]];
+    // A grown group's hits all lie within max_gap of its location, so the two parts' locations
+    // lie within 2 max_gap of each other: the cheap test first.
+    if ((location[i] - location[j]).squaredNorm() > 4 * max_gap * max_gap) return false;
+    std::vector<int> key = a.nodes;
+    key.insert(key.end(), b.nodes.begin(), b.nodes.end());
+    std::sort(key.begin(), key.end());
+    if (std::adjacent_find(key.begin(), key.end()) != key.end()) return false;  // a shared node
+    const auto found = grown_by_nodes.find(key);
+    if (found == grown_by_nodes.end()) return false;
+    const Group& both = candidates[found->second];
+    // Taken by a third chosen junction: held by more chosen junctions than a and b account for
+    // (a group holds each of its pairs once).
+    for (int h : both.hits) {
+      if (holders[h] > static_cast<int>(holds(a, h)) + static_cast<int>(holds(b, h))) return false;
+    }
+    return true;
+  };
+  int start_row = 0;  // rows before it: test only the pair with new_index
+  int new_index = -1;
   bool merged = true;
   while (merged) {
     merged = false;
-    std::vector<int>& kept = *chosen;
-    for (size_t i = 0; i < kept.size() && !merged; ++i) {
-      for (size_t j = i + 1; j < kept.size() && !merged; ++j) {
-        const Group& a = candidates[kept[i]];
-        const Group& b = candidates[kept[j]];
-        // A grown group's hits all lie within max_gap of its location, so the two parts' locations
-        // lie within 2 max_gap of each other: the cheap test first.
-        if ((a.Location() - b.Location()).squaredNorm() > 4 * max_gap * max_gap) continue;
-        std::vector<int> key = a.nodes;
-        key.insert(key.end(), b.nodes.begin(), b.nodes.end());
-        std::sort(key.begin(), key.end());
-        if (std::adjacent_find(key.begin(), key.end()) != key.end()) continue;  // a shared node
-        const auto found = grown_by_nodes.find(key);
-        if (found == grown_by_nodes.end()) continue;
-        const Group& both = candidates[found->second];
-        bool pair_taken = false;  // by a third chosen junction
-        for (size_t k = 0; k < kept.size() && !pair_taken; ++k) {
-          if (k == i || k == j) continue;
-          for (int h : candidates[kept[k]].hits) {
-            pair_taken |= std::find(both.hits.begin(), both.hits.end(), h) != both.hits.end();
-          }
-        }
-        if (pair_taken) continue;
-        kept[i] = found->second;
-        kept.erase(kept.begin() + static_cast<std::ptrdiff_t>(j));
-        merged = true;
+    const int num_kept = static_cast<int>(kept.size());
+    location.resize(num_kept);
+    by_x.resize(num_kept);
+    for (int i = 0; i < num_kept; ++i) {
+      location[i] = candidates[kept[i]].Location();
+      by_x[i] = i;
+    }
+    std::sort(by_x.begin(), by_x.end(), [&](int a, int b) { return location[a].x() < location[b].x(); });
+    sorted_x.resize(num_kept);
+    for (int k = 0; k < num_kept; ++k) sorted_x[k] = location[by_x[k]].x();
+    int merge_i = -1, merge_j = -1;
+    for (int i = 0; i < start_row && merge_i < 0; ++i) {
+      if (try_merge(i, new_index)) merge_i = i, merge_j = new_index;
+    }
+    for (int i = start_row; i < num_kept && merge_i < 0; ++i) {
+      // The j > i within reach in x (a superset of those within reach), in increasing j.
+      near.clear();
+      const auto first = std::lower_bound(sorted_x.begin(), sorted_x.end(), location[i].x() - reach);
+      for (auto it = first; it != sorted_x.end() && *it <= location[i].x() + reach; ++it) {
+        const int j = by_x[it - sorted_x.begin()];
+        if (j > i) near.push_back(j);
+      }
+      std::sort(near.begin(), near.end());
+      for (size_t n = 0; n < near.size() && merge_i < 0; ++n) {
+        if (try_merge(i, near[n])) merge_i = i, merge_j = near[n];
       }
     }
+    if (merge_i < 0) break;
+    const Group& a = candidates[kept[merge_i]];
+    const Group& b = candidates[kept[merge_j]];
+    const int union_candidate = grown_by_nodes.find([&] {
+      std::vector<int> key = a.nodes;
+      key.insert(key.end(), b.nodes.begin(), b.nodes.end());
+      std::sort(key.begin(), key.end());
+      return key;
+    }())->second;
+    const Group& both = candidates[union_candidate];
+    bool lost_holder = false;
+    for (const Group* part : {&a, &b}) {
+      for (int h : part->hits) {
+        --holders[h];
+        lost_holder = lost_holder || !holds(both, h);
+      }
+    }
+    for (int h : both.hits) ++holders[h];
+    kept[merge_i] = union_candidate;
+    kept.erase(kept.begin() + static_cast<std::ptrdiff_t>(merge_j));
+    new_index = merge_i;
+    start_row = lost_holder ? 0 : merge_i;
+    merged = true;
   }
   std::sort(chosen->begin(), chosen->end());
 }

@@ -24,6 +24,9 @@ struct LinePiece {
   // corner (or between two such corners) to its far end-point. Pixels; 0 otherwise (and for a
   // joined piece).
   double corner_length = 0;
+  // From the fast path's second splitting of the chain points no regular piece holds (seed
+  // window under min_length / sqrt 2; fast.short_pieces_at_contacts).
+  bool short_pass = false;
 };
 
 // Joins pairs of pieces of the same polarity with end-points at most `max_gap` pixels apart when

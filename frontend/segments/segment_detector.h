@@ -64,6 +64,17 @@ struct FastSegmentOptions {
   // With branches_at_free_ends: a branch whose far end stops at another segment's corner (an L or a
   // T within max_gap) is measured from corner to corner for min_length, as the short sides of step 7.
   bool branches_to_far_corners = true;
+  // A piece shorter than min_length (down to min_contact_length) whose line meets a segment at
+  // least min_length long within max_gap of one of its end-points (an L with that segment's end,
+  // or a T on its interior) is kept if its NFA against the family of such pieces (their count per
+  // image) is at most 10^log10_nfa_max; the chain points no regular piece holds are split again
+  // with 4-point seed windows to find them; every sample must reach the high edge threshold
+  // (docs/segments.md, step 7). Off by default (session 6, docs/junction_results.md): junction
+  // recall on generated vertices 86.4 -> 89.3 % (held-out 86.5 -> 88.3 %) at unchanged precision,
+  // but VGG matching precision 98.2 -> 96.6 %, generated matching recall 91.2 -> 89.0 % and about
+  // 19 % more instructions for segments + junctions on VGG (session 6, part 2).
+  bool short_pieces_at_contacts = false;
+  double min_contact_length = 4.0;  // pixels: shortest piece short_pieces_at_contacts keeps
 };
 
 struct SegmentDetectorOptions {

@@ -29,7 +29,7 @@ namespace sfm {
 bool SegmentMethodFromFlags(SegmentDetectorOptions* options, std::string* error);
 
 // Group sfm_flags_segment_branches: --branches_at_free_ends, --branches_to_far_corners,
-// --bridges_past_corners.
+// --bridges_past_corners, --short_pieces_at_contacts, --min_contact_length.
 void SegmentBranchesFromFlags(FastSegmentOptions* options);
 
 // Group sfm_flags_junction_choice: --choose_by_end_likelihood, --acute_shortfall_px.
