@@ -694,7 +694,7 @@ FloorRun RunFloorLoop(double floor_z, double camera_height, FloorPriorMode mode,
                       bool rescale_start = BundleAdjustmentOptions().floor_rescale_start,
                       double function_tolerance = 0,
                       bool line_search = BundleAdjustmentOptions().floor_scale_line_search,
-                      bool solver_before_session6 = false) {
+                      bool solver_before_session6 = false, bool inner_iterations_poses = false) {
   Calibration calibration = RoomCalibration(kSmallDriftRad);
   calibration.base_T_camera.translation.z() = camera_height;
   const std::vector<Pose3> truth = testing::LoopTrajectory(60);
@@ -708,6 +708,7 @@ FloorRun RunFloorLoop(double floor_z, double camera_height, FloorPriorMode mode,
   options.estimate_odometry_rotation_bias_on_floor = bias_on_floor;
   options.floor_rescale_start = rescale_start;
   options.floor_scale_line_search = line_search;
+  options.inner_iterations_poses = inner_iterations_poses;
   if (solver_before_session6) {
     options.inner_iterations_poses = true;
     options.single_pose_block = false;
@@ -852,11 +853,17 @@ TEST(FloorPriorTest, TheStartAtTheFloorsScaleDoesNotKeepTheOdometrysError) {
 // of 1 (observed 0.99872 / 1.00007) and within 0.005 of each other (0.0014); without it the two
 // differ by more (0.0103: 1.00263 / 0.99232) and the short one is off by more than 0.003. Fully
 // converged (1e-6) without the search: 0.99904 / 0.99655.
+// The poses are re-solved in the inner iterations here (inner_iterations_poses, the solver before
+// session 6): with every solve stopped at 1e-2, the search's samples end after one or two
+// iterations, and with the landmarks alone re-solved they are not converged enough for the
+// parabola (0.99604 / 1.00011: the long run's search overshoots). At the pipeline's tolerances
+// the samples converge either way (docs/bundle_adjustment.md, "Solver").
 TEST(FloorPriorTest, TheScaleLineSearchFindsTheScaleTheSolvesStopShortOf) {
   constexpr double kLooseTolerance = 1e-2;
   auto run = [](bool line_search, double error, double tolerance) {
     const FloorRun result = RunFloorLoop(0, 0.5, FloorPriorMode::kAuto, true, {}, true, error,
-                                         /*rescale_start=*/false, tolerance, line_search);
+                                         /*rescale_start=*/false, tolerance, line_search,
+                                         /*solver_before_session6=*/false, /*inner_iterations_poses=*/true);
     EXPECT_TRUE(result.summary.floor_prior_used) << result.summary.floor_prior_report;
     EXPECT_EQ(result.summary.floor_prior_report.find("scale line search") != std::string::npos, line_search)
         << result.summary.floor_prior_report;
