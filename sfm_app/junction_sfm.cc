@@ -128,9 +128,10 @@ DEFINE_bool(floor_rescale_start, kDefaults.bundle_adjustment_options.floor_resca
 DEFINE_bool(floor_scale_line_search, kDefaults.bundle_adjustment_options.floor_scale_line_search,
             "Bundle adjustment: with the floor prior applied, after the last solve, a line search on the odometry's "
             "scale factor (three solves with it held, a parabola, a last solve at its minimum).");
-DEFINE_bool(floor_scale_search_solve_centre, kDefaults.bundle_adjustment_options.floor_scale_search_solve_centre,
-            "Bundle adjustment: with the floor scale's line search, solve its centre sample again with the scale "
-            "held (before session 6) instead of taking the last solve's cost there.");
+DEFINE_bool(
+    floor_scale_search_solve_centre, kDefaults.bundle_adjustment_options.floor_scale_search_solve_centre,
+    "Bundle adjustment: with the floor scale's line search, solve its centre sample again with the scale "
+    "held (before session 6) instead of taking the last solve's cost there.");
 DEFINE_string(
     odometry_rotation_bias,
     kDefaults.bundle_adjustment_options.estimate_odometry_rotation_bias            ? "on"

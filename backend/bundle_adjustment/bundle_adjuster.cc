@@ -365,8 +365,8 @@ class BundleAdjuster {
   // search"). The joint solves stop, by their function tolerance, with the scale part-way along its
   // shallow direction; with lambda held, the same solves converge. So: the map scaled to lambda (1 - d)
   // and lambda (1 + d), each solved with lambda held (at the intermediate tolerance), a parabola
-  // through their costs and the last solve's at lambda, and the map solved once more (at function_tolerance) at its
-  // minimum, at most 2 d away (where the three samples still describe the cost). d is lambda's
+  // through their costs and the last solve's at lambda, and the map solved once more (at function_tolerance)
+  // at its minimum, at most 2 d away (where the three samples still describe the cost). d is lambda's
   // standard error through the per-step priors, translation_sigma / sqrt(steps): the change of
   // scale the odometry itself cannot tell. The result is kept only if its cost is below the last
   // solve's.
@@ -737,8 +737,8 @@ class BundleAdjuster {
       problem.AddParameterBlock(parameters, 6, &line_manifold_);
       for (const LineObservation& observation : line.observations) {
         PoseParameters& pose = poses_[observation.frame];
-        AddResidual(&problem, LineReprojectionCost::Create(camera_, observation.p0, observation.p1), loss.get(),
-                    {pose.rotation.data(), pose.translation.data(), parameters});
+        AddResidual(&problem, LineReprojectionCost::Create(camera_, observation.p0, observation.p1),
+                    loss.get(), {pose.rotation.data(), pose.translation.data(), parameters});
       }
       ordering->AddElementToGroup(parameters, 0);
     }
@@ -799,10 +799,12 @@ class BundleAdjuster {
                                                          sigmas.across_m);
         blocks.insert(blocks.end(), {&odometry_scale_, bias});
       } else if (with_bias_) {
-        cost = OdometryPriorWithBiasCost::Create(motion, noise_.rotation_sigma, sigmas.along_m, sigmas.across_m);
+        cost =
+            OdometryPriorWithBiasCost::Create(motion, noise_.rotation_sigma, sigmas.along_m, sigmas.across_m);
         blocks.push_back(bias);
       } else if (scaled) {
-        cost = OdometryPriorWithScaleCost::Create(motion, noise_.rotation_sigma, sigmas.along_m, sigmas.across_m);
+        cost = OdometryPriorWithScaleCost::Create(motion, noise_.rotation_sigma, sigmas.along_m,
+                                                  sigmas.across_m);
         blocks.push_back(&odometry_scale_);
       } else {
         cost = OdometryPriorCost::Create(motion, noise_.rotation_sigma, sigmas.along_m, sigmas.across_m);
@@ -826,10 +828,11 @@ class BundleAdjuster {
     // Where a solve's time goes (docs/backend_results.md, "Session 6: the back end's time").
     VLOG(1) << "bundle adjustment solve: loss " << loss_scale_px << " px, " << (with_lines ? "lines, " : "")
             << (hold_scale_ ? "scale held, " : "") << "tolerance " << function_tolerance << ": "
-            << ceres_summary.num_successful_steps + ceres_summary.num_unsuccessful_steps << " iterations, cost "
-            << ceres_summary.initial_cost << " -> " << ceres_summary.final_cost << "; "
-            << ceres_summary.total_time_in_seconds << " s (preprocessor " << ceres_summary.preprocessor_time_in_seconds
-            << ", residuals " << ceres_summary.residual_evaluation_time_in_seconds << ", jacobians "
+            << ceres_summary.num_successful_steps + ceres_summary.num_unsuccessful_steps
+            << " iterations, cost " << ceres_summary.initial_cost << " -> " << ceres_summary.final_cost
+            << "; " << ceres_summary.total_time_in_seconds << " s (preprocessor "
+            << ceres_summary.preprocessor_time_in_seconds << ", residuals "
+            << ceres_summary.residual_evaluation_time_in_seconds << ", jacobians "
             << ceres_summary.jacobian_evaluation_time_in_seconds << ", linear solver "
             << ceres_summary.linear_solver_time_in_seconds << ", inner iterations "
             << ceres_summary.inner_iteration_time_in_seconds << ")";

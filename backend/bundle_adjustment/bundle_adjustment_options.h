@@ -116,8 +116,8 @@ struct BundleAdjustmentOptions {
   bool floor_rescale_start = false;
   // When the floor prior applies, after the last joint solve, a line search on the odometry's
   // scale factor: two solves with it held at lambda (1 +- translation_sigma / sqrt(steps)), a
-  // parabola through their costs and the last solve's at lambda, a last solve at its minimum (at most two such
-  // steps away), kept if its cost is lower. The joint solves stop with the scale part-way along its
+  // parabola through their costs and the last solve's at lambda, a last solve at its minimum (at most two
+  // such steps away), kept if its cost is lower. The joint solves stop with the scale part-way along its
   // shallow direction; held, they converge (docs/bundle_adjustment.md, "Floor scale bias: the start
   // and the line search").
   bool floor_scale_line_search = true;

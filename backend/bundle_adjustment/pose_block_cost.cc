@@ -7,7 +7,8 @@
 
 namespace sfm {
 
-PoseBlockCost::PoseBlockCost(ceres::CostFunction* inner, const std::vector<int>& pose_starts) : inner_(inner) {
+PoseBlockCost::PoseBlockCost(ceres::CostFunction* inner, const std::vector<int>& pose_starts)
+    : inner_(inner) {
   const std::vector<int32_t>& sizes = inner_->parameter_block_sizes();
   CHECK_LE(sizes.size(), static_cast<size_t>(kMaxInnerBlocks));
   CHECK_LE(static_cast<int>(pose_starts.size()) * 7 * inner_->num_residuals(), kScratchSize);

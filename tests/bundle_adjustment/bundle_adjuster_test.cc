@@ -778,13 +778,15 @@ TEST(FloorPriorTest, SolverEconomiesKeepTheAnswer) {
   ASSERT_EQ(before.world_T_base_refined.size(), after.world_T_base_refined.size());
   double largest_m = 0;
   for (size_t f = 0; f < before.world_T_base_refined.size(); ++f) {
-    largest_m = std::max(largest_m,
-                         (before.world_T_base_refined[f].translation - after.world_T_base_refined[f].translation).norm());
+    largest_m = std::max(
+        largest_m,
+        (before.world_T_base_refined[f].translation - after.world_T_base_refined[f].translation).norm());
   }
-  std::printf("[ figures  ] largest base position difference %.2e m; odometry scale %.8f -> %.8f; "
-              "iterations %d -> %d in %d -> %d solves\n",
-              largest_m, before.summary.odometry_scale, after.summary.odometry_scale, before.summary.iterations,
-              after.summary.iterations, before.summary.solves, after.summary.solves);
+  std::printf(
+      "[ figures  ] largest base position difference %.2e m; odometry scale %.8f -> %.8f; "
+      "iterations %d -> %d in %d -> %d solves\n",
+      largest_m, before.summary.odometry_scale, after.summary.odometry_scale, before.summary.iterations,
+      after.summary.iterations, before.summary.solves, after.summary.solves);
   EXPECT_LT(largest_m, 2e-4);
   EXPECT_NEAR(after.summary.odometry_scale, before.summary.odometry_scale, 5e-5);
   EXPECT_LE(after.summary.iterations, before.summary.iterations);

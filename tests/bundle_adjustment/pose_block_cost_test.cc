@@ -51,7 +51,7 @@ TEST(PoseBlockCostTest, SameResidualsAndJacobiansAsThePairOfBlocks) {
   const double scale = 1.02;
   const std::array<double, 3> bias = {0.0001, -0.0002, 0.001};
   const double* inner_parameters[] = {pose_i.data(), pose_i.data() + 4, pose_j.data(), pose_j.data() + 4,
-                                      &scale, bias.data()};
+                                      &scale,        bias.data()};
   const double* outer_parameters[] = {pose_i.data(), pose_j.data(), &scale, bias.data()};
 
   std::array<double, 6> r_inner, r_outer;
@@ -103,7 +103,9 @@ TEST(PoseBlockCostTest, FailureIsPassedOn) {
 // tolerance of cost_functions_test.cc's checks of the wrapped functions).
 TEST(PoseBlockCostTest, GradientCheck) {
   std::mt19937 engine(4321);
-  auto uniform = [&](double low, double high) { return std::uniform_real_distribution<double>(low, high)(engine); };
+  auto uniform = [&](double low, double high) {
+    return std::uniform_real_distribution<double>(low, high)(engine);
+  };
   auto vector = [&](double low, double high) {
     return Eigen::Vector3d(uniform(low, high), uniform(low, high), uniform(low, high));
   };
@@ -120,21 +122,23 @@ TEST(PoseBlockCostTest, GradientCheck) {
     const OrthonormalLine line = OrthonormalLineFromPointDirection(a, (b - a).normalized());
     const std::array<double, 7> pose = PoseBlock(world_T_base);
     {
-      PoseBlockCost cost(
-          LineReprojectionCost::Create(camera, {uniform(0, 640), uniform(0, 480)}, {uniform(0, 640), uniform(0, 480)}),
-          {0});
+      PoseBlockCost cost(LineReprojectionCost::Create(camera, {uniform(0, 640), uniform(0, 480)},
+                                                      {uniform(0, 640), uniform(0, 480)}),
+                         {0});
       const std::vector<const ceres::Manifold*> manifolds = {&pose_manifold, &line_manifold};
       const double* parameters[] = {pose.data(), line.data()};
       ceres::GradientChecker checker(&cost, &manifolds, ridders);
       ceres::GradientChecker::ProbeResults results;
-      EXPECT_TRUE(checker.Probe(parameters, 1e-7, &results)) << "line, trial " << trial << ": " << results.error_log;
+      EXPECT_TRUE(checker.Probe(parameters, 1e-7, &results))
+          << "line, trial " << trial << ": " << results.error_log;
     }
     {
       PoseBlockCost cost(OdometryStep(), {0, 2});
       const std::array<double, 7> next = PoseBlock(world_T_base * SomePose(0.05, {0, 0, 1}, {0.3, 0, 0}));
       const double scale = uniform(0.97, 1.03);
       const Eigen::Vector3d bias = vector(-0.001, 0.001);
-      const std::vector<const ceres::Manifold*> manifolds = {&pose_manifold, &pose_manifold, nullptr, nullptr};
+      const std::vector<const ceres::Manifold*> manifolds = {&pose_manifold, &pose_manifold, nullptr,
+                                                             nullptr};
       const double* parameters[] = {pose.data(), next.data(), &scale, bias.data()};
       ceres::GradientChecker checker(&cost, &manifolds, ridders);
       ceres::GradientChecker::ProbeResults results;
