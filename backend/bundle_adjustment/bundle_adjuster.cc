@@ -821,9 +821,10 @@ class BundleAdjuster {
     solver_options.use_inner_iterations = with_lines && options_.inner_iterations;
     if (solver_options.use_inner_iterations) solver_options.inner_iteration_ordering = InnerIterationOrdering(landmark_values);
     // Ceres switches the inner iterations off for the rest of a solve once one of them lowers the
-    // cost by less than inner_iteration_tolerance (relative); the crawl then resumes (corridor: 38
-    // iterations of the solve after the outlier round, against 5 with them kept on).
-    if (options_.inner_iterations_throughout) solver_options.inner_iteration_tolerance = 0;
+    // cost by less than inner_iteration_tolerance (relative, 1e-3 by default); the crawl then
+    // resumes (corridor: 38 iterations of the solve after the outlier round, against 5). A gain
+    // the solve's own stopping rule still counts keeps them on.
+    if (options_.inner_iterations_throughout) solver_options.inner_iteration_tolerance = function_tolerance;
     ceres::Solver::Summary ceres_summary;
     ceres::Solve(solver_options, &problem, &ceres_summary);
     if (!ceres_summary.IsSolutionUsable()) {

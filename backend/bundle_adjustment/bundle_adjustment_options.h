@@ -60,10 +60,11 @@ struct BundleAdjustmentOptions {
   // cells, the same arithmetic (docs/bundle_adjustment.md, "Solver"). Off: the layout before
   // session 6.
   bool single_pose_block = true;
-  // The inner iterations kept on through every step of a solve (Ceres's inner_iteration_tolerance
-  // 0). Ceres's default (1e-3) turns them off once one of them gains less than that, and then the
-  // joint solve crawls again: corridor's solve after the outlier round took 38 iterations, 5 with
-  // them kept on, to the same cost within 5e-6 (docs/bundle_adjustment.md, "Solver"). Off: Ceres's default.
+  // The inner iterations kept on while they gain what the solve's own stopping rule counts (Ceres's
+  // inner_iteration_tolerance = the solve's function tolerance). Ceres's default (1e-3) turns them
+  // off once one of them gains less than that, and then the joint solve crawls again: corridor's
+  // solve after the outlier round took 38 iterations, 5 with them kept on, to the same cost within
+  // 3e-6 (docs/bundle_adjustment.md, "Solver"). Off: Ceres's default.
   bool inner_iterations_throughout = true;
   double outlier_threshold_px = 3.0;  // px, an observation's error (norm of its 2 residuals)
   int outlier_rounds = 1;             // remove-outliers-and-solve-again rounds after the joint solve
