@@ -17,6 +17,7 @@
 #include "backend/bundle_adjustment/observability.h"
 #include "backend/bundle_adjustment/odometry_prior_cost.h"
 #include "backend/bundle_adjustment/point_reprojection_cost.h"
+#include "backend/bundle_adjustment/pose_block_cost.h"
 #include "backend/bundle_adjustment/pose_parameters.h"
 
 namespace sfm {
@@ -362,10 +363,10 @@ class BundleAdjuster {
   // The line search on the odometry's scale factor after the last joint solve
   // (floor_scale_line_search; docs/bundle_adjustment.md, "Floor scale bias: the start and the line
   // search"). The joint solves stop, by their function tolerance, with the scale part-way along its
-  // shallow direction; with lambda held, the same solves converge. So: the map scaled to lambda (1 - d),
-  // lambda and lambda (1 + d), each solved with lambda held (at the intermediate tolerance), a
-  // parabola through the three costs, and the map solved once more (at function_tolerance) at its
-  // minimum, at most 2 d away (where the three samples still describe the cost). d is lambda's
+  // shallow direction; with lambda held, the same solves converge. So: the map scaled to lambda (1 - d)
+  // and lambda (1 + d), each solved with lambda held (at the intermediate tolerance), a parabola
+  // through their costs and the last solve's at lambda, and the map solved once more (at function_tolerance)
+  // at its minimum, at most 2 d away (where the three samples still describe the cost). d is lambda's
   // standard error through the per-step priors, translation_sigma / sqrt(steps): the change of
   // scale the odometry itself cannot tell. The result is kept only if its cost is below the last
   // solve's.
@@ -398,7 +399,14 @@ class BundleAdjuster {
     const double loose = std::max(options_.intermediate_function_tolerance, options_.function_tolerance);
     double below = 0, centre = 0, above = 0, found = 0;
     SFM_RETURN_IF_ERROR(cost_at(scale * (1 - step), loose, &below));
-    SFM_RETURN_IF_ERROR(cost_at(scale, loose, &centre));
+    // The centre sample is the last solve itself: that solve converged (at function_tolerance) with
+    // lambda free, so with lambda held at its value a solve stops at once (1 iteration on the room
+    // loop, the same cost to 1e-6) and only costs its time.
+    if (options_.floor_scale_search_solve_centre) {
+      SFM_RETURN_IF_ERROR(cost_at(scale, loose, &centre));
+    } else {
+      centre = cost;
+    }
     SFM_RETURN_IF_ERROR(cost_at(scale * (1 + step), loose, &above));
     const double x = ParabolaMinimumStep(below, centre, above, /*max_steps=*/2);
     const double target = scale * (1 + x * step);
@@ -621,6 +629,7 @@ class BundleAdjuster {
   // Each line alone, the poses held where they are (one small problem per line, 4 unknowns). A
   // line whose solve fails keeps its estimate.
   void RefineLinesOnFixedPoses(double loss_scale_px) {
+    const auto start = std::chrono::steady_clock::now();
     const std::unique_ptr<ceres::LossFunction> loss = MakeLoss(loss_scale_px);
     ceres::Problem::Options problem_options;
     problem_options.loss_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
@@ -642,6 +651,36 @@ class BundleAdjuster {
       ceres::Solve(solver_options, &problem, &ceres_summary);
       if (ceres_summary.IsSolutionUsable()) WriteBackLine(parameters, &line);
     }
+    VLOG(1) << "bundle adjustment: " << landmarks_->lines.size() << " lines solved alone on fixed poses in "
+            << std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() << " s";
+  }
+
+  // Adds `cost` on `blocks` to the joint problem; a pose among the blocks is its rotation's and
+  // translation's pointers, next to each other. With options_.single_pose_block each such pair
+  // is given to Ceres as the pose's one 7-number block (PoseBlockCost: the same residuals and
+  // Jacobian entries, a quarter of the Schur complement's cells).
+  void AddResidual(ceres::Problem* problem, ceres::CostFunction* cost, ceres::LossFunction* loss,
+                   const std::vector<double*>& blocks) const {
+    if (!options_.single_pose_block) {
+      problem->AddResidualBlock(cost, loss, blocks);
+      return;
+    }
+    std::vector<int> pose_starts;
+    std::vector<double*> outer_blocks;
+    for (size_t k = 0; k < blocks.size(); ++k) {
+      outer_blocks.push_back(blocks[k]);
+      if (k + 1 < blocks.size() && IsPoseRotation(blocks[k]) && blocks[k + 1] == blocks[k] + 4) {
+        pose_starts.push_back(static_cast<int>(k));
+        ++k;
+      }
+    }
+    problem->AddResidualBlock(new PoseBlockCost(cost, pose_starts), loss, outer_blocks);
+  }
+  bool IsPoseRotation(const double* block) const {
+    for (const PoseParameters& pose : poses_) {
+      if (block == pose.rotation.data()) return true;
+    }
+    return false;
   }
 
   // Poses, points and (with_lines) lines together, until Ceres's function_tolerance.
@@ -653,14 +692,21 @@ class BundleAdjuster {
     ceres::Problem problem(problem_options);
     auto ordering = std::make_shared<ceres::ParameterBlockOrdering>();
 
+    // A pose is one block (options_.single_pose_block: the 7 numbers from its rotation on, see
+    // AddResidual) or two.
     for (PoseParameters& pose : poses_) {
-      problem.AddParameterBlock(pose.rotation.data(), 4, &quaternion_manifold_);
-      problem.AddParameterBlock(pose.translation.data(), 3);
-      ordering->AddElementToGroup(pose.rotation.data(), 1);
-      ordering->AddElementToGroup(pose.translation.data(), 1);
+      if (options_.single_pose_block) {
+        problem.AddParameterBlock(pose.rotation.data(), 7, &pose_manifold_);
+        ordering->AddElementToGroup(pose.rotation.data(), 1);
+      } else {
+        problem.AddParameterBlock(pose.rotation.data(), 4, &quaternion_manifold_);
+        problem.AddParameterBlock(pose.translation.data(), 3);
+        ordering->AddElementToGroup(pose.rotation.data(), 1);
+        ordering->AddElementToGroup(pose.translation.data(), 1);
+      }
     }
     problem.SetParameterBlockConstant(poses_[0].rotation.data());
-    problem.SetParameterBlockConstant(poses_[0].translation.data());
+    if (!options_.single_pose_block) problem.SetParameterBlockConstant(poses_[0].translation.data());
 
     // Every landmark's parameters in one buffer, points then lines, in their order: Ceres orders
     // the blocks of an ordering group by address (a std::set<double*>), and that order is the
@@ -677,8 +723,8 @@ class BundleAdjuster {
       std::copy(point.position.data(), point.position.data() + 3, position);
       for (const PointObservation& observation : point.observations) {
         PoseParameters& pose = poses_[observation.frame];
-        problem.AddResidualBlock(PointReprojectionCost::Create(camera_, observation.pixel), loss.get(),
-                                 pose.rotation.data(), pose.translation.data(), position);
+        AddResidual(&problem, PointReprojectionCost::Create(camera_, observation.pixel), loss.get(),
+                    {pose.rotation.data(), pose.translation.data(), position});
       }
       ordering->AddElementToGroup(position, 0);
     }
@@ -691,8 +737,8 @@ class BundleAdjuster {
       problem.AddParameterBlock(parameters, 6, &line_manifold_);
       for (const LineObservation& observation : line.observations) {
         PoseParameters& pose = poses_[observation.frame];
-        problem.AddResidualBlock(LineReprojectionCost::Create(camera_, observation.p0, observation.p1),
-                                 loss.get(), pose.rotation.data(), pose.translation.data(), parameters);
+        AddResidual(&problem, LineReprojectionCost::Create(camera_, observation.p0, observation.p1),
+                    loss.get(), {pose.rotation.data(), pose.translation.data(), parameters});
       }
       ordering->AddElementToGroup(parameters, 0);
     }
@@ -722,8 +768,8 @@ class BundleAdjuster {
         // The first pose is held constant; its prior would be a constant.
         const double tilt_sigma_rad = options_.floor_sigma_m / base_T_camera_.translation.z();
         for (size_t f = 1; f < poses_.size(); ++f) {
-          problem.AddResidualBlock(BaseOnFloorCost::Create(options_.floor_sigma_m, tilt_sigma_rad), nullptr,
-                                   poses_[f].rotation.data(), poses_[f].translation.data());
+          AddResidual(&problem, BaseOnFloorCost::Create(options_.floor_sigma_m, tilt_sigma_rad), nullptr,
+                      {poses_[f].rotation.data(), poses_[f].translation.data()});
         }
       }
       problem.AddResidualBlock(OdometryScalePriorCost::Create(noise_.translation_sigma), nullptr, &odometry_scale_);
@@ -745,25 +791,25 @@ class BundleAdjuster {
     for (size_t f = 0; f + 1 < poses_.size(); ++f) {
       const Pose3 motion = odometry_[f].Inverse() * odometry_[f + 1];
       const OdometryStepSigmas sigmas = OdometryStepSigmasFor(motion.translation.norm(), noise_, options_);
-      double* const pose_blocks[4] = {poses_[f].rotation.data(), poses_[f].translation.data(),
-                                      poses_[f + 1].rotation.data(), poses_[f + 1].translation.data()};
+      std::vector<double*> blocks = {poses_[f].rotation.data(), poses_[f].translation.data(),
+                                     poses_[f + 1].rotation.data(), poses_[f + 1].translation.data()};
+      ceres::CostFunction* cost = nullptr;
       if (with_bias_ && scaled) {
-        problem.AddResidualBlock(OdometryPriorWithScaleAndBiasCost::Create(motion, noise_.rotation_sigma,
-                                                                           sigmas.along_m, sigmas.across_m),
-                                 nullptr, pose_blocks[0], pose_blocks[1], pose_blocks[2], pose_blocks[3],
-                                 &odometry_scale_, bias);
+        cost = OdometryPriorWithScaleAndBiasCost::Create(motion, noise_.rotation_sigma, sigmas.along_m,
+                                                         sigmas.across_m);
+        blocks.insert(blocks.end(), {&odometry_scale_, bias});
       } else if (with_bias_) {
-        problem.AddResidualBlock(
-            OdometryPriorWithBiasCost::Create(motion, noise_.rotation_sigma, sigmas.along_m, sigmas.across_m),
-            nullptr, pose_blocks[0], pose_blocks[1], pose_blocks[2], pose_blocks[3], bias);
+        cost =
+            OdometryPriorWithBiasCost::Create(motion, noise_.rotation_sigma, sigmas.along_m, sigmas.across_m);
+        blocks.push_back(bias);
       } else if (scaled) {
-        problem.AddResidualBlock(
-            OdometryPriorWithScaleCost::Create(motion, noise_.rotation_sigma, sigmas.along_m, sigmas.across_m), nullptr,
-            pose_blocks[0], pose_blocks[1], pose_blocks[2], pose_blocks[3], &odometry_scale_);
+        cost = OdometryPriorWithScaleCost::Create(motion, noise_.rotation_sigma, sigmas.along_m,
+                                                  sigmas.across_m);
+        blocks.push_back(&odometry_scale_);
       } else {
-        problem.AddResidualBlock(OdometryPriorCost::Create(motion, noise_.rotation_sigma, sigmas.along_m, sigmas.across_m),
-                                 nullptr, pose_blocks[0], pose_blocks[1], pose_blocks[2], pose_blocks[3]);
+        cost = OdometryPriorCost::Create(motion, noise_.rotation_sigma, sigmas.along_m, sigmas.across_m);
       }
+      AddResidual(&problem, cost, nullptr, blocks);
     }
 
     ceres::Solver::Options solver_options = SolverOptions(LinearSolverType());
@@ -774,11 +820,27 @@ class BundleAdjuster {
     // inner iterations re-solve each landmark on the step's poses and end the solve in a few.
     solver_options.use_inner_iterations = with_lines && options_.inner_iterations;
     if (solver_options.use_inner_iterations) solver_options.inner_iteration_ordering = InnerIterationOrdering(landmark_values);
+    // Ceres switches the inner iterations off for the rest of a solve once one of them lowers the
+    // cost by less than inner_iteration_tolerance (relative, 1e-3 by default); the crawl then
+    // resumes (corridor: 38 iterations of the solve after the outlier round, against 5). A gain
+    // the solve's own stopping rule still counts keeps them on.
+    if (options_.inner_iterations_throughout) solver_options.inner_iteration_tolerance = function_tolerance;
     ceres::Solver::Summary ceres_summary;
     ceres::Solve(solver_options, &problem, &ceres_summary);
     if (!ceres_summary.IsSolutionUsable()) {
       return Status::Error("bundle adjustment: Ceres failed: " + ceres_summary.message);
     }
+    // Where a solve's time goes (docs/backend_results.md, "Session 6: the back end's time").
+    VLOG(1) << "bundle adjustment solve: loss " << loss_scale_px << " px, " << (with_lines ? "lines, " : "")
+            << (hold_scale_ ? "scale held, " : "") << "tolerance " << function_tolerance << ": "
+            << ceres_summary.num_successful_steps + ceres_summary.num_unsuccessful_steps
+            << " iterations, cost " << ceres_summary.initial_cost << " -> " << ceres_summary.final_cost
+            << "; " << ceres_summary.total_time_in_seconds << " s (preprocessor "
+            << ceres_summary.preprocessor_time_in_seconds << ", residuals "
+            << ceres_summary.residual_evaluation_time_in_seconds << ", jacobians "
+            << ceres_summary.jacobian_evaluation_time_in_seconds << ", linear solver "
+            << ceres_summary.linear_solver_time_in_seconds << ", inner iterations "
+            << ceres_summary.inner_iteration_time_in_seconds << ")";
 
     if (summary_->solves == 0) {
       summary_->initial_cost = ceres_summary.initial_cost;
@@ -800,21 +862,30 @@ class BundleAdjuster {
   }
 
   // The groups of Ceres's inner iterations, each an independent set (no two of its blocks in one
-  // residual), solved in turn: the rotations of the even frames but the first (which is held), of
-  // the odd ones, the same for the translations, the odometry's scale factor, then every landmark
-  // (`landmark_values`: the points and lines of the problem). The shape of the ordering Ceres
+  // residual), solved in turn. By default only the landmarks (`landmark_values`: the points and
+  // lines of the problem, one group): after each step every landmark is re-solved on the step's
+  // poses, the variable projection of Ruhe & Wedin's algorithm II, which is what ended the crawl of
+  // the joint solves; re-solving each pose on its hundreds of observations as well cost a third of
+  // the back end's time and saved no iteration (docs/bundle_adjustment.md, "Solver").
+  // With options.inner_iterations_poses, before them: the rotations of the even frames but the
+  // first (which is held), of the odd ones, the same for the translations, the odometry's scale
+  // factor, the rotation bias (the ordering before session 6). The shape of the ordering Ceres
   // computes when given none (poses in independent sets, the landmarks last), which it builds
   // from hash sets keyed by address: its groups varied from run to run and so did the results
   // (docs/bundle_adjustment.md, "Determinism").
   std::shared_ptr<ceres::ParameterBlockOrdering> InnerIterationOrdering(std::vector<double>& landmark_values) {
     auto ordering = std::make_shared<ceres::ParameterBlockOrdering>();
-    for (size_t f = 1; f < poses_.size(); ++f) {
-      ordering->AddElementToGroup(poses_[f].rotation.data(), static_cast<int>(f % 2));
-      ordering->AddElementToGroup(poses_[f].translation.data(), 2 + static_cast<int>(f % 2));
+    if (options_.inner_iterations_poses) {
+      for (size_t f = 1; f < poses_.size(); ++f) {
+        ordering->AddElementToGroup(poses_[f].rotation.data(), static_cast<int>(f % 2));
+        if (!options_.single_pose_block) {
+          ordering->AddElementToGroup(poses_[f].translation.data(), 2 + static_cast<int>(f % 2));
+        }
+      }
+      if (ScaleInProblem()) ordering->AddElementToGroup(&odometry_scale_, 4);
+      // The rotation bias shares every odometry residual with the scale: a group of its own.
+      if (with_bias_) ordering->AddElementToGroup(rotation_bias_.data(), 5);
     }
-    if (ScaleInProblem()) ordering->AddElementToGroup(&odometry_scale_, 4);
-    // The rotation bias shares every odometry residual with the scale: a group of its own.
-    if (with_bias_) ordering->AddElementToGroup(rotation_bias_.data(), 5);
     // The landmark blocks start at their sizes' offsets; walk them as Solve laid them out.
     const size_t point_count = landmarks_->points.size();
     for (size_t i = 0; i < point_count; ++i) ordering->AddElementToGroup(landmark_values.data() + 3 * i, 6);
@@ -901,6 +972,7 @@ class BundleAdjuster {
   std::array<double, 3> rotation_bias_ = {0, 0, 0};
   bool with_bias_ = false;  // EstimatesRotationBias(options, ...), fixed for the run
   ceres::EigenQuaternionManifold quaternion_manifold_;
+  PoseManifold pose_manifold_;
   OrthonormalLineManifold line_manifold_;
 };
 

@@ -50,6 +50,22 @@ struct BundleAdjustmentOptions {
   // 100 and 79 iterations, relative cost decrease about 2e-6 per step); with them 4 and 6, to a
   // cost as low or lower. docs/bundle_adjustment.md, "Solver".
   bool inner_iterations = true;
+  // The poses, the odometry's scale factor and its rotation bias re-solved in the inner iterations
+  // too, each pose block on its own, before the landmarks (the ordering before session 6). Off:
+  // only the landmarks, the same iterations and final costs on the benchmark for a third less
+  // back-end time (docs/bundle_adjustment.md, "Solver").
+  bool inner_iterations_poses = false;
+  // Each frame's pose one Ceres block of 7 numbers (quaternion and translation, PoseBlockCost)
+  // instead of two (4 and 3) in the joint solves: the Schur eliminator forms a quarter of the
+  // cells, the same arithmetic (docs/bundle_adjustment.md, "Solver"). Off: the layout before
+  // session 6.
+  bool single_pose_block = true;
+  // The inner iterations kept on while they gain what the solve's own stopping rule counts (Ceres's
+  // inner_iteration_tolerance = the solve's function tolerance). Ceres's default (1e-3) turns them
+  // off once one of them gains less than that, and then the joint solve crawls again: corridor's
+  // solve after the outlier round took 38 iterations, 5 with them kept on, to the same cost within
+  // 3e-6 (docs/bundle_adjustment.md, "Solver"). Off: Ceres's default.
+  bool inner_iterations_throughout = true;
   double outlier_threshold_px = 3.0;  // px, an observation's error (norm of its 2 residuals)
   int outlier_rounds = 1;             // remove-outliers-and-solve-again rounds after the joint solve
   // Rounds after the last joint solve: the landmarks that solve itself made unobservable (a line
@@ -105,12 +121,17 @@ struct BundleAdjustmentOptions {
   // and the line search").
   bool floor_rescale_start = false;
   // When the floor prior applies, after the last joint solve, a line search on the odometry's
-  // scale factor: three solves with it held at lambda and lambda (1 +- translation_sigma /
-  // sqrt(steps)), a parabola through their costs, a last solve at its minimum (at most two such
-  // steps away), kept if its cost is lower. The joint solves stop with the scale part-way along its
+  // scale factor: two solves with it held at lambda (1 +- translation_sigma / sqrt(steps)), a
+  // parabola through their costs and the last solve's at lambda, a last solve at its minimum (at most two
+  // such steps away), kept if its cost is lower. The joint solves stop with the scale part-way along its
   // shallow direction; held, they converge (docs/bundle_adjustment.md, "Floor scale bias: the start
   // and the line search").
   bool floor_scale_line_search = true;
+  // The line search's centre sample (lambda as the last joint solve left it) solved again with
+  // lambda held, as the two others are (before session 6). Off: its cost is the last joint solve's,
+  // which converged there with lambda free; one solve fewer (docs/bundle_adjustment.md, "Floor
+  // scale bias: the start and the line search").
+  bool floor_scale_search_solve_centre = false;
   // Landmarks a floor plane needs at least (besides being a peak of the height distribution).
   int floor_min_landmarks = 10;
 

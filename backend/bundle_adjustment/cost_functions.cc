@@ -38,15 +38,22 @@ Eigen::Matrix3d Skew(const Eigen::Vector3d& v) {
   return S;
 }
 
-// f(v) = v + 2 w (u x v) + 2 u x (u x v) (Eigen's quaternion * vector) for the quaternion (u, w),
-// its derivative df/dv (3 x 3) and df/d[u w] (3 x 4).
-void RotateWithDerivatives(const Eigen::Vector3d& u, double w, const Eigen::Vector3d& v, Eigen::Vector3d* f,
-                           Eigen::Matrix<double, 3, 4>* df_dq) {
+// f(v) = v + 2 w (u x v) + 2 u x (u x v) (Eigen's quaternion * vector) for the quaternion (u, w).
+Eigen::Vector3d Rotate(const Eigen::Vector3d& u, double w, const Eigen::Vector3d& v) {
   const Eigen::Vector3d uv = u.cross(v);
-  *f = v + 2 * w * uv + 2 * u.cross(uv);
+  return v + 2 * w * uv + 2 * u.cross(uv);
+}
+
+// Its derivative df/d[u w] (3 x 4). Apart from Rotate: the solves' inner iterations and the lines
+// solved alone on fixed poses ask for the line's Jacobian only, and this was a third of the
+// residual's work (docs/backend_results.md, "Session 6: the back end's time").
+Eigen::Matrix<double, 3, 4> RotationDerivative(const Eigen::Vector3d& u, double w, const Eigen::Vector3d& v) {
+  const Eigen::Vector3d uv = u.cross(v);
+  Eigen::Matrix<double, 3, 4> df_dq;
   // d(2 w u x v)/du = -2 w [v]x; d(2 u x (u x v))/du = -2 [u x v]x - 2 [u]x [v]x.
-  df_dq->leftCols<3>() = -2 * w * Skew(v) - 2 * Skew(uv) - 2 * Skew(u) * Skew(v);
-  df_dq->col(3) = 2 * uv;
+  df_dq.leftCols<3>() = -2 * w * Skew(v) - 2 * Skew(uv) - 2 * Skew(u) * Skew(v);
+  df_dq.col(3) = 2 * uv;
+  return df_dq;
 }
 
 }  // namespace
@@ -79,13 +86,8 @@ bool LineReprojectionCostFunction::Evaluate(double const* const* parameters, dou
   const double w_conj = rotation[3];
   const Eigen::Map<const Eigen::Vector3d> t(translation);
   const Eigen::Vector3d a = moment_world - t.cross(direction_world);
-  Eigen::Vector3d moment_base, direction_base;
-  Eigen::Matrix<double, 3, 4> dmb_dq, ddb_dq;
-  RotateWithDerivatives(u_conj, w_conj, a, &moment_base, &dmb_dq);
-  RotateWithDerivatives(u_conj, w_conj, direction_world, &direction_base, &ddb_dq);
-  // d/du of f at -u is -df/du'.
-  dmb_dq.leftCols<3>() *= -1;
-  ddb_dq.leftCols<3>() *= -1;
+  const Eigen::Vector3d moment_base = Rotate(u_conj, w_conj, a);
+  const Eigen::Vector3d direction_base = Rotate(u_conj, w_conj, direction_world);
 
   const Eigen::Vector3d m = camera_R_base_ * moment_base + B_ * direction_base;
   const Eigen::Vector3d l = A_ * m;
@@ -115,6 +117,11 @@ bool LineReprojectionCostFunction::Evaluate(double const* const* parameters, dou
   const Eigen::Matrix<double, 2, 3> G_a = G_mb * M;  // d r / d a
 
   if (jacobians[0] != nullptr) {
+    Eigen::Matrix<double, 3, 4> dmb_dq = RotationDerivative(u_conj, w_conj, a);
+    Eigen::Matrix<double, 3, 4> ddb_dq = RotationDerivative(u_conj, w_conj, direction_world);
+    // d/du of f at -u is -df/du'.
+    dmb_dq.leftCols<3>() *= -1;
+    ddb_dq.leftCols<3>() *= -1;
     Eigen::Map<Eigen::Matrix<double, 2, 4, Eigen::RowMajor>> J(jacobians[0]);
     J = G_mb * dmb_dq + G_db * ddb_dq;
   }

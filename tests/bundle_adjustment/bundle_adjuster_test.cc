@@ -693,7 +693,8 @@ FloorRun RunFloorLoop(double floor_z, double camera_height, FloorPriorMode mode,
                       double scale_error = kScaleError,
                       bool rescale_start = BundleAdjustmentOptions().floor_rescale_start,
                       double function_tolerance = 0,
-                      bool line_search = BundleAdjustmentOptions().floor_scale_line_search) {
+                      bool line_search = BundleAdjustmentOptions().floor_scale_line_search,
+                      bool solver_before_session6 = false, bool inner_iterations_poses = false) {
   Calibration calibration = RoomCalibration(kSmallDriftRad);
   calibration.base_T_camera.translation.z() = camera_height;
   const std::vector<Pose3> truth = testing::LoopTrajectory(60);
@@ -707,6 +708,13 @@ FloorRun RunFloorLoop(double floor_z, double camera_height, FloorPriorMode mode,
   options.estimate_odometry_rotation_bias_on_floor = bias_on_floor;
   options.floor_rescale_start = rescale_start;
   options.floor_scale_line_search = line_search;
+  options.inner_iterations_poses = inner_iterations_poses;
+  if (solver_before_session6) {
+    options.inner_iterations_poses = true;
+    options.single_pose_block = false;
+    options.inner_iterations_throughout = false;
+    options.floor_scale_search_solve_centre = true;
+  }
   if (function_tolerance > 0) {
     options.function_tolerance = function_tolerance;
     options.intermediate_function_tolerance = std::max(function_tolerance, options.intermediate_function_tolerance);
@@ -752,6 +760,39 @@ TEST(FloorPriorTest, ThreePercentScaleErrorIsCorrected) {
   EXPECT_LE(with.refined.rotation_rpe_rad, with.odometry.rotation_rpe_rad / 2);
   EXPECT_FALSE(without.summary.floor_prior_used);
   EXPECT_GT(without.refined.position_rmse_m, 3 * with.refined.position_rmse_m);
+}
+
+// The session-6 solver economies (landmarks alone in the inner iterations, kept on throughout, one
+// 7-number block per pose, the line search's centre taken from the last solve) change the work,
+// not the answer: the
+// 60-frame lap with 3 % too long odometry (floor prior, rotation bias and scale line search
+// applied) refined with and without them agrees to 0.2 mm in every base position (observed
+// 4.2e-5 m, against a refined camera RMSE of 2.6 mm) and to 5e-5 in the odometry scale (observed
+// 8.6e-6; its standard error through the priors is 0.004), in one solve fewer and no more
+// iterations. The differences are where the solves stop by their tolerances.
+TEST(FloorPriorTest, SolverEconomiesKeepTheAnswer) {
+  const BundleAdjustmentOptions defaults;
+  const FloorRun before = RunFloorLoop(0, 1.0, FloorPriorMode::kAuto, true, {}, true, kScaleError,
+                                       defaults.floor_rescale_start, 0, defaults.floor_scale_line_search,
+                                       /*solver_before_session6=*/true);
+  const FloorRun after = RunFloorLoop(0, 1.0, FloorPriorMode::kAuto);
+  EXPECT_TRUE(after.summary.floor_prior_used) << after.summary.floor_prior_report;
+  ASSERT_EQ(before.world_T_base_refined.size(), after.world_T_base_refined.size());
+  double largest_m = 0;
+  for (size_t f = 0; f < before.world_T_base_refined.size(); ++f) {
+    largest_m = std::max(
+        largest_m,
+        (before.world_T_base_refined[f].translation - after.world_T_base_refined[f].translation).norm());
+  }
+  std::printf(
+      "[ figures  ] largest base position difference %.2e m; odometry scale %.8f -> %.8f; "
+      "iterations %d -> %d in %d -> %d solves\n",
+      largest_m, before.summary.odometry_scale, after.summary.odometry_scale, before.summary.iterations,
+      after.summary.iterations, before.summary.solves, after.summary.solves);
+  EXPECT_LT(largest_m, 2e-4);
+  EXPECT_NEAR(after.summary.odometry_scale, before.summary.odometry_scale, 5e-5);
+  EXPECT_LE(after.summary.iterations, before.summary.iterations);
+  EXPECT_EQ(after.summary.solves, before.summary.solves - 1);  // the line search's centre
 }
 
 // The odometry's rotation bias is estimated (auto) where the floor prior may apply: a ground robot's
@@ -816,11 +857,17 @@ TEST(FloorPriorTest, TheStartAtTheFloorsScaleDoesNotKeepTheOdometrysError) {
 // of 1 (observed 0.99872 / 1.00007) and within 0.005 of each other (0.0014); without it the two
 // differ by more (0.0103: 1.00263 / 0.99232) and the short one is off by more than 0.003. Fully
 // converged (1e-6) without the search: 0.99904 / 0.99655.
+// The poses are re-solved in the inner iterations here (inner_iterations_poses, the solver before
+// session 6): with every solve stopped at 1e-2, the search's samples end after one or two
+// iterations, and with the landmarks alone re-solved they are not converged enough for the
+// parabola (0.99604 / 1.00011: the long run's search overshoots). At the pipeline's tolerances
+// the samples converge either way (docs/bundle_adjustment.md, "Solver").
 TEST(FloorPriorTest, TheScaleLineSearchFindsTheScaleTheSolvesStopShortOf) {
   constexpr double kLooseTolerance = 1e-2;
   auto run = [](bool line_search, double error, double tolerance) {
     const FloorRun result = RunFloorLoop(0, 0.5, FloorPriorMode::kAuto, true, {}, true, error,
-                                         /*rescale_start=*/false, tolerance, line_search);
+                                         /*rescale_start=*/false, tolerance, line_search,
+                                         /*solver_before_session6=*/false, /*inner_iterations_poses=*/true);
     EXPECT_TRUE(result.summary.floor_prior_used) << result.summary.floor_prior_report;
     EXPECT_EQ(result.summary.floor_prior_report.find("scale line search") != std::string::npos, line_search)
         << result.summary.floor_prior_report;
