@@ -140,6 +140,18 @@ DEFINE_string(
     kDefaults.retriangulated_landmarks == sfm::RetriangulatedLandmarks::kAddNew ? "add" : "replace",
     "With --retriangulate_refined: 'add' (only landmarks of tracks that had none) or 'replace' (every "
     "landmark re-triangulated).");
+DEFINE_bool(extend_tracks, kDefaults.extend_tracks,
+            "After the bundle adjustment, project every point landmark into the frames its track misses and "
+            "join the one compatible junction inside its uncertainty gate (or merge its track), then refine the "
+            "changed landmarks on the refined poses.");
+DEFINE_double(extend_tracks_pixel_sigma, kDefaults.track_extension.pixel_sigma_px,
+              "Track extension: pixel noise of a junction location in the gate, pixels.");
+DEFINE_double(extend_tracks_rotation_step, kDefaults.track_extension.rotation_step_rad,
+              "Track extension: the refined poses' rotation error per frame (random walk) in the gate, radians.");
+DEFINE_double(extend_tracks_max_gate_px, kDefaults.track_extension.max_gate_px,
+              "Track extension: the largest gate radius, pixels (a wider gate is not searched).");
+DEFINE_double(extend_tracks_max_angle_deg, kDefaults.track_extension.max_angle_deg,
+              "Track extension: the largest angle between a junction segment and its predicted direction, degrees.");
 DEFINE_bool(wireframe_ba_pose_error, kDefaults.triangulation.wireframe.pose_error_from_bundle_adjustment,
             "Wireframe selection: the pose error of the determination test from bundle adjustment's own pose "
             "covariance instead of the fixed random walk.");
@@ -191,6 +203,11 @@ bool OptionsFromFlags(sfm::PipelineOptions* options, std::string* error) {
   options->matching.match_partial = FLAGS_match_partial;
   options->matching.partial_rule_not_line_half = FLAGS_match_partial_rule_a;
   options->bundle_adjustment = FLAGS_bundle_adjustment;
+  options->extend_tracks = FLAGS_extend_tracks;
+  options->track_extension.pixel_sigma_px = FLAGS_extend_tracks_pixel_sigma;
+  options->track_extension.rotation_step_rad = FLAGS_extend_tracks_rotation_step;
+  options->track_extension.max_gate_px = FLAGS_extend_tracks_max_gate_px;
+  options->track_extension.max_angle_deg = FLAGS_extend_tracks_max_angle_deg;
   options->bundle_adjustment_options.outlier_threshold_px = FLAGS_ba_outlier_threshold;
   options->bundle_adjustment_options.robust_loss_scale_px = FLAGS_ba_loss_scale;
   options->bundle_adjustment_options.observability_rounds = FLAGS_ba_observability_rounds;

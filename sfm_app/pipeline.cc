@@ -236,6 +236,72 @@ Status RetriangulateOnRefinedPoses(const Sequence& sequence, const PipelineOptio
   return Status::Ok();
 }
 
+// Tracks extended and merged by projecting the adjusted points into the frames they miss
+// (track_extension.h); the landmarks that gained observations are then refined alone on the
+// refined poses held fixed, by the adjustment's outlier rules (RefineLandmarksOnFixedPoses), and
+// replace their old selves. The trajectory is unchanged.
+Status ExtendTracksOnRefinedPoses(const Sequence& sequence, const PipelineOptions& options, PipelineResult* result) {
+  const Clock::time_point start = Clock::now();
+  const Calibration& calibration = sequence.calibration;
+  TrackExtensionReport report;
+  ExtendTracks(calibration.camera.K(), calibration.camera.width, calibration.camera.height,
+               result->world_T_camera_refined, result->junctions, options.track_extension, &result->tracks,
+               &result->landmarks, &report);
+  // The changed landmarks as a map of their own (every changed line's point is changed too, or
+  // joins it), refined, then put back after the unchanged ones.
+  Landmarks& map = result->landmarks;
+  std::vector<bool> point_in(map.points.size(), false), line_in(map.lines.size(), false);
+  for (int p : report.changed_points) point_in[p] = true;
+  for (int l : report.changed_lines) {
+    line_in[l] = true;
+    if (map.lines[l].point_landmark >= 0) point_in[map.lines[l].point_landmark] = true;
+  }
+  Landmarks changed, kept;
+  std::vector<int> index_in(map.points.size(), -1);
+  for (size_t p = 0; p < map.points.size(); ++p) {
+    Landmarks& to = point_in[p] ? changed : kept;
+    index_in[p] = static_cast<int>(to.points.size());
+    to.points.push_back(std::move(map.points[p]));
+  }
+  for (size_t l = 0; l < map.lines.size(); ++l) {
+    LineLandmark line = std::move(map.lines[l]);
+    if (line.point_landmark >= 0) {
+      CHECK(line_in[l] || !point_in[line.point_landmark]) << "a changed point's line left out";
+      line.point_landmark = index_in[line.point_landmark];
+    }
+    (line_in[l] ? changed : kept).lines.push_back(std::move(line));
+  }
+  BundleAdjustmentSummary structure;
+  SFM_RETURN_IF_ERROR(RefineLandmarksOnFixedPoses(
+      calibration, BasesFromCameras(result->world_T_camera_refined, calibration.base_T_camera),
+      options.bundle_adjustment_options, &changed, &structure));
+  const int offset = static_cast<int>(kept.points.size());
+  for (PointLandmark& point : changed.points) kept.points.push_back(std::move(point));
+  for (LineLandmark& line : changed.lines) {
+    if (line.point_landmark >= 0) line.point_landmark += offset;
+    kept.lines.push_back(std::move(line));
+  }
+  map = std::move(kept);
+  TrackExtensionSummary& summary = result->track_extension;
+  summary.ran = true;
+  summary.observations_added = report.observations_added;
+  summary.tracks_merged = report.tracks_merged;
+  summary.ambiguous = report.ambiguous;
+  summary.observations_removed = structure.observations_removed;
+  summary.points_changed = static_cast<int>(report.changed_points.size());
+  summary.lines_changed = static_cast<int>(report.changed_lines.size());
+  summary.seconds = SecondsSince(start);
+  LOG(INFO) << "track extension: " << report.observations_added << " observations added, "
+            << report.tracks_merged << " tracks merged (" << report.merges_refused << " refused), "
+            << report.ambiguous << " ambiguous projections, " << report.gate_too_wide << " gates too wide, "
+            << report.no_junction << " empty, " << report.incompatible << " with no compatible junction; refused merges: "
+            << report.merge_overlap << " sharing a frame, " << report.merge_disagree << " disagreeing points; " << summary.points_changed << " points and "
+            << summary.lines_changed << " lines refined on the fixed poses (" << structure.observations_removed
+            << " outlier observations removed); now " << result->tracks.size() << " tracks, "
+            << map.points.size() << " points, " << map.lines.size() << " lines; " << summary.seconds << " s";
+  return Status::Ok();
+}
+
 // Bundle adjustment's own covariance of the refined poses, at the pixel noise the wireframe's tests
 // use (docs/tracks_and_triangulation.md, "Pose error from bundle adjustment"); null when it cannot
 // be computed (the wireframe then keeps the random-walk model). With ground truth, the log compares
@@ -309,6 +375,7 @@ Status PipelineOptions::Check() const {
   SFM_RETURN_IF_ERROR(junctions.Check());
   SFM_RETURN_IF_ERROR(matching.Check());
   SFM_RETURN_IF_ERROR(triangulation.Check());
+  if (extend_tracks) SFM_RETURN_IF_ERROR(track_extension.Check());
   return bundle_adjustment_options.Check();
 }
 
@@ -342,6 +409,7 @@ Status RunPipeline(const PipelineOptions& options, PipelineResult* result_out) {
   Reconstruct(sequence, options, &result);
   if (options.bundle_adjustment) {
     SFM_RETURN_IF_ERROR(Refine(sequence, options, &result));
+    if (options.extend_tracks) SFM_RETURN_IF_ERROR(ExtendTracksOnRefinedPoses(sequence, options, &result));
     if (options.retriangulate_refined != RetriangulateRefined::kOff) {
       SFM_RETURN_IF_ERROR(RetriangulateOnRefinedPoses(sequence, options, &result));
     }

@@ -6,6 +6,7 @@
 
 #include "backend/bundle_adjustment/bundle_adjustment_options.h"
 #include "backend/triangulation/landmark_merge.h"
+#include "backend/triangulation/track_extension.h"
 #include "backend/triangulation/triangulation_options.h"
 #include "frontend/junctions/junction_options.h"
 #include "frontend/matching/matching_options.h"
@@ -34,6 +35,11 @@ struct PipelineOptions {
   RetriangulateRefined retriangulate_refined = RetriangulateRefined::kOff;
   // Which re-triangulated landmarks join the map (landmark_merge.h).
   RetriangulatedLandmarks retriangulated_landmarks = RetriangulatedLandmarks::kAddNew;
+  // After the bundle adjustment, extend and merge the tracks by projecting each point landmark into
+  // the frames its track misses (track_extension.h), then refine the landmarks that changed on the
+  // refined poses held fixed (docs/tracks_and_triangulation.md, "Track extension on the refined poses").
+  bool extend_tracks = false;
+  TrackExtensionOptions track_extension;
 
   // OK, or a message naming the first bad setting.
   Status Check() const;
