@@ -144,6 +144,8 @@ DEFINE_bool(extend_tracks, kDefaults.extend_tracks,
             "After the bundle adjustment, project every point landmark into the frames its track misses and "
             "join the one compatible junction inside its uncertainty gate (or merge its track), then refine the "
             "changed landmarks on the refined poses.");
+DEFINE_bool(extend_tracks_resolve, kDefaults.extend_tracks_resolve,
+            "With --extend_tracks: then a second bundle adjustment of everything from the refined poses.");
 DEFINE_double(extend_tracks_pixel_sigma, kDefaults.track_extension.pixel_sigma_px,
               "Track extension: pixel noise of a junction location in the gate, pixels.");
 DEFINE_double(extend_tracks_rotation_step, kDefaults.track_extension.rotation_step_rad,
@@ -204,6 +206,7 @@ bool OptionsFromFlags(sfm::PipelineOptions* options, std::string* error) {
   options->matching.partial_rule_not_line_half = FLAGS_match_partial_rule_a;
   options->bundle_adjustment = FLAGS_bundle_adjustment;
   options->extend_tracks = FLAGS_extend_tracks;
+  options->extend_tracks_resolve = FLAGS_extend_tracks_resolve;
   options->track_extension.pixel_sigma_px = FLAGS_extend_tracks_pixel_sigma;
   options->track_extension.rotation_step_rad = FLAGS_extend_tracks_rotation_step;
   options->track_extension.max_gate_px = FLAGS_extend_tracks_max_gate_px;

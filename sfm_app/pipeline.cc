@@ -176,6 +176,7 @@ Status Refine(const Sequence& sequence, const PipelineOptions& options, Pipeline
             << summary.landmarks_unobservable_after_last_solve << " landmarks after the last solve, "
             << summary.observability_solves << " solves more); "
             << "RMS " << summary.point_rms_px << " px (points), " << summary.line_rms_px << " px (lines); "
+            << summary.solves << " solves, " << summary.iterations << " iterations, " << summary.time_s << " s; "
             << summary.solver_report;
   LOG(INFO) << summary.floor_prior_report
             << (summary.floor_prior_used ? "; odometry scale " + std::to_string(summary.odometry_scale) : "");
@@ -299,6 +300,29 @@ Status ExtendTracksOnRefinedPoses(const Sequence& sequence, const PipelineOption
             << summary.lines_changed << " lines refined on the fixed poses (" << structure.observations_removed
             << " outlier observations removed); now " << result->tracks.size() << " tracks, "
             << map.points.size() << " points, " << map.lines.size() << " lines; " << summary.seconds << " s";
+  if (!options.extend_tracks_resolve) return Status::Ok();
+
+  std::vector<Pose3> world_T_base_second;
+  BundleAdjustmentSummary second;
+  // The first adjustment's line search already placed the odometry's scale, and the second starts
+  // from it: its own search (three solves more) would only repeat it.
+  BundleAdjustmentOptions second_options = options.bundle_adjustment_options;
+  second_options.floor_scale_line_search = false;
+  SFM_RETURN_IF_ERROR(BundleAdjust(calibration, OdometryBasePoses(sequence),
+                                   BasesFromCameras(result->world_T_camera_refined, calibration.base_T_camera),
+                                   result->bundle_adjustment.odometry_scale, second_options,
+                                   &result->landmarks, &world_T_base_second, &second));
+  result->bundle_adjustment = second;
+  summary.second_adjustment = true;
+  result->world_T_camera_refined = CamerasFromBases(world_T_base_second, calibration.base_T_camera);
+  summary.seconds = SecondsSince(start);
+  LOG(INFO) << "second bundle adjustment on the extended tracks: " << second.points << " points, " << second.lines
+            << " lines; " << second.observations_removed << " outlier observations removed; RMS "
+            << second.point_rms_px << " px (points), " << second.line_rms_px << " px (lines); "
+            << second.floor_prior_report
+            << (second.floor_prior_used ? "; odometry scale " + std::to_string(second.odometry_scale) : "")
+            << "; " << second.solves << " solves, " << second.iterations << " iterations, " << second.time_s
+            << " s; extension and solve " << summary.seconds << " s";
   return Status::Ok();
 }
 

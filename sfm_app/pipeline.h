@@ -39,6 +39,9 @@ struct PipelineOptions {
   // the frames its track misses (track_extension.h), then refine the landmarks that changed on the
   // refined poses held fixed (docs/tracks_and_triangulation.md, "Track extension on the refined poses").
   bool extend_tracks = false;
+  // With extend_tracks: then a second bundle adjustment of everything, starting from the refined
+  // poses (the odometry still the prior), on the extended tracks.
+  bool extend_tracks_resolve = false;
   TrackExtensionOptions track_extension;
 
   // OK, or a message naming the first bad setting.

@@ -144,6 +144,7 @@ std::string TrackExtensionJson(const PipelineResult& result) {
          ", \"observations_removed\": " + std::to_string(summary.observations_removed) +
          ", \"points_changed\": " + std::to_string(summary.points_changed) +
          ", \"lines_changed\": " + std::to_string(summary.lines_changed) +
+         ", \"second_adjustment\": " + (summary.second_adjustment ? "true" : "false") +
          ", \"time_s\": " + JsonNumber(summary.seconds) + "}";
 }
 

@@ -34,6 +34,7 @@ struct TrackExtensionSummary {
   int ambiguous = 0;             // projections with two or more compatible junctions in the gate
   int observations_removed = 0;  // outlier observations of the changed landmarks, on the refined poses
   int points_changed = 0, lines_changed = 0;
+  bool second_adjustment = false;  // the poses are a second adjustment's (extend_tracks_resolve)
   double seconds = 0;            // the step's own time (extension and refinement)
 };
 
