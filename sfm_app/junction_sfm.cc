@@ -144,8 +144,10 @@ DEFINE_bool(extend_tracks, kDefaults.extend_tracks,
             "After the bundle adjustment, project every point landmark into the frames its track misses and "
             "join the one compatible junction inside its uncertainty gate (or merge its track), then refine the "
             "changed landmarks on the refined poses.");
-DEFINE_bool(extend_tracks_resolve, kDefaults.extend_tracks_resolve,
-            "With --extend_tracks: then a second bundle adjustment of everything from the refined poses.");
+DEFINE_string(extend_tracks_stage, "inside",
+              "With --extend_tracks, where it runs: 'inside' (the bundle adjustment, on its coarse stage's poses, "
+              "before its fine solves), 'structure' (after it; the changed landmarks refined on the refined poses "
+              "held fixed) or 'resolve' (after it, then a second bundle adjustment of everything).");
 DEFINE_double(extend_tracks_pixel_sigma, kDefaults.track_extension.pixel_sigma_px,
               "Track extension: pixel noise of a junction location in the gate, pixels.");
 DEFINE_double(extend_tracks_rotation_step, kDefaults.track_extension.rotation_step_rad,
@@ -206,7 +208,16 @@ bool OptionsFromFlags(sfm::PipelineOptions* options, std::string* error) {
   options->matching.partial_rule_not_line_half = FLAGS_match_partial_rule_a;
   options->bundle_adjustment = FLAGS_bundle_adjustment;
   options->extend_tracks = FLAGS_extend_tracks;
-  options->extend_tracks_resolve = FLAGS_extend_tracks_resolve;
+  if (FLAGS_extend_tracks_stage == "inside") {
+    options->extend_tracks_stage = sfm::TrackExtensionStage::kInAdjustment;
+  } else if (FLAGS_extend_tracks_stage == "structure") {
+    options->extend_tracks_stage = sfm::TrackExtensionStage::kAfterStructure;
+  } else if (FLAGS_extend_tracks_stage == "resolve") {
+    options->extend_tracks_stage = sfm::TrackExtensionStage::kAfterResolve;
+  } else {
+    *error = "--extend_tracks_stage must be 'inside', 'structure' or 'resolve', not '" + FLAGS_extend_tracks_stage + "'";
+    return false;
+  }
   options->track_extension.pixel_sigma_px = FLAGS_extend_tracks_pixel_sigma;
   options->track_extension.rotation_step_rad = FLAGS_extend_tracks_rotation_step;
   options->track_extension.max_gate_px = FLAGS_extend_tracks_max_gate_px;

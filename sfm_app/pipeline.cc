@@ -160,13 +160,46 @@ void LogFloorLandmarks(const std::string& stage, const PipelineResult& result) {
   }
 }
 
+// The track extension's counts into the result and the log.
+void RecordTrackExtension(const TrackExtensionReport& report, Clock::time_point start, PipelineResult* result) {
+  TrackExtensionSummary& summary = result->track_extension;
+  summary.ran = true;
+  summary.observations_added = report.observations_added;
+  summary.tracks_merged = report.tracks_merged;
+  summary.ambiguous = report.ambiguous;
+  summary.points_changed = static_cast<int>(report.changed_points.size());
+  summary.lines_changed = static_cast<int>(report.changed_lines.size());
+  summary.seconds = SecondsSince(start);
+  LOG(INFO) << "track extension: " << report.observations_added << " observations added, "
+            << report.tracks_merged << " tracks merged (" << report.merges_refused << " refused), "
+            << report.ambiguous << " ambiguous projections, " << report.gate_too_wide << " gates too wide, "
+            << report.no_junction << " empty, " << report.incompatible
+            << " with no compatible junction; refused merges: " << report.merge_overlap << " sharing a frame, "
+            << report.merge_disagree << " disagreeing points; " << summary.points_changed << " points and "
+            << summary.lines_changed << " lines changed; now " << result->tracks.size() << " tracks; "
+            << summary.seconds << " s";
+}
+
 // Bundle adjustment from the odometry: refined poses and landmarks.
 Status Refine(const Sequence& sequence, const PipelineOptions& options, PipelineResult* result) {
   std::vector<Pose3> world_T_base_refined;
   BundleAdjustmentSummary summary;
+  CoarseMapHook extend = nullptr;
+  if (options.extend_tracks && options.extend_tracks_stage == TrackExtensionStage::kInAdjustment) {
+    // The track extension on the coarse stage's poses; the fine solves then refine what it changed.
+    extend = [&](const std::vector<Pose3>& world_T_base, Landmarks* landmarks) {
+      const Clock::time_point start = Clock::now();
+      const Calibration& calibration = sequence.calibration;
+      TrackExtensionReport report;
+      ExtendTracks(calibration.camera.K(), calibration.camera.width, calibration.camera.height,
+                   CamerasFromBases(world_T_base, calibration.base_T_camera), result->junctions,
+                   options.track_extension, &result->tracks, landmarks, &report);
+      RecordTrackExtension(report, start, result);
+    };
+  }
   SFM_RETURN_IF_ERROR(BundleAdjust(sequence.calibration, OdometryBasePoses(sequence),
                                    options.bundle_adjustment_options, &result->landmarks, &world_T_base_refined,
-                                   &summary));
+                                   &summary, extend));
   result->unobservable_lines += summary.lines_unobservable;
   result->bundle_adjustment = summary;
   result->world_T_camera_refined = CamerasFromBases(world_T_base_refined, sequence.calibration.base_T_camera);
@@ -283,24 +316,14 @@ Status ExtendTracksOnRefinedPoses(const Sequence& sequence, const PipelineOption
     kept.lines.push_back(std::move(line));
   }
   map = std::move(kept);
+  RecordTrackExtension(report, start, result);
   TrackExtensionSummary& summary = result->track_extension;
-  summary.ran = true;
-  summary.observations_added = report.observations_added;
-  summary.tracks_merged = report.tracks_merged;
-  summary.ambiguous = report.ambiguous;
   summary.observations_removed = structure.observations_removed;
-  summary.points_changed = static_cast<int>(report.changed_points.size());
-  summary.lines_changed = static_cast<int>(report.changed_lines.size());
   summary.seconds = SecondsSince(start);
-  LOG(INFO) << "track extension: " << report.observations_added << " observations added, "
-            << report.tracks_merged << " tracks merged (" << report.merges_refused << " refused), "
-            << report.ambiguous << " ambiguous projections, " << report.gate_too_wide << " gates too wide, "
-            << report.no_junction << " empty, " << report.incompatible << " with no compatible junction; refused merges: "
-            << report.merge_overlap << " sharing a frame, " << report.merge_disagree << " disagreeing points; " << summary.points_changed << " points and "
-            << summary.lines_changed << " lines refined on the fixed poses (" << structure.observations_removed
-            << " outlier observations removed); now " << result->tracks.size() << " tracks, "
-            << map.points.size() << " points, " << map.lines.size() << " lines; " << summary.seconds << " s";
-  if (!options.extend_tracks_resolve) return Status::Ok();
+  LOG(INFO) << "track extension: the changed landmarks refined on the fixed poses, "
+            << structure.observations_removed << " outlier observations removed; now " << map.points.size()
+            << " points, " << map.lines.size() << " lines; " << summary.seconds << " s";
+  if (options.extend_tracks_stage != TrackExtensionStage::kAfterResolve) return Status::Ok();
 
   std::vector<Pose3> world_T_base_second;
   BundleAdjustmentSummary second;
@@ -433,7 +456,9 @@ Status RunPipeline(const PipelineOptions& options, PipelineResult* result_out) {
   Reconstruct(sequence, options, &result);
   if (options.bundle_adjustment) {
     SFM_RETURN_IF_ERROR(Refine(sequence, options, &result));
-    if (options.extend_tracks) SFM_RETURN_IF_ERROR(ExtendTracksOnRefinedPoses(sequence, options, &result));
+    if (options.extend_tracks && options.extend_tracks_stage != TrackExtensionStage::kInAdjustment) {
+      SFM_RETURN_IF_ERROR(ExtendTracksOnRefinedPoses(sequence, options, &result));
+    }
     if (options.retriangulate_refined != RetriangulateRefined::kOff) {
       SFM_RETURN_IF_ERROR(RetriangulateOnRefinedPoses(sequence, options, &result));
     }

@@ -22,6 +22,13 @@ namespace sfm {
 // adjustment of everything, starting from the refined poses, the odometry still its prior).
 enum class RetriangulateRefined { kOff, kStructure, kFull };
 
+// Where the track extension runs (docs/tracks_and_triangulation.md, "Track extension"):
+// inside the bundle adjustment, on the coarse stage's poses, before its fine solves (one
+// adjustment); after it, the changed landmarks refined on the refined poses held fixed (the
+// trajectory unchanged); or after it with a second bundle adjustment of everything starting from
+// the refined poses (the odometry still the prior).
+enum class TrackExtensionStage { kInAdjustment, kAfterStructure, kAfterResolve };
+
 struct PipelineOptions {
   std::string sequence_dir;   // a SPEC section 1 sequence directory
   std::string output_dir;     // created if needed; existing files of the same names are replaced
@@ -39,9 +46,7 @@ struct PipelineOptions {
   // the frames its track misses (track_extension.h), then refine the landmarks that changed on the
   // refined poses held fixed (docs/tracks_and_triangulation.md, "Track extension on the refined poses").
   bool extend_tracks = false;
-  // With extend_tracks: then a second bundle adjustment of everything, starting from the refined
-  // poses (the odometry still the prior), on the extended tracks.
-  bool extend_tracks_resolve = false;
+  TrackExtensionStage extend_tracks_stage = TrackExtensionStage::kInAdjustment;
   TrackExtensionOptions track_extension;
 
   // OK, or a message naming the first bad setting.

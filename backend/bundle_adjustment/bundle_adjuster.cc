@@ -116,7 +116,7 @@ class BundleAdjuster {
   }
   bool EstimatesRotationBias() const { return with_bias_; }
 
-  Status Run() {
+  Status Run(const CoarseMapHook& after_coarse = nullptr) {
     summary_->frames = static_cast<int>(poses_.size());
     DropUnusableObservations();
     RemoveLandmarksWithFewViews();
@@ -149,6 +149,14 @@ class BundleAdjuster {
     RemoveLandmarksWithFewViews();
     DropUnobservableLandmarks(/*refined=*/true);
     if (CountObservations() == 0) return RevertToOdometry("no landmark left observable on the refined poses");
+    // The caller's change of the coarse map (track extension), judged by the same removals.
+    if (after_coarse) {
+      after_coarse(RefinedPoses(), landmarks_);
+      DropUnusableObservations();
+      RemoveLandmarksWithFewViews();
+      DropUnobservableLandmarks(/*refined=*/true);
+      if (CountObservations() == 0) return RevertToOdometry("no landmark left after the coarse map's change");
+    }
     // 5. The floor prior, decided on the coarse map (its floor is where the odometry's scale put it).
     SelectFloor(/*first=*/true);
     if (options_.floor_rescale_start) RescaleToFloor();
@@ -924,15 +932,17 @@ Status RefineLandmarksOnFixedPoses(const Calibration& calibration, const std::ve
 
 Status BundleAdjust(const Calibration& calibration, const std::vector<Pose3>& world_T_base_odometry,
                     const BundleAdjustmentOptions& options, Landmarks* landmarks,
-                    std::vector<Pose3>* world_T_base_refined, BundleAdjustmentSummary* summary) {
+                    std::vector<Pose3>* world_T_base_refined, BundleAdjustmentSummary* summary,
+                    const CoarseMapHook& after_coarse) {
   return BundleAdjust(calibration, world_T_base_odometry, world_T_base_odometry, /*odometry_scale_start=*/1,
-                      options, landmarks, world_T_base_refined, summary);
+                      options, landmarks, world_T_base_refined, summary, after_coarse);
 }
 
 Status BundleAdjust(const Calibration& calibration, const std::vector<Pose3>& world_T_base_odometry,
                     const std::vector<Pose3>& world_T_base_start, double odometry_scale_start,
                     const BundleAdjustmentOptions& options, Landmarks* landmarks,
-                    std::vector<Pose3>* world_T_base_refined, BundleAdjustmentSummary* summary) {
+                    std::vector<Pose3>* world_T_base_refined, BundleAdjustmentSummary* summary,
+                    const CoarseMapHook& after_coarse) {
   CHECK(landmarks != nullptr);
   CHECK(world_T_base_refined != nullptr);
   CHECK(summary != nullptr);
@@ -968,7 +978,7 @@ Status BundleAdjust(const Calibration& calibration, const std::vector<Pose3>& wo
   }
   BundleAdjuster adjuster(calibration, world_T_base_odometry, world_T_base_start, odometry_scale_start,
                           options, landmarks, summary);
-  const Status status = adjuster.Run();
+  const Status status = adjuster.Run(after_coarse);
   summary->odometry_rotation_bias_estimated = adjuster.EstimatesRotationBias();
   if (summary->odometry_rotation_bias_estimated) {
     const std::array<double, 3>& b = summary->odometry_rotation_bias_rad;
