@@ -145,8 +145,9 @@ DEFINE_bool(extend_tracks, kDefaults.extend_tracks,
             "join the one compatible junction inside its uncertainty gate (or merge its track), then refine the "
             "changed landmarks on the refined poses.");
 DEFINE_string(extend_tracks_stage, "inside",
-              "With --extend_tracks, where it runs: 'inside' (the bundle adjustment, on its coarse stage's poses, "
-              "before its fine solves), 'structure' (after it; the changed landmarks refined on the refined poses "
+              "With --extend_tracks, where it runs: 'inside' (the bundle adjustment, after its fine solve, then "
+              "two fine solves and an outlier round more), 'coarse' (inside it, on its coarse stage's poses, before its "
+              "fine solves), 'structure' (after it; the changed landmarks refined on the refined poses "
               "held fixed) or 'resolve' (after it, then a second bundle adjustment of everything).");
 DEFINE_double(extend_tracks_pixel_sigma, kDefaults.track_extension.pixel_sigma_px,
               "Track extension: pixel noise of a junction location in the gate, pixels.");
@@ -210,12 +211,14 @@ bool OptionsFromFlags(sfm::PipelineOptions* options, std::string* error) {
   options->extend_tracks = FLAGS_extend_tracks;
   if (FLAGS_extend_tracks_stage == "inside") {
     options->extend_tracks_stage = sfm::TrackExtensionStage::kInAdjustment;
+  } else if (FLAGS_extend_tracks_stage == "coarse") {
+    options->extend_tracks_stage = sfm::TrackExtensionStage::kAfterCoarse;
   } else if (FLAGS_extend_tracks_stage == "structure") {
     options->extend_tracks_stage = sfm::TrackExtensionStage::kAfterStructure;
   } else if (FLAGS_extend_tracks_stage == "resolve") {
     options->extend_tracks_stage = sfm::TrackExtensionStage::kAfterResolve;
   } else {
-    *error = "--extend_tracks_stage must be 'inside', 'structure' or 'resolve', not '" + FLAGS_extend_tracks_stage + "'";
+    *error = "--extend_tracks_stage must be 'inside', 'coarse', 'structure' or 'resolve', not '" + FLAGS_extend_tracks_stage + "'";
     return false;
   }
   options->track_extension.pixel_sigma_px = FLAGS_extend_tracks_pixel_sigma;

@@ -184,10 +184,13 @@ void RecordTrackExtension(const TrackExtensionReport& report, Clock::time_point 
 Status Refine(const Sequence& sequence, const PipelineOptions& options, PipelineResult* result) {
   std::vector<Pose3> world_T_base_refined;
   BundleAdjustmentSummary summary;
-  CoarseMapHook extend = nullptr;
-  if (options.extend_tracks && options.extend_tracks_stage == TrackExtensionStage::kInAdjustment) {
-    // The track extension on the coarse stage's poses; the fine solves then refine what it changed.
-    extend = [&](const std::vector<Pose3>& world_T_base, Landmarks* landmarks) {
+  MapHook extend;
+  if (options.extend_tracks && (options.extend_tracks_stage == TrackExtensionStage::kInAdjustment ||
+                                options.extend_tracks_stage == TrackExtensionStage::kAfterCoarse)) {
+    // The track extension inside the adjustment; its later solves refine what it changed.
+    extend.when = options.extend_tracks_stage == TrackExtensionStage::kAfterCoarse ? MapHook::kAfterCoarse
+                                                                                  : MapHook::kAfterFine;
+    extend.change = [&](const std::vector<Pose3>& world_T_base, Landmarks* landmarks) {
       const Clock::time_point start = Clock::now();
       const Calibration& calibration = sequence.calibration;
       TrackExtensionReport report;
@@ -456,7 +459,8 @@ Status RunPipeline(const PipelineOptions& options, PipelineResult* result_out) {
   Reconstruct(sequence, options, &result);
   if (options.bundle_adjustment) {
     SFM_RETURN_IF_ERROR(Refine(sequence, options, &result));
-    if (options.extend_tracks && options.extend_tracks_stage != TrackExtensionStage::kInAdjustment) {
+    if (options.extend_tracks && (options.extend_tracks_stage == TrackExtensionStage::kAfterStructure ||
+                                  options.extend_tracks_stage == TrackExtensionStage::kAfterResolve)) {
       SFM_RETURN_IF_ERROR(ExtendTracksOnRefinedPoses(sequence, options, &result));
     }
     if (options.retriangulate_refined != RetriangulateRefined::kOff) {

@@ -23,11 +23,12 @@ namespace sfm {
 enum class RetriangulateRefined { kOff, kStructure, kFull };
 
 // Where the track extension runs (docs/tracks_and_triangulation.md, "Track extension"):
-// inside the bundle adjustment, on the coarse stage's poses, before its fine solves (one
-// adjustment); after it, the changed landmarks refined on the refined poses held fixed (the
+// inside the bundle adjustment, after its fine solve and outlier rounds, then two fine solves more
+// and an outlier round (MapHook::kAfterFine); inside it on the coarse stage's poses, before its fine
+// solves (kAfterCoarse); after it, the changed landmarks refined on the refined poses held fixed (the
 // trajectory unchanged); or after it with a second bundle adjustment of everything starting from
 // the refined poses (the odometry still the prior).
-enum class TrackExtensionStage { kInAdjustment, kAfterStructure, kAfterResolve };
+enum class TrackExtensionStage { kInAdjustment, kAfterCoarse, kAfterStructure, kAfterResolve };
 
 struct PipelineOptions {
   std::string sequence_dir;   // a SPEC section 1 sequence directory

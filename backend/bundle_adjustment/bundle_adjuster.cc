@@ -116,7 +116,7 @@ class BundleAdjuster {
   }
   bool EstimatesRotationBias() const { return with_bias_; }
 
-  Status Run(const CoarseMapHook& after_coarse = nullptr) {
+  Status Run(const MapHook& map_hook = MapHook()) {
     summary_->frames = static_cast<int>(poses_.size());
     DropUnusableObservations();
     RemoveLandmarksWithFewViews();
@@ -150,8 +150,8 @@ class BundleAdjuster {
     DropUnobservableLandmarks(/*refined=*/true);
     if (CountObservations() == 0) return RevertToOdometry("no landmark left observable on the refined poses");
     // The caller's change of the coarse map (track extension), judged by the same removals.
-    if (after_coarse) {
-      after_coarse(RefinedPoses(), landmarks_);
+    if (map_hook.change && map_hook.when == MapHook::kAfterCoarse) {
+      map_hook.change(RefinedPoses(), landmarks_);
       DropUnusableObservations();
       RemoveLandmarksWithFewViews();
       DropUnobservableLandmarks(/*refined=*/true);
@@ -177,6 +177,24 @@ class BundleAdjuster {
                                 loose ? options_.intermediate_function_tolerance : options_.function_tolerance));
     }
     if (loose) {
+      SFM_RETURN_IF_ERROR(Solve(options_.robust_loss_scale_px, /*with_lines=*/true, options_.function_tolerance));
+    }
+    // The caller's change of the refined map (track extension), solved with the poses, one outlier
+    // round (the new observations are judged as the old ones were), solved again.
+    if (map_hook.change && map_hook.when == MapHook::kAfterFine) {
+      map_hook.change(RefinedPoses(), landmarks_);
+      DropUnusableObservations();
+      RemoveLandmarksWithFewViews();
+      DropUnobservableLandmarks(/*refined=*/true);
+      if (CountObservations() == 0) return RevertToOdometry("no landmark left after the map's change");
+      SelectFloor(/*first=*/false);
+      SFM_RETURN_IF_ERROR(Solve(options_.robust_loss_scale_px, /*with_lines=*/true,
+                                options_.intermediate_function_tolerance));
+      RemoveOutliers(options_.outlier_threshold_px);
+      RemoveLandmarksWithFewViews();
+      DropUnobservableLandmarks(/*refined=*/true);
+      if (CountObservations() == 0) return RevertToOdometry("every landmark was removed after solving");
+      SelectFloor(/*first=*/false);
       SFM_RETURN_IF_ERROR(Solve(options_.robust_loss_scale_px, /*with_lines=*/true, options_.function_tolerance));
     }
     // 6. The last solve's own landmarks under the rules every earlier solve's passed: a landmark it
@@ -933,16 +951,16 @@ Status RefineLandmarksOnFixedPoses(const Calibration& calibration, const std::ve
 Status BundleAdjust(const Calibration& calibration, const std::vector<Pose3>& world_T_base_odometry,
                     const BundleAdjustmentOptions& options, Landmarks* landmarks,
                     std::vector<Pose3>* world_T_base_refined, BundleAdjustmentSummary* summary,
-                    const CoarseMapHook& after_coarse) {
+                    const MapHook& map_hook) {
   return BundleAdjust(calibration, world_T_base_odometry, world_T_base_odometry, /*odometry_scale_start=*/1,
-                      options, landmarks, world_T_base_refined, summary, after_coarse);
+                      options, landmarks, world_T_base_refined, summary, map_hook);
 }
 
 Status BundleAdjust(const Calibration& calibration, const std::vector<Pose3>& world_T_base_odometry,
                     const std::vector<Pose3>& world_T_base_start, double odometry_scale_start,
                     const BundleAdjustmentOptions& options, Landmarks* landmarks,
                     std::vector<Pose3>* world_T_base_refined, BundleAdjustmentSummary* summary,
-                    const CoarseMapHook& after_coarse) {
+                    const MapHook& map_hook) {
   CHECK(landmarks != nullptr);
   CHECK(world_T_base_refined != nullptr);
   CHECK(summary != nullptr);
@@ -978,7 +996,7 @@ Status BundleAdjust(const Calibration& calibration, const std::vector<Pose3>& wo
   }
   BundleAdjuster adjuster(calibration, world_T_base_odometry, world_T_base_start, odometry_scale_start,
                           options, landmarks, summary);
-  const Status status = adjuster.Run(after_coarse);
+  const Status status = adjuster.Run(map_hook);
   summary->odometry_rotation_bias_estimated = adjuster.EstimatesRotationBias();
   if (summary->odometry_rotation_bias_estimated) {
     const std::array<double, 3>& b = summary->odometry_rotation_bias_rad;

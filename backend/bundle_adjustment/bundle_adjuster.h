@@ -43,16 +43,24 @@ namespace sfm {
 // bad options, inconsistent input (an observation of a frame that does not exist, a non-positive noise sigma,
 // K not positive), or Ceres failing; the outputs are then unspecified.
 //
-// `after_coarse` (optional): called once after the coarse stage, before the floor prior is decided
-// and the fine solves, with the poses world_T_base of that moment and the landmarks, which it may
-// change (observations added, landmarks merged or dropped; point_landmark indices kept valid): the
-// pipeline's track extension (docs/tracks_and_triangulation.md, "Track extension"). The landmarks
-// then pass the same removals as after the coarse stage.
-using CoarseMapHook = std::function<void(const std::vector<Pose3>& world_T_base, Landmarks* landmarks)>;
+// `map_hook` (optional): called once with the poses world_T_base of that moment and the landmarks,
+// which it may change (observations added, landmarks merged or dropped; point_landmark indices
+// kept valid): the pipeline's track extension (docs/tracks_and_triangulation.md, "Track
+// extension"). kAfterCoarse: after the coarse stage, before the floor prior is decided and the fine
+// solves; the landmarks then pass the removals of the coarse stage. kAfterFine: after the fine
+// solve and its outlier rounds, before the observability rounds and the scale line search; then a
+// fine solve, one outlier round (observations beyond outlier_threshold_px removed) and a last fine
+// solve refine the changed map with the poses.
+struct MapHook {
+  enum When { kAfterCoarse, kAfterFine };
+  When when = kAfterFine;
+  std::function<void(const std::vector<Pose3>& world_T_base, Landmarks* landmarks)> change;
+};
+using CoarseMapHook = MapHook;
 Status BundleAdjust(const Calibration& calibration, const std::vector<Pose3>& world_T_base_odometry,
                     const BundleAdjustmentOptions& options, Landmarks* landmarks,
                     std::vector<Pose3>* world_T_base_refined, BundleAdjustmentSummary* summary,
-                    const CoarseMapHook& after_coarse = nullptr);
+                    const MapHook& map_hook = MapHook());
 
 // The same, the solves starting from `world_T_base_start` and the odometry's scale factor from
 // `odometry_scale_start` (e.g. an earlier adjustment's refined poses and summary.odometry_scale)
@@ -64,7 +72,7 @@ Status BundleAdjust(const Calibration& calibration, const std::vector<Pose3>& wo
                     const std::vector<Pose3>& world_T_base_start, double odometry_scale_start,
                     const BundleAdjustmentOptions& options, Landmarks* landmarks,
                     std::vector<Pose3>* world_T_base_refined, BundleAdjustmentSummary* summary,
-                    const CoarseMapHook& after_coarse = nullptr);
+                    const MapHook& map_hook = MapHook());
 
 // Refines `landmarks` in place on the poses world_T_base, which are held: each point and each line
 // alone at the fine loss scale, then the outlier rounds of BundleAdjust (observations beyond
