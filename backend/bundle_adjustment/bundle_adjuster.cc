@@ -165,6 +165,19 @@ class BundleAdjuster {
     bool loose = options_.outlier_rounds > 0;
     SFM_RETURN_IF_ERROR(Solve(options_.robust_loss_scale_px, /*with_lines=*/true,
                               loose ? options_.intermediate_function_tolerance : options_.function_tolerance));
+    // The caller's change of the fine map (track extension), before the outlier rounds, which judge
+    // the new observations as the old ones, and whose solves refine it with the poses.
+    if (map_hook.change && map_hook.when == MapHook::kAfterFine) {
+      map_hook.change(RefinedPoses(), landmarks_);
+      DropUnusableObservations();
+      RemoveLandmarksWithFewViews();
+      DropUnobservableLandmarks(/*refined=*/true);
+      if (CountObservations() == 0) return RevertToOdometry("no landmark left after the map's change");
+      SelectFloor(/*first=*/false);
+      if (options_.outlier_rounds == 0) {
+        SFM_RETURN_IF_ERROR(Solve(options_.robust_loss_scale_px, /*with_lines=*/true, options_.function_tolerance));
+      }
+    }
     for (int round = 0; round < options_.outlier_rounds; ++round) {
       const int outliers = RemoveOutliers(options_.outlier_threshold_px);
       RemoveLandmarksWithFewViews();
@@ -177,24 +190,6 @@ class BundleAdjuster {
                                 loose ? options_.intermediate_function_tolerance : options_.function_tolerance));
     }
     if (loose) {
-      SFM_RETURN_IF_ERROR(Solve(options_.robust_loss_scale_px, /*with_lines=*/true, options_.function_tolerance));
-    }
-    // The caller's change of the refined map (track extension), solved with the poses, one outlier
-    // round (the new observations are judged as the old ones were), solved again.
-    if (map_hook.change && map_hook.when == MapHook::kAfterFine) {
-      map_hook.change(RefinedPoses(), landmarks_);
-      DropUnusableObservations();
-      RemoveLandmarksWithFewViews();
-      DropUnobservableLandmarks(/*refined=*/true);
-      if (CountObservations() == 0) return RevertToOdometry("no landmark left after the map's change");
-      SelectFloor(/*first=*/false);
-      SFM_RETURN_IF_ERROR(Solve(options_.robust_loss_scale_px, /*with_lines=*/true,
-                                options_.intermediate_function_tolerance));
-      RemoveOutliers(options_.outlier_threshold_px);
-      RemoveLandmarksWithFewViews();
-      DropUnobservableLandmarks(/*refined=*/true);
-      if (CountObservations() == 0) return RevertToOdometry("every landmark was removed after solving");
-      SelectFloor(/*first=*/false);
       SFM_RETURN_IF_ERROR(Solve(options_.robust_loss_scale_px, /*with_lines=*/true, options_.function_tolerance));
     }
     // 6. The last solve's own landmarks under the rules every earlier solve's passed: a landmark it
@@ -812,6 +807,9 @@ class BundleAdjuster {
     }
     ++summary_->solves;
     summary_->iterations += ceres_summary.num_successful_steps + ceres_summary.num_unsuccessful_steps;
+    VLOG(2) << "solve: " << ceres_summary.num_successful_steps + ceres_summary.num_unsuccessful_steps
+            << " iterations at loss scale " << loss_scale_px << " px" << (with_lines ? " with lines, " : ", ")
+            << ceres_summary.total_time_in_seconds << " s";
     summary_->final_cost = ceres_summary.final_cost;
     summary_->converged = summary_->converged && ceres_summary.termination_type == ceres::CONVERGENCE;
     summary_->solver_report = ceres_summary.BriefReport();

@@ -47,10 +47,10 @@ namespace sfm {
 // which it may change (observations added, landmarks merged or dropped; point_landmark indices
 // kept valid): the pipeline's track extension (docs/tracks_and_triangulation.md, "Track
 // extension"). kAfterCoarse: after the coarse stage, before the floor prior is decided and the fine
-// solves; the landmarks then pass the removals of the coarse stage. kAfterFine: after the fine
-// solve and its outlier rounds, before the observability rounds and the scale line search; then a
-// fine solve, one outlier round (observations beyond outlier_threshold_px removed) and a last fine
-// solve refine the changed map with the poses.
+// solves; the landmarks then pass the removals of the coarse stage. kAfterFine: after the first fine
+// solve, before its outlier rounds, which then judge the new observations as the old ones (beyond
+// outlier_threshold_px removed) and whose solves refine the changed map with the poses (with no
+// outlier round, one fine solve more).
 struct MapHook {
   enum When { kAfterCoarse, kAfterFine };
   When when = kAfterFine;
