@@ -46,7 +46,7 @@ struct PipelineOptions {
   // After the bundle adjustment, extend and merge the tracks by projecting each point landmark into
   // the frames its track misses (track_extension.h), then refine the landmarks that changed on the
   // refined poses held fixed (docs/tracks_and_triangulation.md, "Track extension on the refined poses").
-  bool extend_tracks = false;
+  bool extend_tracks = true;
   TrackExtensionStage extend_tracks_stage = TrackExtensionStage::kInAdjustment;
   TrackExtensionOptions track_extension;
 
