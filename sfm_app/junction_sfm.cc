@@ -141,9 +141,9 @@ DEFINE_string(
     "With --retriangulate_refined: 'add' (only landmarks of tracks that had none) or 'replace' (every "
     "landmark re-triangulated).");
 DEFINE_bool(extend_tracks, kDefaults.extend_tracks,
-            "After the bundle adjustment, project every point landmark into the frames its track misses and "
-            "join the one compatible junction inside its uncertainty gate (or merge its track), then refine the "
-            "changed landmarks on the refined poses.");
+            "Track extension: project every point landmark into the frames its track misses and join the one "
+            "compatible junction inside its uncertainty gate, or merge the track it belongs to; by default inside "
+            "the bundle adjustment, after its first fine solve (--extend_tracks_stage).");
 DEFINE_string(extend_tracks_stage, "inside",
               "With --extend_tracks, where it runs: 'inside' (the bundle adjustment, after its fine solve, then "
               "two fine solves and an outlier round more), 'coarse' (inside it, on its coarse stage's poses, before its "
