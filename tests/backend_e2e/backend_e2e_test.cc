@@ -372,7 +372,7 @@ TEST_F(BackendEndToEnd, FloorPriorCorrectsTheOdometryScaleOnlyWithTheBaseOnTheFl
 
 // Track extension (--extend_tracks, track_extension.h) on a generated 30-frame corridor (seed 2):
 // the same run without and with it. Figures protected: the point landmarks' mean views rise by at
-// least 8 % (measured: MEASURED), some tracks are merged and junctions added, the refined ATE does
+// least 8 % (measured: 4.70 -> 5.28, +12 %; 37 tracks merged, 65 junctions added; ATE 0.0032 -> 0.0033 m), some tracks are merged and junctions added, the refined ATE does
 // not get worse by more than 10 %, and tracks.csv lists the extended tracks (its rows are the
 // tracks' views).
 TEST_F(BackendEndToEnd, TrackExtensionLengthensThePointTracks) {
