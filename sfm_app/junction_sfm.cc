@@ -149,6 +149,8 @@ DEFINE_string(extend_tracks_stage, "inside",
               "two fine solves and an outlier round more), 'coarse' (inside it, on its coarse stage's poses, before its "
               "fine solves), 'structure' (after it; the changed landmarks refined on the refined poses "
               "held fixed) or 'resolve' (after it, then a second bundle adjustment of everything).");
+DEFINE_bool(extend_tracks_merge, kDefaults.track_extension.merge_tracks,
+            "Track extension: merge two tracks when a projection finds the other's junction.");
 DEFINE_double(extend_tracks_pixel_sigma, kDefaults.track_extension.pixel_sigma_px,
               "Track extension: pixel noise of a junction location in the gate, pixels.");
 DEFINE_double(extend_tracks_rotation_step, kDefaults.track_extension.rotation_step_rad,
@@ -222,6 +224,7 @@ bool OptionsFromFlags(sfm::PipelineOptions* options, std::string* error) {
     return false;
   }
   options->track_extension.pixel_sigma_px = FLAGS_extend_tracks_pixel_sigma;
+  options->track_extension.merge_tracks = FLAGS_extend_tracks_merge;
   options->track_extension.rotation_step_rad = FLAGS_extend_tracks_rotation_step;
   options->track_extension.max_gate_px = FLAGS_extend_tracks_max_gate_px;
   options->track_extension.max_angle_deg = FLAGS_extend_tracks_max_angle_deg;

@@ -175,7 +175,7 @@ void RecordTrackExtension(const TrackExtensionReport& report, Clock::time_point 
             << report.ambiguous << " ambiguous projections, " << report.gate_too_wide << " gates too wide, "
             << report.no_junction << " empty, " << report.incompatible
             << " with no compatible junction; refused merges: " << report.merge_overlap << " sharing a frame, "
-            << report.merge_disagree << " disagreeing points; " << summary.points_changed << " points and "
+            << report.merge_disagree << " disagreeing points, " << report.merge_unexplained << " not explained by the point; " << summary.points_changed << " points and "
             << summary.lines_changed << " lines changed; now " << result->tracks.size() << " tracks; "
             << summary.seconds << " s";
 }

@@ -173,69 +173,69 @@ class Extender {
     return false;
   }
 
+  // What a search of frame f for track t's point found.
+  enum class Search { kOutside, kTooWide, kEmpty, kIncompatible, kAmbiguous, kFound };
+
+  // The one junction of frame f inside the gate of track t's point X (covariance `covariance`)
+  // whose segments fit the track's predicted directions: its index and segment assignment.
+  Search FindJunction(int t, const Eigen::Vector3d& X, const Eigen::Matrix3d& covariance, int f, int* found,
+                      std::vector<int>* found_assign) const {
+    const double gate = -2 * std::log(1 - options_.gate_probability);  // chi-square, 2 dof
+    const double fx_step = K_(0, 0) * options_.rotation_step_rad;
+    const double max_angle = options_.max_angle_deg * kPi / 180;
+    const Projection proj = Project(K_, poses_[f], X);
+    if (proj.depth < options_.min_depth_m) return Search::kOutside;
+    if (proj.pixel.x() < 0 || proj.pixel.y() < 0 || proj.pixel.x() > width_ - 1 || proj.pixel.y() > height_ - 1) {
+      return Search::kOutside;
+    }
+    int gap = static_cast<int>(poses_.size());
+    for (const TrackView& view : tracks_[t].views) gap = std::min(gap, std::abs(view.frame - f));
+    const Eigen::Matrix2d S = proj.jacobian * covariance * proj.jacobian.transpose() +
+                              (options_.pixel_sigma_px * options_.pixel_sigma_px + fx_step * fx_step * gap) *
+                                  Eigen::Matrix2d::Identity();
+    // The gate's largest radius: a projection too uncertain to tell crowded junctions apart.
+    const double radius = std::sqrt(gate * Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(S).eigenvalues()(1));
+    if (radius > options_.max_gate_px) return Search::kTooWide;
+    const Eigen::Matrix2d S_inv = S.inverse();
+    Directions predicted;
+    std::vector<bool> required;
+    PredictDirections(t, f, proj.pixel, &predicted, &required);
+    int compatible = 0, inside = 0;
+    const Junctions& frame = junctions_[f];
+    for (size_t j = 0; j < frame.size(); ++j) {
+      const Eigen::Vector2d r = frame[j].location - proj.pixel;
+      if (std::abs(r.x()) > radius || std::abs(r.y()) > radius || r.dot(S_inv * r) > gate) continue;
+      ++inside;
+      std::optional<std::vector<int>> assign = AssignSegments(frame[j], predicted, required, max_angle);
+      if (!assign) continue;
+      ++compatible;
+      *found = static_cast<int>(j);
+      *found_assign = *assign;
+    }
+    if (inside == 0) return Search::kEmpty;
+    if (compatible == 0) return Search::kIncompatible;
+    return compatible > 1 ? Search::kAmbiguous : Search::kFound;
+  }
+
   void ExtendPoint(int p) {
     const std::optional<Eigen::Matrix3d> covariance = PointCovariance(landmarks_.points[p]);
     if (!covariance) return;
     const int t = landmarks_.points[p].track_id;
     const Eigen::Vector3d X = landmarks_.points[p].position;
-    const double gate = -2 * std::log(1 - options_.gate_probability);  // chi-square, 2 dof
-    const double fx_step = K_(0, 0) * options_.rotation_step_rad;
-    const double max_angle = options_.max_angle_deg * kPi / 180;
     for (int f = 0; f < static_cast<int>(poses_.size()); ++f) {
       if (TrackHasFrame(t, f)) continue;
-      const Projection proj = Project(K_, poses_[f], X);
-      if (proj.depth < options_.min_depth_m) continue;
-      if (proj.pixel.x() < 0 || proj.pixel.y() < 0 || proj.pixel.x() > width_ - 1 || proj.pixel.y() > height_ - 1) {
-        continue;
-      }
-      int gap = static_cast<int>(poses_.size());
-      for (const TrackView& view : tracks_[t].views) gap = std::min(gap, std::abs(view.frame - f));
-      const Eigen::Matrix2d S = proj.jacobian * *covariance * proj.jacobian.transpose() +
-                                (options_.pixel_sigma_px * options_.pixel_sigma_px + fx_step * fx_step * gap) *
-                                    Eigen::Matrix2d::Identity();
-      // The gate's largest radius: a projection too uncertain to tell crowded junctions apart.
-      const double radius = std::sqrt(gate * Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(S).eigenvalues()(1));
-      if (radius > options_.max_gate_px) {
-        ++report_.gate_too_wide;
-        continue;
-      }
-      const Eigen::Matrix2d S_inv = S.inverse();
-      Directions predicted;
-      std::vector<bool> required;
-      PredictDirections(t, f, proj.pixel, &predicted, &required);
-      int found = -1, compatible = 0, inside = 0;
+      int found = -1;
       std::vector<int> found_assign;
-      const Junctions& frame = junctions_[f];
-      for (size_t j = 0; j < frame.size(); ++j) {
-        const Eigen::Vector2d r = frame[j].location - proj.pixel;
-        if (std::abs(r.x()) > radius || std::abs(r.y()) > radius || r.dot(S_inv * r) > gate) continue;
-        ++inside;
-        std::optional<std::vector<int>> assign = AssignSegments(frame[j], predicted, required, max_angle);
-        if (!assign) continue;
-        ++compatible;
-        found = static_cast<int>(j);
-        found_assign = *assign;
-      }
-      if (VLOG_IS_ON(3)) {
-        double best_px = 1e9, best_m = 1e9, best_compat_px = 1e9;
-        for (size_t j = 0; j < frame.size(); ++j) {
-          const Eigen::Vector2d r = frame[j].location - proj.pixel;
-          if (r.norm() > 10) continue;
-          best_px = std::min(best_px, r.norm());
-          best_m = std::min(best_m, r.dot(S_inv * r));
-          if (AssignSegments(frame[j], predicted, required, max_angle)) best_compat_px = std::min(best_compat_px, r.norm());
-        }
-        VLOG(3) << "extdbg " << p << " " << f << " " << gap << " " << radius << " " << best_px << " " << best_m << " "
-                << best_compat_px << " " << compatible << " " << proj.depth;
-      }
-      if (compatible > 1) ++report_.ambiguous;
-      if (inside == 0) ++report_.no_junction;
-      if (inside > 0 && compatible == 0) ++report_.incompatible;
-      if (compatible != 1) continue;
+      const Search search = FindJunction(t, X, *covariance, f, &found, &found_assign);
+      if (search == Search::kTooWide) ++report_.gate_too_wide;
+      if (search == Search::kEmpty) ++report_.no_junction;
+      if (search == Search::kIncompatible) ++report_.incompatible;
+      if (search == Search::kAmbiguous) ++report_.ambiguous;
+      if (search != Search::kFound) continue;
       const int owner = owner_[f][found];
       if (owner < 0) {
         AddView(t, p, f, found, found_assign);
-      } else if (owner != t) {
+      } else if (owner != t && options_.merge_tracks) {
         if (!Merge(t, p, *covariance, owner, f, found, found_assign)) ++report_.merges_refused;
       }
     }
@@ -273,6 +273,19 @@ class Extender {
       }
     }
     const int p2 = point_of_track_[t2];
+    // Track t's point must explain every view of t2: in each of t2's frames the one compatible
+    // junction inside its gate is t2's junction there. (A single frame's unique candidate can be a
+    // crowded neighbour; a track without a point has no other test.)
+    for (const TrackView& v2 : tracks_[t2].views) {
+      int found = -1;
+      std::vector<int> found_assign;
+      if (FindJunction(t, landmarks_.points[p].position, covariance, v2.frame, &found, &found_assign) !=
+              Search::kFound ||
+          found != v2.junction) {
+        ++report_.merge_unexplained;
+        return false;
+      }
+    }
     if (p2 >= 0) {
       const std::optional<Eigen::Matrix3d> covariance2 = PointCovariance(landmarks_.points[p2]);
       if (!covariance2) return false;

@@ -36,6 +36,8 @@ struct TrackExtensionOptions {
   // Largest angle between a junction segment and the direction the track predicts for it (its 3D
   // line projected, or the segment of the track's nearest view), degrees, in (0, 90).
   double max_angle_deg = 10;
+  // Merge two tracks when a projection finds the other's junction (else only unassigned junctions join).
+  bool merge_tracks = true;
   // Depth below which a projection is not used, metres (the triangulation's depth floor).
   double min_depth_m = 0.1;
 
@@ -51,7 +53,8 @@ struct TrackExtensionReport {
   // max_gate_px; no junction inside it; junctions inside it but none compatible.
   int gate_too_wide = 0, no_junction = 0, incompatible = 0;
   // Why merges were refused: the tracks share a frame; the points disagree.
-  int merge_overlap = 0, merge_disagree = 0;
+  // Or the track's point does not find the other track's junction in every one of its frames.
+  int merge_overlap = 0, merge_disagree = 0, merge_unexplained = 0;
   // Indices, in the returned landmarks, of the points and lines that gained observations.
   std::vector<int> changed_points, changed_lines;
 };
