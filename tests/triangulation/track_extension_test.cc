@@ -161,6 +161,37 @@ TEST(TrackExtension, TwoTracksOfOneCornerMergeUnlessTheirPointsDisagree) {
   }
 }
 
+// A track without a point (frames 3-4) merges only when the corner's point explains every one of
+// its views: with both of its junctions where the corner projects, one track of five views and a
+// point of five observations; with frame 4's junction 3 px off (outside the gate there), no merge
+// (merge_unexplained), although frame 3 alone holds its junction as the one candidate. Figures
+// protected: those counts.
+TEST(TrackExtension, ATrackWithoutPointMergesOnlyWhenThePointExplainsEveryView) {
+  for (const double miss_px : {0.0, 3.0}) {
+    const std::vector<Pose3> cameras = Cameras(5);
+    std::vector<Junctions> frames(5);
+    for (int f = 0; f < 3; ++f) frames[f] = {Elsewhere(), CornerJunction(cameras[f])};
+    frames[3] = {CornerJunction(cameras[3])};
+    frames[4] = {CornerJunction(cameras[4], {miss_px, 0})};
+    std::vector<JunctionTrack> tracks = {Track(0, {0, 1, 2}, 1), Track(1, {3, 4}, 0)};
+    Landmarks landmarks;
+    landmarks.points = {Point(tracks[0], frames, kCorner)};
+    TrackExtensionReport report;
+    ExtendTracks(kK, 640, 480, cameras, frames, TrackExtensionOptions(), &tracks, &landmarks, &report);
+    if (miss_px > 0) {
+      EXPECT_EQ(report.tracks_merged, 0);
+      EXPECT_GE(report.merge_unexplained, 1);
+      EXPECT_EQ(tracks.size(), 2u);
+      EXPECT_EQ(landmarks.points[0].observations.size(), 3u);
+      continue;
+    }
+    EXPECT_EQ(report.tracks_merged, 1);
+    ASSERT_EQ(tracks.size(), 1u);
+    EXPECT_EQ(tracks[0].views.size(), 5u);
+    EXPECT_EQ(landmarks.points[0].observations.size(), 5u);
+  }
+}
+
 TEST(TrackExtension, BadOptionsAreRefused) {
   TrackExtensionOptions options;
   EXPECT_TRUE(options.Check().ok());
