@@ -7,7 +7,7 @@
 #include <map>
 #include <numeric>
 #include <optional>
-#include <set>
+#include <string>
 
 #include <Eigen/Dense>
 

@@ -2,7 +2,8 @@
 // into the frames its track does not see, and a junction there joins the track when it is the only
 // one inside the landmark's uncertainty gate whose segments point where the track's lines project.
 // A junction that already belongs to another track merges the two tracks (and their landmarks)
-// when their frames do not overlap and their points agree within their uncertainty.
+// when their frames do not overlap, the point explains every view of the other track (each is the
+// one compatible junction in its frame's gate) and the two points agree within their uncertainty.
 // docs/tracks_and_triangulation.md, "Track extension on the refined poses".
 // Pixels are undistorted pixels (K only); positions in the world frame, metres.
 #pragma once

@@ -372,7 +372,7 @@ TEST_F(BackendEndToEnd, FloorPriorCorrectsTheOdometryScaleOnlyWithTheBaseOnTheFl
 
 // Track extension (--extend_tracks, track_extension.h) on a generated 30-frame corridor (seed 2):
 // the same run without and with it. Figures protected: the point landmarks' mean views rise by at
-// least 8 % (measured: 4.70 -> 5.28, +12 %; 37 tracks merged, 65 junctions added; ATE 0.0032 -> 0.0033 m), some tracks are merged and junctions added, the refined ATE does
+// least 6 % (measured: 4.70 -> 5.14, +9 %; 22 tracks merged, 66 junctions added; ATE 0.0032 -> 0.0028 m), some tracks are merged and junctions added, the refined ATE does
 // not get worse by more than 10 %, and tracks.csv lists the extended tracks (its rows are the
 // tracks' views).
 TEST_F(BackendEndToEnd, TrackExtensionLengthensThePointTracks) {
@@ -406,7 +406,7 @@ TEST_F(BackendEndToEnd, TrackExtensionLengthensThePointTracks) {
   EXPECT_TRUE(on.track_extension.ran);
   EXPECT_GT(on.track_extension.tracks_merged, 0);
   EXPECT_GT(on.track_extension.observations_added, 0);
-  EXPECT_GE(mean_views(on), 1.08 * mean_views(off));
+  EXPECT_GE(mean_views(on), 1.06 * mean_views(off));
   EXPECT_LE(on.drift_refined->ate_m, 1.1 * off.drift_refined->ate_m);
   size_t views = 0;
   for (const JunctionTrack& track : on.tracks) views += track.views.size();
