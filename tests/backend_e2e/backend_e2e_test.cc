@@ -372,9 +372,9 @@ TEST_F(BackendEndToEnd, FloorPriorCorrectsTheOdometryScaleOnlyWithTheBaseOnTheFl
 
 // Track extension (--extend_tracks, track_extension.h) on a generated 30-frame corridor (seed 2):
 // the same run without and with it. Figures protected: the point landmarks' mean views rise by at
-// least 6 % (measured: 4.70 -> 5.14, +9 %; 22 tracks merged, 66 junctions added; ATE 0.0032 -> 0.0028 m), some tracks are merged and junctions added, the refined ATE does
-// not get worse by more than 10 %, and tracks.csv lists the extended tracks (its rows are the
-// tracks' views).
+// least 6 % (measured: 4.70 -> 5.14, +9 %; 22 tracks merged, 66 junctions added; ATE 0.0032 ->
+// 0.0028 m), some tracks are merged and junctions added, the refined ATE does not get worse by
+// more than 10 %, and tracks.csv lists the extended tracks (its rows are the tracks' views).
 TEST_F(BackendEndToEnd, TrackExtensionLengthensThePointTracks) {
   GeneratorOptions generator;
   generator.trajectory.num_frames = 30;
