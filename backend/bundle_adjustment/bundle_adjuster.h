@@ -56,7 +56,6 @@ struct MapHook {
   When when = kAfterFine;
   std::function<void(const std::vector<Pose3>& world_T_base, Landmarks* landmarks)> change;
 };
-using CoarseMapHook = MapHook;
 Status BundleAdjust(const Calibration& calibration, const std::vector<Pose3>& world_T_base_odometry,
                     const BundleAdjustmentOptions& options, Landmarks* landmarks,
                     std::vector<Pose3>* world_T_base_refined, BundleAdjustmentSummary* summary,
