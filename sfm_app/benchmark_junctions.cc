@@ -46,9 +46,9 @@
 #include "sfm_app/evaluation/table_format.h"
 #include "sfm_app/evaluation/junction_evaluation.h"
 #include "sfm_app/evaluation/junction_overlay.h"
+#include "sfm_app/flags/detector_flags.h"
 
 namespace {
-const sfm::JunctionDetectorOptions kJunctionDefaults;
 const sfm::TrueJunctionOptions kTruthDefaults;
 const sfm::SegmentJunctionOptions kGtDefaults;
 const sfm::EndpointOffsetOptions kOffsetDefaults;
@@ -71,15 +71,9 @@ DEFINE_double(presmooth_sigma, sfm::SegmentDetectorOptions().fast.presmooth_sigm
 DEFINE_bool(corners_between_chains, sfm::SegmentDetectorOptions().fast.corners_between_chains,
             "Fast segments: short pieces meeting a long piece of another chain at a corner are measured from "
             "the corner.");
-DEFINE_bool(branches_at_free_ends, sfm::SegmentDetectorOptions().fast.branches_at_free_ends,
-            "Fast segments: look for a corner's missing side along rays from free segment end-points.");
-DEFINE_bool(branches_to_far_corners, sfm::SegmentDetectorOptions().fast.branches_to_far_corners,
-            "Fast segments (with branches_at_free_ends): a branch ending at another corner is measured "
-            "from corner to corner.");
-DEFINE_bool(bridges_past_corners, sfm::SegmentDetectorOptions().fast.bridges_past_corners,
-            "Fast segments (with branches_at_free_ends): continue a segment's line across the gap to a "
-            "free end when the gradient there is aligned with it.");
 DEFINE_double(line_tolerance, sfm::SegmentDetectorOptions().fast.line_tolerance, "Fast segments: splitting tolerance, px.");
+// --branches_at_free_ends ... and the junction flags (--lambda, --mu, --min_probability, ...) are
+// shared with the other apps: sfm_app/flags/detector_flags.h.
 DEFINE_string(overlay_dir, "", "If set, write overlays there (every 10th generated frame, every VGG image), "
                                "with missed true junctions circled in white.");
 DEFINE_double(noise_sigma, sfm::RenderOptions().noise_sigma,
@@ -99,21 +93,8 @@ DEFINE_string(gt_contact_px, "3,5",
               "set of ground-truth junctions each (overlays and end-point fits use the first).");
 DEFINE_double(gt_min_angle_deg, kGtDefaults.min_angle_deg, "VGG: ground-truth segments closer to parallel never meet, degrees.");
 DEFINE_double(max_abs_t, kOffsetDefaults.max_abs_t, "End-point samples with |t| above this are gross failures, px.");
-DEFINE_double(lambda, kJunctionDefaults.endpoint_model.lambda, "End-point model: decay for t >= 0 (too long), 1/px.");
-DEFINE_double(mu, kJunctionDefaults.endpoint_model.mu, "End-point model: decay for t < 0 (too short), 1/px.");
-DEFINE_double(min_probability, kJunctionDefaults.min_probability, "Pairwise junction probability threshold.");
-DEFINE_double(max_gap_px, kJunctionDefaults.max_gap_px, "Largest end-point move, px.");
-DEFINE_double(collinear_tolerance_deg, kJunctionDefaults.collinear_tolerance_deg, "Near-parallel limit, degrees.");
-DEFINE_double(collinear_max_offset_px, kJunctionDefaults.collinear_max_offset_px, "Broken-line offset, px.");
 DEFINE_int32(junction_repeats, 1,
              "The junction time is the fastest of this many runs on the same segments (VGG: also printed per image to stderr).");
-DEFINE_double(min_arm_px, kJunctionDefaults.min_arm_px, "Smallest arm of a T bar or X, px.");
-DEFINE_bool(choose_by_end_likelihood, kJunctionDefaults.choose_by_end_likelihood,
-            "Junctions: choose between conflicting junctions by the log-likelihood of the end-points they "
-            "explain (not the sum of pair probabilities).");
-DEFINE_double(acute_shortfall_px, kJunctionDefaults.acute_shortfall_px,
-              "Junctions: an L contact's end-point shortfall is reduced by this times (1 / sin(angle) - 1) "
-              "before eq. (5), px (0: off).");
 
 namespace sfm {
 namespace {
@@ -1026,9 +1007,7 @@ int main(int argc, char** argv) {
     method.options.fast.log10_nfa_max = FLAGS_log10_nfa_max;
     method.options.fast.line_tolerance = FLAGS_line_tolerance;
     method.options.fast.corners_between_chains = FLAGS_corners_between_chains;
-    method.options.fast.branches_at_free_ends = FLAGS_branches_at_free_ends;
-    method.options.fast.bridges_past_corners = FLAGS_bridges_past_corners;
-    method.options.fast.branches_to_far_corners = FLAGS_branches_to_far_corners;
+    SegmentBranchesFromFlags(&method.options.fast);
     method.options.fast.presmooth_sigma = FLAGS_presmooth_sigma;
     if (name == "fast") {
       method.options.method = SegmentMethod::kFast;
@@ -1051,15 +1030,8 @@ int main(int argc, char** argv) {
   }
   if (contacts.empty()) return fail(2, "--gt_contact_px is empty");
   JunctionDetectorOptions junction_options;
-  junction_options.endpoint_model.lambda = FLAGS_lambda;
-  junction_options.endpoint_model.mu = FLAGS_mu;
-  junction_options.min_probability = FLAGS_min_probability;
-  junction_options.max_gap_px = FLAGS_max_gap_px;
-  junction_options.collinear_tolerance_deg = FLAGS_collinear_tolerance_deg;
-  junction_options.collinear_max_offset_px = FLAGS_collinear_max_offset_px;
-  junction_options.min_arm_px = FLAGS_min_arm_px;
-  junction_options.acute_shortfall_px = FLAGS_acute_shortfall_px;
-  junction_options.choose_by_end_likelihood = FLAGS_choose_by_end_likelihood;
+  JunctionDetectorFromFlags(&junction_options);
+  JunctionChoiceFromFlags(&junction_options);
   if (const Status check = junction_options.Check(); !check.ok()) return fail(2, check.message());
   for (const std::string& directory : {FLAGS_overlay_dir, FLAGS_miss_dir}) {
     if (directory.empty()) continue;

@@ -47,9 +47,9 @@
 #include "sfm_app/evaluation/match_overlay.h"
 #include "sfm_app/evaluation/matching_evaluation.h"
 #include "sfm_app/evaluation/table_format.h"
+#include "sfm_app/flags/detector_flags.h"
 
 namespace {
-const sfm::JunctionDetectorOptions kJunctionDefaults;
 const sfm::MatchingOptions kMatchingDefaults;
 }  // namespace
 
@@ -68,56 +68,16 @@ DEFINE_string(table2_R, "4,6,10,15", "R values of the Table 2 sweep, px.");
 DEFINE_int32(speed_repeats, 21, "Time each pair's matching this many times and take the median.");
 DEFINE_int32(speed_junctions, 150, "e: also time the VGG pairs with only this many strongest junctions per frame.");
 DEFINE_double(lbd_min_length, sfm::SegmentDetectorOptions().min_length, "LSD segments shorter than this are dropped, px.");
-DEFINE_string(segments, "fast", "Our segment detector: 'fast' or 'reference'.");
-DEFINE_bool(branches_at_free_ends, sfm::SegmentDetectorOptions().fast.branches_at_free_ends,
-            "Fast segments: look for a corner's missing side along rays from free segment end-points.");
-DEFINE_bool(branches_to_far_corners, sfm::SegmentDetectorOptions().fast.branches_to_far_corners,
-            "Fast segments (with branches_at_free_ends): a branch ending at another corner is measured "
-            "from corner to corner.");
-DEFINE_bool(bridges_past_corners, sfm::SegmentDetectorOptions().fast.bridges_past_corners,
-            "Fast segments (with branches_at_free_ends): continue a segment's line across the gap to a "
-            "free end when the gradient there is aligned with it.");
-DEFINE_double(endpoint_lambda, kJunctionDefaults.endpoint_model.lambda, "End-point model eq. (5), t >= 0, 1/px.");
-DEFINE_double(endpoint_mu, kJunctionDefaults.endpoint_model.mu, "End-point model eq. (5), t < 0, 1/px.");
-DEFINE_double(junction_min_probability, kJunctionDefaults.min_probability, "Junction threshold, (0, 1].");
-DEFINE_bool(choose_by_end_likelihood, kJunctionDefaults.choose_by_end_likelihood,
-            "Junctions: choose between conflicting junctions by the log-likelihood of the end-points they "
-            "explain (not the sum of pair probabilities).");
-DEFINE_double(acute_shortfall_px, kJunctionDefaults.acute_shortfall_px,
-              "Junctions: an L contact's end-point shortfall is reduced by this times (1 / sin(angle) - 1) "
-              "before eq. (5), px (0: off).");
-DEFINE_double(match_max_distance, kMatchingDefaults.max_epipolar_distance_px, "R, px.");
-DEFINE_double(match_tau1, kMatchingDefaults.tau1, "tau1 of rule (38).");
-DEFINE_double(match_tau2, kMatchingDefaults.tau2, "tau2 of rule (38).");
-DEFINE_string(match_rho1, kMatchingDefaults.rho1_kind == sfm::Rho1Kind::kLinear ? "linear" : "exponential",
-              "rho1 of eq. (31): 'exponential' or 'linear'.");
+// The detector and matching flags shared with the other apps (--segments, --endpoint_lambda,
+// --match_tau1, ...): sfm_app/flags/detector_flags.h. Those below are this benchmark's own.
 DEFINE_bool(match_pose, true,
             "Give the matcher the odometry pose and its uncertainty (sequence.yaml's noise model): per-pair band and "
             "cheirality; false: F only, fixed R.");
-DEFINE_bool(match_pose_band, kMatchingDefaults.use_pose_band, "With --match_pose: per-pair band from the pose covariance (false: R).");
-DEFINE_bool(match_cheirality, kMatchingDefaults.use_cheirality, "With --match_pose: reject pairs behind a camera.");
-DEFINE_double(match_band_sigmas, kMatchingDefaults.band_sigmas, "With --match_pose: the band in sigmas.");
 DEFINE_double(match_location_sigma, kMatchingDefaults.location_sigma_px, "Junction location sigma, px (band, cheirality).");
-DEFINE_bool(match_refine, kMatchingDefaults.refine_geometry,
-            "With --match_pose: refine the pair's pose from the first pass's matches (odometry as prior) and match again "
-            "in the refined pose's band (geometric verification and guided pass).");
-DEFINE_double(match_refine_gate, kMatchingDefaults.refine_gate_sigmas, "With --match_refine: the gate, in sigmas.");
-DEFINE_int32(match_refine_min_inliers, kMatchingDefaults.refine_min_inliers,
-             "With --match_refine: fewer supporting matches and the first pass is kept.");
-DEFINE_bool(match_refine_constrain, kMatchingDefaults.refine_constrain_to_prior_gate,
-            "With --match_refine: when the refined pose lies beyond the odometry's 99 % ellipsoid, take the best pose "
-            "inside it before falling back.");
 DEFINE_int32(match_depth_range_neighbours, kMatchingDefaults.depth_range_neighbours,
              "With --match_refine: the local depth range test's neighbours (0: off).");
 DEFINE_bool(match_depth_range_screen, kMatchingDefaults.depth_range_screen_verified,
             "With the local depth range test: screen the verified matches by the same test first.");
-DEFINE_bool(match_topology, kMatchingDefaults.use_topology, "sigma (true) or rho (false) in rule (38).");
-DEFINE_bool(match_partial, kMatchingDefaults.match_partial,
-            "With --match_refine: in the guided pass, match junctions of k and k + 1 segments left unmatched through "
-            "their best common subset (partial correspondence).");
-DEFINE_bool(
-    match_partial_rule_a, kMatchingDefaults.partial_rule_not_line_half,
-    "With --match_partial: rule (a), the left-out segment may not be half of a line through the junction.");
 DEFINE_bool(match_partial_rule_b, kMatchingDefaults.partial_rule_same_lines,
             "With --match_partial: rule (b), the kept segments have as many lines through the junction as "
             "the smaller "
@@ -897,47 +857,17 @@ int main(int argc, char** argv) {
     return fail(2, "give --generated and/or --vgg_sequence (scripts/benchmark_matching.sh prepares both)");
   }
   Settings settings;
-  if (FLAGS_segments == "fast") {
-    settings.segments.method = SegmentMethod::kFast;
-  } else if (FLAGS_segments == "reference") {
-    settings.segments.method = SegmentMethod::kReference;
-  } else {
-    return fail(2, "--segments must be 'fast' or 'reference', not '" + FLAGS_segments + "'");
-  }
-  settings.segments.fast.branches_at_free_ends = FLAGS_branches_at_free_ends;
-  settings.segments.fast.bridges_past_corners = FLAGS_bridges_past_corners;
-  settings.segments.fast.branches_to_far_corners = FLAGS_branches_to_far_corners;
-  const EndpointModel model{FLAGS_endpoint_lambda, FLAGS_endpoint_mu};
-  settings.junctions.endpoint_model = model;
-  settings.junctions.min_probability = FLAGS_junction_min_probability;
-  settings.junctions.acute_shortfall_px = FLAGS_acute_shortfall_px;
-  settings.junctions.choose_by_end_likelihood = FLAGS_choose_by_end_likelihood;
+  std::string error;
+  if (!SegmentMethodFromFlags(&settings.segments, &error)) return fail(2, error);
+  SegmentBranchesFromFlags(&settings.segments.fast);
+  JunctionChoiceFromFlags(&settings.junctions);
   MatchingOptions& matching = settings.matching;
-  matching.endpoint_model = model;
-  matching.max_epipolar_distance_px = FLAGS_match_max_distance;
-  matching.tau1 = FLAGS_match_tau1;
-  matching.tau2 = FLAGS_match_tau2;
-  matching.use_topology = FLAGS_match_topology;
-  matching.use_pose_band = FLAGS_match_pose_band;
-  matching.use_cheirality = FLAGS_match_cheirality;
-  matching.band_sigmas = FLAGS_match_band_sigmas;
+  if (!MatchingFromFlags(&settings.junctions, &matching, &error)) return fail(2, error);
+  MatchingRefineFromFlags(&matching);
   matching.location_sigma_px = FLAGS_match_location_sigma;
-  matching.refine_geometry = FLAGS_match_refine;
-  matching.refine_gate_sigmas = FLAGS_match_refine_gate;
-  matching.refine_min_inliers = FLAGS_match_refine_min_inliers;
-  matching.refine_constrain_to_prior_gate = FLAGS_match_refine_constrain;
-  matching.match_partial = FLAGS_match_partial;
-  matching.partial_rule_not_line_half = FLAGS_match_partial_rule_a;
   matching.partial_rule_same_lines = FLAGS_match_partial_rule_b;
   matching.depth_range_neighbours = FLAGS_match_depth_range_neighbours;
   matching.depth_range_screen_verified = FLAGS_match_depth_range_screen;
-  if (FLAGS_match_rho1 == "linear") {
-    matching.rho1_kind = Rho1Kind::kLinear;
-  } else if (FLAGS_match_rho1 == "exponential") {
-    matching.rho1_kind = Rho1Kind::kExponential;
-  } else {
-    return fail(2, "--match_rho1 must be 'exponential' or 'linear', not '" + FLAGS_match_rho1 + "'");
-  }
   for (const Status& check : {settings.segments.Check(), settings.junctions.Check(), matching.Check()}) {
     if (!check.ok()) return fail(2, check.message());
   }
@@ -974,9 +904,10 @@ int main(int argc, char** argv) {
   report << "Settings: " << FLAGS_segments << " segments; R = " << matching.max_epipolar_distance_px
          << " px, tau1 = " << matching.tau1 << ", tau2 = " << matching.tau2 << ", rho1 "
          << (matching.rho1_kind == Rho1Kind::kLinear ? "linear" : "exponential") << ", "
-         << (matching.use_topology ? "sigma (topology)" : "rho") << ", lambda = " << model.lambda
-         << ", mu = " << model.mu << " /px. Radius " << FLAGS_radius << " px, epipolar tolerance "
-         << FLAGS_epipolar_tolerance << " px. Single thread.\n";
+         << (matching.use_topology ? "sigma (topology)" : "rho")
+         << ", lambda = " << matching.endpoint_model.lambda << ", mu = " << matching.endpoint_model.mu
+         << " /px. Radius " << FLAGS_radius << " px, epipolar tolerance " << FLAGS_epipolar_tolerance
+         << " px. Single thread.\n";
 
   // ---- a. Generated sequences ----
   MethodStats ours_generated, lbd_generated, lbd_mutual_generated;

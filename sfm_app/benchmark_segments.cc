@@ -33,6 +33,7 @@
 #include "frontend/segments/segment_detector.h"
 #include "frontend/segments/segment_evaluation.h"
 #include "frontend/util/atomic_file.h"
+#include "sfm_app/flags/detector_flags.h"
 
 DEFINE_string(vgg_dir, "../shared/data/vgg-corridor",
               "Directory of VGG Corridor images with ground truth (<stem>.lines); skipped if absent.");
@@ -44,14 +45,7 @@ DEFINE_double(min_segment_length, sfm::SegmentDetectorOptions().min_length,
 DEFINE_bool(corners_between_chains, sfm::SegmentDetectorOptions().fast.corners_between_chains,
             "Fast path: short pieces meeting a long piece of another chain at a corner are measured from the "
             "corner.");
-DEFINE_bool(branches_at_free_ends, sfm::SegmentDetectorOptions().fast.branches_at_free_ends,
-            "Fast segments: look for a corner's missing side along rays from free segment end-points.");
-DEFINE_bool(branches_to_far_corners, sfm::SegmentDetectorOptions().fast.branches_to_far_corners,
-            "Fast segments (with branches_at_free_ends): a branch ending at another corner is measured "
-            "from corner to corner.");
-DEFINE_bool(bridges_past_corners, sfm::SegmentDetectorOptions().fast.bridges_past_corners,
-            "Fast segments (with branches_at_free_ends): continue a segment's line across the gap to a "
-            "free end when the gradient there is aligned with it.");
+// --branches_at_free_ends, --branches_to_far_corners, --bridges_past_corners: sfm_app/flags/detector_flags.h.
 DEFINE_string(overlay_dir, "", "If set, write <method>_<image>.png overlays of the segments found there.");
 
 namespace sfm {
@@ -94,9 +88,7 @@ std::vector<Method> Methods() {
   fast.method = SegmentMethod::kFast;
   fast.min_length = FLAGS_min_segment_length;
   fast.fast.corners_between_chains = FLAGS_corners_between_chains;
-  fast.fast.branches_at_free_ends = FLAGS_branches_at_free_ends;
-  fast.fast.bridges_past_corners = FLAGS_bridges_past_corners;
-  fast.fast.branches_to_far_corners = FLAGS_branches_to_far_corners;
+  SegmentBranchesFromFlags(&fast.fast);
   methods.push_back(
       {"ours: fast (Sobel + chaining)", [fast](const cv::Mat& grey) { return DetectLineSegments(grey, fast); }});
   // The speed goal is for segments and junctions together, in the same run as cv::Canny.

@@ -28,9 +28,9 @@
 #include "frontend/sequence/sequence.h"
 #include "frontend/util/atomic_file.h"
 #include "sfm_app/evaluation/junction_overlay.h"
+#include "sfm_app/flags/detector_flags.h"
 
 namespace {
-const sfm::JunctionDetectorOptions kJunctionDefaults;
 const sfm::SegmentDetectorOptions kSegmentDefaults;
 }  // namespace
 
@@ -40,26 +40,9 @@ DEFINE_string(json, "", "Write the junctions here (SPEC section 3 JSON).");
 DEFINE_string(overlay, "", "Write an overlay PNG here (segments, junctions coloured by type).");
 DEFINE_int32(overlay_scale, 1, "Enlarge the overlay this many times (1..8), for sub-pixel detail.");
 DEFINE_int32(frame, 0, "Frame index written into the JSON.");
-DEFINE_string(segments, "fast", "Segment detector: fast | reference (segment_detector.h).");
 DEFINE_double(min_segment_length, kSegmentDefaults.min_length, "Shortest segment kept, px.");
-DEFINE_double(lambda, kJunctionDefaults.endpoint_model.lambda,
-              "End-point model eq. (5): decay for a detected end-point beyond the junction (t >= 0), 1/px.");
-DEFINE_double(mu, kJunctionDefaults.endpoint_model.mu,
-              "End-point model eq. (5): decay for a detected end-point short of the junction (t < 0), 1/px.");
-DEFINE_double(min_probability, kJunctionDefaults.min_probability, "Pairwise junction probability threshold, (0, 1].");
-DEFINE_double(max_gap_px, kJunctionDefaults.max_gap_px, "Largest move of an end-point to reach a junction, px.");
-DEFINE_double(collinear_tolerance_deg, kJunctionDefaults.collinear_tolerance_deg,
-              "Lines closer to parallel are never intersected; T tolerance, degrees.");
-DEFINE_double(collinear_max_offset_px, kJunctionDefaults.collinear_max_offset_px,
-              "Offset allowed between two pieces of one broken line, px.");
-DEFINE_double(min_arm_px, kJunctionDefaults.min_arm_px,
-              "A junction inside a segment must be this far from its ends (else the end moves), px.");
-DEFINE_bool(choose_by_end_likelihood, kJunctionDefaults.choose_by_end_likelihood,
-            "Junctions: choose between conflicting junctions by the log-likelihood of the end-points they "
-            "explain (not the sum of pair probabilities).");
-DEFINE_double(acute_shortfall_px, kJunctionDefaults.acute_shortfall_px,
-              "Junctions: an L contact's end-point shortfall is reduced by this times (1 / sin(angle) - 1) "
-              "before eq. (5), px (0: off).");
+// --segments and the junction flags (--lambda, --mu, --min_probability, ...) are shared with the other apps:
+// sfm_app/flags/detector_flags.h.
 
 namespace {
 
@@ -93,24 +76,12 @@ int main(int argc, char** argv) {
     return Fail(2, "--overlay must name a .png file, not '" + FLAGS_overlay + "'");
   }
   sfm::SegmentDetectorOptions segment_options;
-  if (FLAGS_segments == "fast") {
-    segment_options.method = sfm::SegmentMethod::kFast;
-  } else if (FLAGS_segments == "reference") {
-    segment_options.method = sfm::SegmentMethod::kReference;
-  } else {
-    return Fail(2, "--segments must be fast or reference, not '" + FLAGS_segments + "'");
-  }
+  std::string flag_error;
+  if (!sfm::SegmentMethodFromFlags(&segment_options, &flag_error)) return Fail(2, flag_error);
   segment_options.min_length = FLAGS_min_segment_length;
   sfm::JunctionDetectorOptions junction_options;
-  junction_options.endpoint_model.lambda = FLAGS_lambda;
-  junction_options.endpoint_model.mu = FLAGS_mu;
-  junction_options.min_probability = FLAGS_min_probability;
-  junction_options.max_gap_px = FLAGS_max_gap_px;
-  junction_options.collinear_tolerance_deg = FLAGS_collinear_tolerance_deg;
-  junction_options.collinear_max_offset_px = FLAGS_collinear_max_offset_px;
-  junction_options.min_arm_px = FLAGS_min_arm_px;
-  junction_options.acute_shortfall_px = FLAGS_acute_shortfall_px;
-  junction_options.choose_by_end_likelihood = FLAGS_choose_by_end_likelihood;
+  sfm::JunctionDetectorFromFlags(&junction_options);
+  sfm::JunctionChoiceFromFlags(&junction_options);
   for (const sfm::Status& check : {segment_options.Check(), junction_options.Check()}) {
     if (!check.ok()) return Fail(2, check.message());
   }

@@ -11,6 +11,7 @@
 #include <gflags/gflags.h>
 #include <glog/logging.h>
 
+#include "sfm_app/flags/detector_flags.h"
 #include "sfm_app/pipeline.h"
 
 namespace {
@@ -43,62 +44,8 @@ DEFINE_string(sequence, SFM_DEFAULT_SEQUENCE,
               "groundtruth.txt). Default: the sequence shipped in sequences/default.");
 DEFINE_string(output, "output", "Output directory; created if missing, files of the same names replaced.");
 DEFINE_bool(progress, true, "Show a progress line on stderr (only when stderr is a terminal).");
-
-DEFINE_string(segments, "fast", "Line segment detector: 'fast' (anchored edge chaining) or 'reference' "
-                                "(the paper's edge filter + Hough transform + sub-pixel fit).");
-DEFINE_bool(branches_at_free_ends, kDefaults.segments.fast.branches_at_free_ends,
-            "Fast segments: look for a corner's missing side along rays from free segment end-points.");
-DEFINE_bool(branches_to_far_corners, kDefaults.segments.fast.branches_to_far_corners,
-            "Fast segments (with branches_at_free_ends): a branch ending at another corner is measured "
-            "from corner to corner.");
-DEFINE_bool(bridges_past_corners, kDefaults.segments.fast.bridges_past_corners,
-            "Fast segments (with branches_at_free_ends): continue a segment's line across the gap to a "
-            "free end when the gradient there is aligned with it.");
-DEFINE_double(endpoint_lambda, kDefaults.junctions.endpoint_model.lambda,
-              "End-point model eq. (5): decay, 1/px, of a detected end-point lying beyond the true one.");
-DEFINE_double(endpoint_mu, kDefaults.junctions.endpoint_model.mu,
-              "End-point model eq. (5): decay, 1/px, of a detected end-point falling short of the true one.");
-DEFINE_double(junction_min_probability, kDefaults.junctions.min_probability,
-              "Junction threshold: least junction probability of a pair of segments (0, 1].");
-DEFINE_bool(choose_by_end_likelihood, kDefaults.junctions.choose_by_end_likelihood,
-            "Junctions: choose between conflicting junctions by the log-likelihood of the end-points they "
-            "explain (not the sum of pair probabilities).");
-DEFINE_double(acute_shortfall_px, kDefaults.junctions.acute_shortfall_px,
-              "Junctions: an L contact's end-point shortfall is reduced by this times (1 / sin(angle) - 1) "
-              "before eq. (5), px (0: off).");
-DEFINE_double(match_max_distance, kDefaults.matching.max_epipolar_distance_px,
-              "R: largest distance, px, of a junction from its partner's epipolar line (used with "
-              "--match_pose_band=false).");
-DEFINE_bool(match_pose_band, kDefaults.matching.use_pose_band,
-            "Set each pair's search band from the odometry noise model of sequence.yaml instead of R.");
-DEFINE_double(match_band_sigmas, kDefaults.matching.band_sigmas,
-              "Width of the search band in standard deviations of the epipolar distance.");
-DEFINE_bool(match_cheirality, kDefaults.matching.use_cheirality,
-            "Reject pairs that would triangulate behind either camera.");
-DEFINE_double(match_tau1, kDefaults.matching.tau1, "tau1 of rule (38): least similarity of a match.");
-DEFINE_double(match_tau2, kDefaults.matching.tau2,
-              "tau2 of rule (38): how much the best candidate must beat the second, both ways.");
-DEFINE_string(match_rho1, kDefaults.matching.rho1_kind == sfm::Rho1Kind::kLinear ? "linear" : "exponential",
-              "rho1 of eq. (31): 'exponential' or 'linear' (more tolerant of a poor epipolar geometry).");
-DEFINE_bool(match_refine, kDefaults.matching.refine_geometry,
-            "Verify each pair's matches: refine the pair's pose from its first-pass matches (odometry as prior), "
-            "then match again in the refined geometry's band (docs/matching.md).");
-DEFINE_double(match_refine_gate, kDefaults.matching.refine_gate_sigmas,
-              "Band of the guided second pass, in standard deviations of the refined epipolar distance.");
-DEFINE_int32(match_refine_min_inliers, kDefaults.matching.refine_min_inliers,
-             "Fewest supporting first-pass matches for the refined pose; fewer: keep the first pass.");
-DEFINE_bool(match_refine_constrain, kDefaults.matching.refine_constrain_to_prior_gate,
-            "When the refined pose lies beyond the odometry's 99 % ellipsoid, take the best pose inside it before "
-            "keeping the first pass (docs/matching.md, \"Refinement fall-backs\").");
-DEFINE_bool(match_topology, kDefaults.matching.use_topology,
-            "Match on sigma (junction topology, section 4.2) rather than on plain rho (34).");
-DEFINE_bool(
-    match_partial, kDefaults.matching.match_partial,
-    "With --match_refine: in the guided pass, match junctions of k and k + 1 segments left unmatched through "
-    "their best common subset (partial correspondence, docs/matching.md).");
-DEFINE_bool(
-    match_partial_rule_a, kDefaults.matching.partial_rule_not_line_half,
-    "With --match_partial: rule (a), the left-out segment may not be half of a line through the junction.");
+// The detector and matching flags (--segments, --endpoint_lambda, --match_*, ...) are shared with the other
+// apps: sfm_app/flags/detector_flags.h.
 
 DEFINE_bool(bundle_adjustment, kDefaults.bundle_adjustment,
             "Refine poses, points and lines with the Ceres bundle adjustment (false: outputs use the odometry).");
@@ -179,36 +126,11 @@ bool OptionsFromFlags(sfm::PipelineOptions* options, std::string* error) {
   options->sequence_dir = FLAGS_sequence;
   options->output_dir = FLAGS_output;
   options->show_progress = FLAGS_progress;
-  if (FLAGS_segments == "fast") {
-    options->segments.method = sfm::SegmentMethod::kFast;
-  } else if (FLAGS_segments == "reference") {
-    options->segments.method = sfm::SegmentMethod::kReference;
-  } else {
-    *error = "--segments must be 'fast' or 'reference', not '" + FLAGS_segments + "'";
-    return false;
-  }
-  options->segments.fast.branches_at_free_ends = FLAGS_branches_at_free_ends;
-  options->segments.fast.bridges_past_corners = FLAGS_bridges_past_corners;
-  options->segments.fast.branches_to_far_corners = FLAGS_branches_to_far_corners;
-  const sfm::EndpointModel endpoint_model{FLAGS_endpoint_lambda, FLAGS_endpoint_mu};
-  options->junctions.endpoint_model = endpoint_model;
-  options->junctions.min_probability = FLAGS_junction_min_probability;
-  options->junctions.acute_shortfall_px = FLAGS_acute_shortfall_px;
-  options->junctions.choose_by_end_likelihood = FLAGS_choose_by_end_likelihood;
-  options->matching.endpoint_model = endpoint_model;
-  options->matching.max_epipolar_distance_px = FLAGS_match_max_distance;
-  options->matching.tau1 = FLAGS_match_tau1;
-  options->matching.tau2 = FLAGS_match_tau2;
-  options->matching.use_topology = FLAGS_match_topology;
-  options->matching.use_pose_band = FLAGS_match_pose_band;
-  options->matching.band_sigmas = FLAGS_match_band_sigmas;
-  options->matching.use_cheirality = FLAGS_match_cheirality;
-  options->matching.refine_geometry = FLAGS_match_refine;
-  options->matching.refine_gate_sigmas = FLAGS_match_refine_gate;
-  options->matching.refine_min_inliers = FLAGS_match_refine_min_inliers;
-  options->matching.refine_constrain_to_prior_gate = FLAGS_match_refine_constrain;
-  options->matching.match_partial = FLAGS_match_partial;
-  options->matching.partial_rule_not_line_half = FLAGS_match_partial_rule_a;
+  if (!sfm::SegmentMethodFromFlags(&options->segments, error)) return false;
+  sfm::SegmentBranchesFromFlags(&options->segments.fast);
+  sfm::JunctionChoiceFromFlags(&options->junctions);
+  if (!sfm::MatchingFromFlags(&options->junctions, &options->matching, error)) return false;
+  sfm::MatchingRefineFromFlags(&options->matching);
   options->bundle_adjustment = FLAGS_bundle_adjustment;
   options->extend_tracks = FLAGS_extend_tracks;
   if (FLAGS_extend_tracks_stage == "inside") {
@@ -277,14 +199,6 @@ bool OptionsFromFlags(sfm::PipelineOptions* options, std::string* error) {
   } else {
     *error =
         "--retriangulated_landmarks must be 'add' or 'replace', not '" + FLAGS_retriangulated_landmarks + "'";
-    return false;
-  }
-  if (FLAGS_match_rho1 == "exponential") {
-    options->matching.rho1_kind = sfm::Rho1Kind::kExponential;
-  } else if (FLAGS_match_rho1 == "linear") {
-    options->matching.rho1_kind = sfm::Rho1Kind::kLinear;
-  } else {
-    *error = "--match_rho1 must be 'exponential' or 'linear', not '" + FLAGS_match_rho1 + "'";
     return false;
   }
   return true;

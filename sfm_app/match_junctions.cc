@@ -36,9 +36,9 @@
 #include "frontend/sequence/sequence.h"
 #include "frontend/util/atomic_file.h"
 #include "sfm_app/evaluation/match_overlay.h"
+#include "sfm_app/flags/detector_flags.h"
 
 namespace {
-const sfm::JunctionDetectorOptions kJunctionDefaults;
 const sfm::MatchingOptions kMatchingDefaults;
 }  // namespace
 
@@ -50,31 +50,13 @@ DEFINE_string(image, "", "Write the side-by-side match picture here (.png).");
 DEFINE_int32(image_scale, 1, "Enlarge the picture this many times (1..4).");
 DEFINE_string(fundamental, "odometry",
               "Where F comes from: 'odometry' (odometry.txt, as junction_sfm) or 'groundtruth' (groundtruth.txt).");
-DEFINE_string(segments, "fast", "Line segment detector: 'fast' or 'reference'.");
-DEFINE_double(endpoint_lambda, kJunctionDefaults.endpoint_model.lambda,
-              "End-point model eq. (5): decay, 1/px, of a detected end-point beyond the true one (detection and matching).");
-DEFINE_double(endpoint_mu, kJunctionDefaults.endpoint_model.mu,
-              "End-point model eq. (5): decay, 1/px, of a detected end-point short of the true one (detection and matching).");
-DEFINE_double(junction_min_probability, kJunctionDefaults.min_probability,
-              "Junction threshold: least junction probability of a pair of segments, (0, 1].");
-DEFINE_double(match_max_distance, kMatchingDefaults.max_epipolar_distance_px,
-              "R: largest distance, px, of a junction from its partner's epipolar line.");
-DEFINE_double(match_tau1, kMatchingDefaults.tau1, "tau1 of rule (38): least similarity of a match.");
-DEFINE_double(match_tau2, kMatchingDefaults.tau2, "tau2 of rule (38): how much the best candidate must beat the second, both ways.");
-DEFINE_string(match_rho1, kMatchingDefaults.rho1_kind == sfm::Rho1Kind::kLinear ? "linear" : "exponential",
-              "rho1 of eq. (31): 'exponential' or 'linear' (footnote 10).");
+// The detector and matching flags shared with the other apps (--segments, --endpoint_lambda,
+// --match_tau1, ...): sfm_app/flags/detector_flags.h.
 DEFINE_bool(match_pose, true,
             "Match with the pair's pose and sequence.yaml's odometry noise (PairGeometryFromOdometry): per-pair "
             "epipolar band and cheirality. false: F only, with the fixed R of --match_max_distance.");
-DEFINE_bool(match_pose_band, kMatchingDefaults.use_pose_band,
-            "With --match_pose: band_sigmas x the epipolar distance's spread under the pose noise, not R.");
-DEFINE_bool(match_cheirality, kMatchingDefaults.use_cheirality,
-            "With --match_pose: reject pairs that triangulate behind either camera.");
-DEFINE_double(match_band_sigmas, kMatchingDefaults.band_sigmas, "With --match_pose: width of the band in sigmas.");
 DEFINE_double(match_location_sigma, kMatchingDefaults.location_sigma_px,
               "With --match_pose: standard deviation of a junction location, px.");
-DEFINE_bool(match_topology, kMatchingDefaults.use_topology,
-            "Match on sigma (junction topology, section 4.2) rather than on plain rho (34).");
 
 namespace {
 
@@ -91,34 +73,9 @@ std::string ParentOf(const std::string& path) {
 // Flags -> options; false with a one-line message for a bad value.
 bool OptionsFromFlags(sfm::SegmentDetectorOptions* segments, sfm::JunctionDetectorOptions* junctions,
                       sfm::MatchingOptions* matching, std::string* error) {
-  if (FLAGS_segments == "fast") {
-    segments->method = sfm::SegmentMethod::kFast;
-  } else if (FLAGS_segments == "reference") {
-    segments->method = sfm::SegmentMethod::kReference;
-  } else {
-    *error = "--segments must be 'fast' or 'reference', not '" + FLAGS_segments + "'";
-    return false;
-  }
-  const sfm::EndpointModel model{FLAGS_endpoint_lambda, FLAGS_endpoint_mu};
-  junctions->endpoint_model = model;
-  junctions->min_probability = FLAGS_junction_min_probability;
-  matching->endpoint_model = model;
-  matching->max_epipolar_distance_px = FLAGS_match_max_distance;
-  matching->tau1 = FLAGS_match_tau1;
-  matching->tau2 = FLAGS_match_tau2;
-  matching->use_topology = FLAGS_match_topology;
-  matching->use_pose_band = FLAGS_match_pose_band;
-  matching->use_cheirality = FLAGS_match_cheirality;
-  matching->band_sigmas = FLAGS_match_band_sigmas;
+  if (!sfm::SegmentMethodFromFlags(segments, error)) return false;
+  if (!sfm::MatchingFromFlags(junctions, matching, error)) return false;
   matching->location_sigma_px = FLAGS_match_location_sigma;
-  if (FLAGS_match_rho1 == "exponential") {
-    matching->rho1_kind = sfm::Rho1Kind::kExponential;
-  } else if (FLAGS_match_rho1 == "linear") {
-    matching->rho1_kind = sfm::Rho1Kind::kLinear;
-  } else {
-    *error = "--match_rho1 must be 'exponential' or 'linear', not '" + FLAGS_match_rho1 + "'";
-    return false;
-  }
   for (const sfm::Status& check : {segments->Check(), junctions->Check(), matching->Check()}) {
     if (!check.ok()) {
       *error = check.message();

@@ -2,6 +2,8 @@
 
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
+#include <sstream>
 
 namespace sfm::testing {
 namespace fs = std::filesystem;
@@ -23,6 +25,21 @@ std::string MakeScratchDir(const std::string& name) {
 std::string SharedDataDir(const std::string& name) {
   const fs::path dir = fs::path(SourceDir()) / ".." / "shared" / "data" / name;
   return fs::is_directory(dir) ? fs::canonical(dir).string() : std::string();
+}
+
+std::string ReadFile(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream bytes;
+  bytes << in.rdbuf();
+  return bytes.str();
+}
+
+std::map<std::string, std::string> ReadTree(const std::string& root) {
+  std::map<std::string, std::string> files;
+  for (const auto& entry : fs::recursive_directory_iterator(root)) {
+    if (entry.is_regular_file()) files[fs::relative(entry.path(), root).string()] = ReadFile(entry.path().string());
+  }
+  return files;
 }
 
 }  // namespace sfm::testing

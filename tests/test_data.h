@@ -1,6 +1,8 @@
-// Where tests find their inputs: the repository, a scratch directory, and ../shared/data.
+// Where tests find their inputs (the repository, a scratch directory, ../shared/data) and how they
+// read files.
 #pragma once
 
+#include <map>
 #include <string>
 
 namespace sfm::testing {
@@ -13,5 +15,11 @@ std::string MakeScratchDir(const std::string& name);
 
 // ../shared/data/<name> beside the repository, or "" when it is absent (tests then GTEST_SKIP).
 std::string SharedDataDir(const std::string& name);
+
+// The bytes of the file at `path` ("" when it cannot be read).
+std::string ReadFile(const std::string& path);
+
+// Relative path -> bytes of every regular file under `root`.
+std::map<std::string, std::string> ReadTree(const std::string& root);
 
 }  // namespace sfm::testing

@@ -26,12 +26,7 @@ void WriteText(const fs::path& path, const std::string& text) {
   std::ofstream(path) << text;
 }
 
-std::string ReadText(const fs::path& path) {
-  std::ifstream in(path);
-  std::stringstream buffer;
-  buffer << in.rdbuf();
-  return buffer.str();
-}
+using testing::ReadFile;
 
 // A valid three-frame sequence: small images, odometry moving forward, ground truth equal to it.
 void WriteValidSequence(const fs::path& dir) {
@@ -71,7 +66,7 @@ RunResult RunJunctionSfm(const std::string& arguments, const fs::path& scratch) 
   const int status = std::system(command.c_str());
   RunResult result;
   result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  result.stderr_text = ReadText(err);
+  result.stderr_text = ReadFile(err);
   return result;
 }
 
@@ -108,7 +103,7 @@ TEST_F(JunctionSfmBadInput, ValidSequenceRunsAndWritesTrajectories) {
   EXPECT_TRUE(fs::exists(output_ / "trajectory_odometry.txt"));
   EXPECT_TRUE(fs::exists(output_ / "trajectory_groundtruth.txt"));
   EXPECT_TRUE(fs::exists(output_ / "metrics.json"));
-  EXPECT_THAT(ReadText(output_ / "metrics.json"), HasSubstr("\"frames\": 3"));
+  EXPECT_THAT(ReadFile(output_ / "metrics.json"), HasSubstr("\"frames\": 3"));
 }
 
 TEST_F(JunctionSfmBadInput, MissingDirectory) {
@@ -132,14 +127,14 @@ TEST_F(JunctionSfmBadInput, ImageOfTheWrongSize) {
 }
 
 TEST_F(JunctionSfmBadInput, YamlWithMissingKey) {
-  std::string yaml = ReadText(sequence_ / "sequence.yaml");
+  std::string yaml = ReadFile(sequence_ / "sequence.yaml");
   yaml.replace(yaml.find("image_width: 64\n"), 16, "");
   WriteText(sequence_ / "sequence.yaml", yaml);
   ExpectOneLineError({"sequence.yaml", "image_width"});
 }
 
 TEST_F(JunctionSfmBadInput, YamlWithMalformedKey) {
-  std::string yaml = ReadText(sequence_ / "sequence.yaml");
+  std::string yaml = ReadFile(sequence_ / "sequence.yaml");
   yaml.replace(yaml.find("rows: 3\n   cols: 3"), 18, "rows: 2\n   cols: 3");
   yaml.replace(yaml.find("50., 0., 32., 0., 50., 24., 0., 0., 1."), 38, "50., 0., 32., 0., 50., 24.");
   WriteText(sequence_ / "sequence.yaml", yaml);

@@ -22,12 +22,7 @@ namespace fs = std::filesystem;
 using ::testing::HasSubstr;
 using ::testing::StartsWith;
 
-std::string ReadText(const fs::path& path) {
-  std::ifstream in(path);
-  std::stringstream buffer;
-  buffer << in.rdbuf();
-  return buffer.str();
-}
+using testing::ReadFile;
 
 class PipelineOnGeneratedRoom : public ::testing::Test {
  protected:
@@ -64,7 +59,7 @@ TEST_F(PipelineOnGeneratedRoom, WritesEveryJunctionFileInTheSpecShape) {
     char name[32];
     std::snprintf(name, sizeof(name), "%06d.json", frame);
     JunctionsFile file;
-    const Status status = JunctionsFromJson(ReadText(out / "junctions" / name), name, &file);
+    const Status status = JunctionsFromJson(ReadFile(out / "junctions" / name), name, &file);
     ASSERT_TRUE(status.ok()) << status.message();
     EXPECT_EQ(file.frame, frame);
     EXPECT_EQ(file.width, 640);
@@ -77,9 +72,9 @@ TEST_F(PipelineOnGeneratedRoom, WritesMatchesTracksAndTrajectories) {
   for (int frame = 0; frame + 1 < 30; ++frame) {
     char name[32];
     std::snprintf(name, sizeof(name), "%06d_%06d.csv", frame, frame + 1);
-    EXPECT_THAT(ReadText(out / "matches" / name), StartsWith("id_a,id_b,similarity\n")) << name;
+    EXPECT_THAT(ReadFile(out / "matches" / name), StartsWith("id_a,id_b,similarity\n")) << name;
   }
-  EXPECT_THAT(ReadText(out / "tracks.csv"), StartsWith("track_id,frame,junction_id\n"));
+  EXPECT_THAT(ReadFile(out / "tracks.csv"), StartsWith("track_id,frame,junction_id\n"));
   for (const char* name : {"trajectory_odometry.txt", "trajectory_refined.txt", "trajectory_groundtruth.txt"}) {
     std::vector<StampedPose> poses;
     ASSERT_TRUE(ReadTumTrajectory((out / name).string(), &poses).ok()) << name;
@@ -96,7 +91,7 @@ TEST_F(PipelineOnGeneratedRoom, WritesWireframeColmapModelAndEveryMetricsKey) {
   for (const char* name : {"cameras.txt", "images.txt", "points3D.txt"}) {
     EXPECT_TRUE(fs::exists(out / "colmap" / name)) << name;
   }
-  const std::string metrics = ReadText(out / "metrics.json");
+  const std::string metrics = ReadFile(out / "metrics.json");
   for (const char* key :
        {"frames", "junctions_per_frame", "matches_per_pair", "tracks", "points3d", "lines3d",
         "ate_odometry_m", "ate_refined_m", "rpe_odometry", "rpe_refined", "time_s", "ate_sim3_odometry_m",

@@ -39,12 +39,7 @@ namespace fs = std::filesystem;
 using ::testing::HasSubstr;
 using ::testing::Not;
 
-std::string ReadText(const fs::path& path) {
-  std::ifstream in(path);
-  std::stringstream buffer;
-  buffer << in.rdbuf();
-  return buffer.str();
-}
+using testing::ReadFile;
 
 Pose3 BasePose(double x, double y, double yaw) {
   return Pose3(Eigen::Matrix3d(Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ())), Eigen::Vector3d(x, y, 0));
@@ -135,7 +130,7 @@ Status RunOn(const fs::path& sequence_dir, const fs::path& output_dir, PipelineR
   std::vector<StampedPose> refined;
   EXPECT_TRUE(ReadTumTrajectory((output_dir / "trajectory_refined.txt").string(), &refined).ok());
   EXPECT_EQ(refined.size(), n);
-  const std::string metrics = ReadText(output_dir / "metrics.json");
+  const std::string metrics = ReadFile(output_dir / "metrics.json");
   for (const char* key : {"frames", "junctions_per_frame", "matches_per_pair", "tracks", "points3d", "lines3d",
                           "unobservable_lines", "ate_odometry_m", "ate_refined_m", "rpe_odometry",
                           "rpe_refined", "time_s"}) {
@@ -154,6 +149,13 @@ class BackendEndToEnd : public ::testing::Test {
   }
   fs::path sequence_dir() const { return scratch_ / "sequence"; }
   fs::path output_dir() const { return scratch_ / "output"; }
+  // The generator's default corridor, `num_frames` frames, without truth/, into sequence_dir().
+  Status GenerateCorridor(int num_frames) const {
+    GeneratorOptions generator;
+    generator.trajectory.num_frames = num_frames;
+    generator.write_truth = false;
+    return GenerateSequence(generator, sequence_dir().string(), /*overwrite=*/true);
+  }
   fs::path scratch_;
 };
 
@@ -257,10 +259,7 @@ TEST_F(BackendEndToEnd, BlankImagesGiveNoTracks) {
 
 // Two frames of a corridor: one pair, tracks of length two at most.
 TEST_F(BackendEndToEnd, TwoFrames) {
-  GeneratorOptions generator;
-  generator.trajectory.num_frames = 2;
-  generator.write_truth = false;
-  ASSERT_TRUE(GenerateSequence(generator, sequence_dir().string(), /*overwrite=*/true).ok());
+  ASSERT_TRUE(GenerateCorridor(2).ok());
   PipelineResult result;
   const Status status = RunOn(sequence_dir(), output_dir(), &result);
   ASSERT_TRUE(status.ok()) << status.message();
@@ -269,10 +268,7 @@ TEST_F(BackendEndToEnd, TwoFrames) {
 
 // One frame: refused with a one-line message (the sequence reader needs two frames).
 TEST_F(BackendEndToEnd, OneFrameIsRefusedWithOneLine) {
-  GeneratorOptions generator;
-  generator.trajectory.num_frames = 1;
-  generator.write_truth = false;
-  ASSERT_TRUE(GenerateSequence(generator, sequence_dir().string(), /*overwrite=*/true).ok());
+  ASSERT_TRUE(GenerateCorridor(1).ok());
   PipelineResult result;
   const Status status = RunOn(sequence_dir(), output_dir(), &result);
   ASSERT_FALSE(status.ok());
@@ -282,10 +278,7 @@ TEST_F(BackendEndToEnd, OneFrameIsRefusedWithOneLine) {
 
 // No frame at all (an images.txt without entries): refused with a one-line message.
 TEST_F(BackendEndToEnd, NoFrameIsRefusedWithOneLine) {
-  GeneratorOptions generator;
-  generator.trajectory.num_frames = 2;
-  generator.write_truth = false;
-  ASSERT_TRUE(GenerateSequence(generator, sequence_dir().string(), /*overwrite=*/true).ok());
+  ASSERT_TRUE(GenerateCorridor(2).ok());
   std::ofstream(sequence_dir() / "images.txt") << "# no frame\n";
   PipelineResult result;
   const Status status = RunOn(sequence_dir(), output_dir(), &result);
@@ -296,16 +289,13 @@ TEST_F(BackendEndToEnd, NoFrameIsRefusedWithOneLine) {
 // Straight down a corridor: its long edges (wall-floor, wall-ceiling, skirting) are parallel to the
 // motion, so unobservable; they are dropped and counted in metrics.json.
 TEST_F(BackendEndToEnd, CorridorLinesParallelToTheMotionAreCounted) {
-  GeneratorOptions generator;
-  generator.trajectory.num_frames = 12;
-  generator.write_truth = false;
-  ASSERT_TRUE(GenerateSequence(generator, sequence_dir().string(), /*overwrite=*/true).ok());
+  ASSERT_TRUE(GenerateCorridor(12).ok());
   PipelineResult result;
   const Status status = RunOn(sequence_dir(), output_dir(), &result);
   ASSERT_TRUE(status.ok()) << status.message();
   EXPECT_GT(result.unobservable_lines, 0);
   EXPECT_GT(result.landmarks.lines.size(), 0u);
-  EXPECT_THAT(ReadText(output_dir() / "metrics.json"),
+  EXPECT_THAT(ReadFile(output_dir() / "metrics.json"),
               HasSubstr("\"unobservable_lines\": " + std::to_string(result.unobservable_lines) + ","));
   // What is kept is not along the path (x): such a line would have no depth.
   int along_path = 0;
@@ -352,7 +342,7 @@ TEST_F(BackendEndToEnd, FloorPriorCorrectsTheOdometryScaleOnlyWithTheBaseOnTheFl
   EXPECT_NEAR(odometry_scale, 1 / 1.03, 0.01);
   EXPECT_TRUE(result.bundle_adjustment.floor_prior_used);
   EXPECT_NEAR(refined_scale, 1.0, 0.01);
-  EXPECT_THAT(ReadText(output_dir() / "metrics.json"), HasSubstr("\"floor_prior\": {\"used\": true"));
+  EXPECT_THAT(ReadFile(output_dir() / "metrics.json"), HasSubstr("\"floor_prior\": {\"used\": true"));
 
   Sequence sequence;
   ASSERT_TRUE(ReadSequence(sequence_dir().string(), &sequence).ok());
@@ -367,7 +357,7 @@ TEST_F(BackendEndToEnd, FloorPriorCorrectsTheOdometryScaleOnlyWithTheBaseOnTheFl
   EXPECT_FALSE(result.bundle_adjustment.floor_prior_used);
   EXPECT_THAT(result.bundle_adjustment.floor_prior_report, HasSubstr("not on the floor"));
   EXPECT_NEAR(not_on_floor_scale, 1 / 1.03, 0.01);
-  EXPECT_THAT(ReadText(output_dir() / "metrics.json"), HasSubstr("\"floor_prior\": {\"used\": false"));
+  EXPECT_THAT(ReadFile(output_dir() / "metrics.json"), HasSubstr("\"floor_prior\": {\"used\": false"));
 }
 
 // Track extension (--extend_tracks, track_extension.h) on a generated 30-frame corridor (seed 2):

@@ -15,12 +15,7 @@
 namespace sfm {
 namespace {
 
-std::string ReadText(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
+using testing::ReadFile;
 
 std::vector<std::string> Lines(const std::string& text) {
   std::vector<std::string> lines;
@@ -30,13 +25,13 @@ std::vector<std::string> Lines(const std::string& text) {
 }
 
 void ExpectSameLines(const std::string& path, const std::string& expected) {
-  const std::vector<std::string> actual_lines = Lines(ReadText(path));
+  const std::vector<std::string> actual_lines = Lines(ReadFile(path));
   const std::vector<std::string> expected_lines = Lines(expected);
-  ASSERT_EQ(actual_lines.size(), expected_lines.size()) << path << ":\n" << ReadText(path);
+  ASSERT_EQ(actual_lines.size(), expected_lines.size()) << path << ":\n" << ReadFile(path);
   for (size_t i = 0; i < expected_lines.size(); ++i) {
     EXPECT_EQ(actual_lines[i], expected_lines[i]) << path << " line " << i + 1;
   }
-  EXPECT_EQ(ReadText(path), expected);  // and nothing between or after the lines
+  EXPECT_EQ(ReadFile(path), expected);  // and nothing between or after the lines
 }
 
 Camera TestCamera() {
@@ -127,7 +122,7 @@ struct ParsedModel {
 // The lines that are not '#' comments.
 std::vector<std::string> DataLines(const std::string& path) {
   std::vector<std::string> lines;
-  for (const std::string& line : Lines(ReadText(path))) {
+  for (const std::string& line : Lines(ReadFile(path))) {
     if (line.empty() || line[0] != '#') lines.push_back(line);
   }
   return lines;

@@ -13,12 +13,7 @@
 namespace sfm {
 namespace {
 
-std::string ReadText(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
+using testing::ReadFile;
 
 void WriteText(const std::string& path, const std::string& text) { std::ofstream(path) << text; }
 
@@ -28,7 +23,7 @@ TEST(PlyTest, WritesTheSpecHeaderAndShortestNumbers) {
   wireframe.vertices = {{0.1, -2, 3.5}, {1e-7, 0, 12345678.25}, {-0.0, 1, 2}};
   wireframe.edges = {{0, 1}, {1, 2}};
   ASSERT_TRUE(WritePly(path, wireframe).ok());
-  EXPECT_EQ(ReadText(path),
+  EXPECT_EQ(ReadFile(path),
             "ply\n"
             "format ascii 1.0\n"
             "element vertex 3\n"

@@ -15,27 +15,11 @@ namespace sfm {
 namespace {
 namespace fs = std::filesystem;
 
-std::map<std::string, std::string> ReadTree(const fs::path& root) {
-  std::map<std::string, std::string> files;
-  for (const auto& entry : fs::recursive_directory_iterator(root)) {
-    if (!entry.is_regular_file()) continue;
-    std::ifstream in(entry.path(), std::ios::binary);
-    std::ostringstream bytes;
-    bytes << in.rdbuf();
-    files[fs::relative(entry.path(), root).string()] = bytes.str();
-  }
-  return files;
-}
-
-std::string ReadText(const fs::path& path) {
-  std::ifstream in(path);
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
+using testing::ReadFile;
+using testing::ReadTree;
 
 TEST(DefaultSequenceTest, ScriptRunsMakeSequenceWithDefaultOptions) {
-  const std::string script = ReadText(fs::path(testing::SourceDir()) / "sequences" / "regenerate_default.sh");
+  const std::string script = ReadFile(fs::path(testing::SourceDir()) / "sequences" / "regenerate_default.sh");
   ASSERT_FALSE(script.empty());
   // The make_sequence command line: only --output and --overwrite, so the defaults apply.
   const size_t at = script.find("bin/make_sequence\"");

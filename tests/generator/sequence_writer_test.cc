@@ -41,18 +41,7 @@ std::string Generate(const GeneratorOptions& options, const std::string& name) {
   return dir;
 }
 
-// Relative path -> bytes of every file under `root`.
-std::map<std::string, std::string> ReadTree(const std::string& root) {
-  std::map<std::string, std::string> files;
-  for (const auto& entry : fs::recursive_directory_iterator(root)) {
-    if (!entry.is_regular_file()) continue;
-    std::ifstream in(entry.path(), std::ios::binary);
-    std::ostringstream bytes;
-    bytes << in.rdbuf();
-    files[fs::relative(entry.path(), root).string()] = bytes.str();
-  }
-  return files;
-}
+using testing::ReadTree;
 
 TEST(SequenceWriterTest, SameSeedSameBytes) {
   const auto a = ReadTree(Generate(SmallOptions(), "generator_same_a"));

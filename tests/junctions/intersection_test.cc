@@ -4,17 +4,14 @@
 
 #include <gtest/gtest.h>
 
+#include "tests/test_segments.h"
+
 namespace sfm {
 namespace {
 
 constexpr double kDeg = M_PI / 180.0;
 
-LineSegment Segment(double x0, double y0, double x1, double y1) {
-  LineSegment s;
-  s.p0 = Eigen::Vector2d(x0, y0);
-  s.p1 = Eigen::Vector2d(x1, y1);
-  return s;
-}
+using testing::Segment;
 
 TEST(IntersectionTest, LineFormOfEquations1And2) {
   // y = 2 from left to right: n = (1, 0), q = (0, 1), rho = 2.

@@ -6,15 +6,12 @@
 #include <cmath>
 #include <random>
 
+#include "tests/test_segments.h"
+
 namespace sfm {
 namespace {
 
-LineSegment Segment(double x0, double y0, double x1, double y1) {
-  LineSegment s;
-  s.p0 = Eigen::Vector2d(x0, y0);
-  s.p1 = Eigen::Vector2d(x1, y1);
-  return s;
-}
+using testing::Segment;
 
 // A segment pointing away from `center` at image angle angle_deg (y down), stopping `gap` px short
 // of it and `gap + 40` px long; the far end-point first.

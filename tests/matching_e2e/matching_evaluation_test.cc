@@ -11,16 +11,12 @@
 #include "frontend/geometry/epipolar.h"
 #include "frontend/segments/segment_evaluation.h"
 #include "tests/test_data.h"
+#include "tests/test_segments.h"
 
 namespace sfm {
 namespace {
 
-LineSegment Segment(double x0, double y0, double x1, double y1) {
-  LineSegment s;
-  s.p0 = Eigen::Vector2d(x0, y0);
-  s.p1 = Eigen::Vector2d(x1, y1);
-  return s;
-}
+using testing::Segment;
 
 // F of a camera translated along +x (K = identity-like, f = 500, principal point (320, 240)):
 // epipolar lines are horizontal, x2^T F x1 = 0 means equal y.

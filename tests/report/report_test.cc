@@ -111,12 +111,7 @@ struct HandBuiltRun {
   }
 };
 
-std::string ReadFile(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
+using testing::ReadFile;
 
 // Decodes every data URI of the page; returns how many there were (test fails on a bad one).
 int CheckEmbeddedImages(const std::string& html) {

@@ -5,16 +5,12 @@
 #include <gtest/gtest.h>
 
 #include "tests/test_data.h"
+#include "tests/test_segments.h"
 
 namespace sfm {
 namespace {
 
-LineSegment Segment(double x0, double y0, double x1, double y1) {
-  LineSegment s;
-  s.p0 = Eigen::Vector2d(x0, y0);
-  s.p1 = Eigen::Vector2d(x1, y1);
-  return s;
-}
+using testing::Segment;
 
 TEST(SegmentEvaluationTest, CoverageIsTheUnionOfCompatibleDetections) {
   const LineSegments truth = {Segment(0, 0, 100, 0)};

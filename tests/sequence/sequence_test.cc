@@ -109,6 +109,14 @@ class SequenceTest : public ::testing::Test {
     ExpectError(Read(), with_file);
   }
 
+  // The valid sequence.yaml with `key` set to `value`.
+  void ExpectYamlValueError(const std::string& key, const std::string& value,
+                            const std::vector<std::string>& pieces) {
+    auto keys = ValidYamlKeys();
+    keys[key] = value;
+    ExpectYamlError(keys, pieces);
+  }
+
   std::string dir_;
   Sequence sequence_;
 };
@@ -216,69 +224,55 @@ TEST_F(SequenceTest, MissingKeyFails) {
 }
 
 TEST_F(SequenceTest, CameraMatrixOfWrongShapeFails) {
-  auto keys = ValidYamlKeys();
-  keys["camera_matrix"] = OpenCvMatrix(2, 3, "50, 0, 31.5, 0, 50, 23.5");
-  ExpectYamlError(keys, {"key 'camera_matrix' must be 3x3, found 2x3"});
+  ExpectYamlValueError("camera_matrix", OpenCvMatrix(2, 3, "50, 0, 31.5, 0, 50, 23.5"),
+                       {"key 'camera_matrix' must be 3x3, found 2x3"});
 }
 
 TEST_F(SequenceTest, CameraMatrixThatIsNotAMatrixFails) {
-  auto keys = ValidYamlKeys();
-  keys["camera_matrix"] = "50";
-  ExpectYamlError(keys, {"key 'camera_matrix' must be a 3x3 !!opencv-matrix"});
+  ExpectYamlValueError("camera_matrix", "50", {"key 'camera_matrix' must be a 3x3 !!opencv-matrix"});
 }
 
 TEST_F(SequenceTest, MatrixDataOfWrongLengthFails) {
-  auto keys = ValidYamlKeys();
-  keys["distortion_coefficients"] = OpenCvMatrix(1, 5, "-0.1, 0.01");
-  ExpectYamlError(keys, {"key 'distortion_coefficients' is not a valid !!opencv-matrix"});
+  ExpectYamlValueError("distortion_coefficients", OpenCvMatrix(1, 5, "-0.1, 0.01"),
+                       {"key 'distortion_coefficients' is not a valid !!opencv-matrix"});
 }
 
 TEST_F(SequenceTest, NonIntegerImageWidthFails) {
-  auto keys = ValidYamlKeys();
-  keys["image_width"] = "64.5";
-  ExpectYamlError(keys, {"key 'image_width' must be an integer"});
+  ExpectYamlValueError("image_width", "64.5", {"key 'image_width' must be an integer"});
 }
 
 TEST_F(SequenceTest, NonPositiveImageHeightFails) {
-  auto keys = ValidYamlKeys();
-  keys["image_height"] = "0";
-  ExpectYamlError(keys, {"key 'image_height' must be positive, found 0"});
+  ExpectYamlValueError("image_height", "0", {"key 'image_height' must be positive, found 0"});
 }
 
 TEST_F(SequenceTest, NonFiniteNumberFails) {
-  auto keys = ValidYamlKeys();
-  keys["camera_matrix"] = OpenCvMatrix(3, 3, "50, 0, .nan, 0, 50, 23.5, 0, 0, 1");
-  ExpectYamlError(keys, {"key 'camera_matrix' entry (0,2) is not finite"});
+  ExpectYamlValueError("camera_matrix", OpenCvMatrix(3, 3, "50, 0, .nan, 0, 50, 23.5, 0, 0, 1"),
+                       {"key 'camera_matrix' entry (0,2) is not finite"});
 }
 
 TEST_F(SequenceTest, NonPositiveFocalFails) {
-  auto keys = ValidYamlKeys();
-  keys["camera_matrix"] = OpenCvMatrix(3, 3, "50, 0, 31.5, 0, -50, 23.5, 0, 0, 1");
-  ExpectYamlError(keys, {"key 'camera_matrix' must have positive focal lengths", "fy -50"});
+  ExpectYamlValueError("camera_matrix", OpenCvMatrix(3, 3, "50, 0, 31.5, 0, -50, 23.5, 0, 0, 1"),
+                       {"key 'camera_matrix' must have positive focal lengths", "fy -50"});
 }
 
 TEST_F(SequenceTest, CameraMatrixWithSkewFails) {
-  auto keys = ValidYamlKeys();
-  keys["camera_matrix"] = OpenCvMatrix(3, 3, "50, 0.5, 31.5, 0, 50, 23.5, 0, 0, 1");
-  ExpectYamlError(keys, {"key 'camera_matrix' must have the form (fx 0 cx; 0 fy cy; 0 0 1)"});
+  ExpectYamlValueError("camera_matrix", OpenCvMatrix(3, 3, "50, 0.5, 31.5, 0, 50, 23.5, 0, 0, 1"),
+                       {"key 'camera_matrix' must have the form (fx 0 cx; 0 fy cy; 0 0 1)"});
 }
 
 TEST_F(SequenceTest, TBaseCameraWithNonRotationFails) {
-  auto keys = ValidYamlKeys();
-  keys["T_base_camera"] = OpenCvMatrix(4, 4, "2, 0, 0, 0, 0, 2, 0, 0, 0, 0, 2, 0, 0, 0, 0, 1");
-  ExpectYamlError(keys, {"key 'T_base_camera' rotation part is not a rotation"});
+  ExpectYamlValueError("T_base_camera", OpenCvMatrix(4, 4, "2, 0, 0, 0, 0, 2, 0, 0, 0, 0, 2, 0, 0, 0, 0, 1"),
+                       {"key 'T_base_camera' rotation part is not a rotation"});
 }
 
 TEST_F(SequenceTest, TBaseCameraWithReflectionFails) {
-  auto keys = ValidYamlKeys();
-  keys["T_base_camera"] = OpenCvMatrix(4, 4, "-1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1");
-  ExpectYamlError(keys, {"key 'T_base_camera' rotation part is not a rotation", "det R = -1"});
+  ExpectYamlValueError("T_base_camera", OpenCvMatrix(4, 4, "-1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1"),
+                       {"key 'T_base_camera' rotation part is not a rotation", "det R = -1"});
 }
 
 TEST_F(SequenceTest, NonPositiveOdometrySigmaFails) {
-  auto keys = ValidYamlKeys();
-  keys["odometry_rotation_sigma"] = "-0.01";
-  ExpectYamlError(keys, {"key 'odometry_rotation_sigma' must be positive"});
+  ExpectYamlValueError("odometry_rotation_sigma", "-0.01",
+                       {"key 'odometry_rotation_sigma' must be positive"});
 }
 
 TEST_F(SequenceTest, EmptyImagesTxtFails) {

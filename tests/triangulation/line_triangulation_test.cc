@@ -14,6 +14,7 @@ namespace sfm {
 namespace {
 
 using testing::DistanceToLine;
+using testing::ForwardCameras;
 using testing::LineAngle;
 using testing::LookAt;
 using testing::PixelNoise;
@@ -21,14 +22,6 @@ using testing::Project;
 using testing::TestK;
 
 constexpr double kRadiansPerDegree = 3.14159265358979323846 / 180;
-
-// As in point_triangulation_test.cc: five cameras 0.4 m apart along x, 1 m high, looking ahead.
-std::vector<Pose3> ForwardCameras() {
-  std::vector<Pose3> cameras;
-  for (int k = 0; k < 5; ++k)
-    cameras.push_back(LookAt(Eigen::Vector3d(0.4 * k, 0, 1), Eigen::Vector3d(10, 0, 1)));
-  return cameras;
-}
 
 // The junction segment from `junction` to `far_end` as each camera sees it.
 std::vector<LineView> Observe(const std::vector<Pose3>& cameras, const Eigen::Vector3d& junction,

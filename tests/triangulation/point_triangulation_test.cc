@@ -13,21 +13,13 @@
 namespace sfm {
 namespace {
 
+using testing::ForwardCameras;
 using testing::LookAt;
 using testing::PixelNoise;
 using testing::Project;
 using testing::TestK;
 
 constexpr double kDegreesPerRadian = 180 / 3.14159265358979323846;
-
-// Five cameras of a robot driving 1.6 m along x at 1 m height, looking ahead, and a point ahead to
-// the left as a corridor wall's junction would be.
-std::vector<Pose3> ForwardCameras() {
-  std::vector<Pose3> cameras;
-  for (int k = 0; k < 5; ++k)
-    cameras.push_back(LookAt(Eigen::Vector3d(0.4 * k, 0, 1), Eigen::Vector3d(10, 0, 1)));
-  return cameras;
-}
 
 std::vector<PointView> Observe(const std::vector<Pose3>& cameras, const Eigen::Vector3d& point,
                                std::mt19937* random = nullptr, double sigma_px = 0) {

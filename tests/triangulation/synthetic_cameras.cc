@@ -20,6 +20,13 @@ Pose3 LookAt(const Eigen::Vector3d& centre, const Eigen::Vector3d& target) {
   return Pose3(world_R_camera, centre);
 }
 
+std::vector<Pose3> ForwardCameras() {
+  std::vector<Pose3> cameras;
+  for (int k = 0; k < 5; ++k)
+    cameras.push_back(LookAt(Eigen::Vector3d(0.4 * k, 0, 1), Eigen::Vector3d(10, 0, 1)));
+  return cameras;
+}
+
 Eigen::Vector2d Project(const Eigen::Matrix3d& K, const Pose3& world_T_camera, const Eigen::Vector3d& point) {
   return (K * (world_T_camera.Inverse() * point)).hnormalized();
 }

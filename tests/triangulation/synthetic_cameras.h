@@ -4,6 +4,7 @@
 
 #include <Eigen/Core>
 #include <random>
+#include <vector>
 
 #include "frontend/geometry/pose.h"
 
@@ -15,6 +16,9 @@ Eigen::Matrix3d TestK();
 // world_T_camera of a camera at `centre` looking at `target`, image x right and y down with the
 // world's z up (OpenCV camera frame: z forward).
 Pose3 LookAt(const Eigen::Vector3d& centre, const Eigen::Vector3d& target);
+
+// Five cameras of a robot driving 1.6 m along x (0.4 m apart) at 1 m height, looking ahead.
+std::vector<Pose3> ForwardCameras();
 
 // Undistorted pixel of a world point, K (R X + t) dehomogenised; also for a point behind the camera.
 Eigen::Vector2d Project(const Eigen::Matrix3d& K, const Pose3& world_T_camera, const Eigen::Vector3d& point);

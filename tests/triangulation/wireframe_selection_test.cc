@@ -150,6 +150,19 @@ class WireframeSelectionTest : public ::testing::Test {
     }
     return line;
   }
+  // 40 corners seen with 1 px Gaussian pixel noise (seeded), as in real images.
+  Landmarks FortyNoisyCorners() const {
+    std::mt19937 random(7);
+    std::normal_distribution<double> noise(0.0, 1.0);
+    Landmarks landmarks;
+    for (int i = 0; i < 40; ++i) {
+      landmarks.points.push_back(Point({-1.0 + 0.05 * i, 0.3 - 0.01 * i, 3.0 + 0.05 * i}));
+      for (PointObservation& observation : landmarks.points.back().observations) {
+        observation.pixel += Eigen::Vector2d(noise(random), noise(random));
+      }
+    }
+    return landmarks;
+  }
   const Eigen::Matrix3d K_ = TestK();
   std::vector<Pose3> cameras_;
 };
@@ -301,15 +314,7 @@ TEST_F(WireframeSelectionTest, ATwoViewLineIsDrawnOnlyFromAKeptPoint) {
 // corner; with the fixed 0.3 px floor alone it drops most of them, since (1 / 0.3)^2 x 7 dof is far
 // above the 0.999 quantile (24.3).
 TEST_F(WireframeSelectionTest, PixelNoiseIsEstimatedFromThePointResiduals) {
-  std::mt19937 random(7);
-  std::normal_distribution<double> noise(0.0, 1.0);
-  Landmarks landmarks;
-  for (int i = 0; i < 40; ++i) {
-    landmarks.points.push_back(Point({-1.0 + 0.05 * i, 0.3 - 0.01 * i, 3.0 + 0.05 * i}));
-    for (PointObservation& observation : landmarks.points.back().observations) {
-      observation.pixel += Eigen::Vector2d(noise(random), noise(random));
-    }
-  }
+  const Landmarks landmarks = FortyNoisyCorners();
   EXPECT_NEAR(EstimatePixelSigma(K_, cameras_, landmarks), 1.0, 0.1);
   WireframeSelectionReport estimated, fixed;
   SelectWireframeLandmarks(K_, cameras_, landmarks, WireframeOptions(), &estimated);
@@ -333,15 +338,7 @@ TEST_F(WireframeSelectionTest, PixelNoiseIsEstimatedFromThePointResiduals) {
 // = 3.0 / 2.16 x 30 / 60 = 0.69 at any noise, drift off) is still drawn. With the bound left at the
 // 0.3 px floor it would read 0.69 x 1 / 0.3 = 2.3 and be dropped.
 TEST_F(WireframeSelectionTest, DeterminationDoesNotDependOnTheEstimatedNoise) {
-  std::mt19937 random(7);
-  std::normal_distribution<double> noise(0.0, 1.0);
-  Landmarks landmarks;
-  for (int i = 0; i < 40; ++i) {
-    landmarks.points.push_back(Point({-1.0 + 0.05 * i, 0.3 - 0.01 * i, 3.0 + 0.05 * i}));
-    for (PointObservation& observation : landmarks.points.back().observations) {
-      observation.pixel += Eigen::Vector2d(noise(random), noise(random));
-    }
-  }
+  Landmarks landmarks = FortyNoisyCorners();
   landmarks.points.push_back(Point({0.5, 0.2, 30}));
   WireframeOptions options;
   options.pose_rotation_step_rad = 0;
