@@ -400,9 +400,9 @@ TEST_F(BackendEndToEnd, TrackExtensionLengthensThePointTracks) {
   EXPECT_LE(on.drift_refined->ate_m, 1.1 * off.drift_refined->ate_m);
   size_t views = 0;
   for (const JunctionTrack& track : on.tracks) views += track.views.size();
-  const std::string csv = ReadText(output_dir() / "tracks.csv");
+  const std::string csv = ReadFile(output_dir() / "tracks.csv");
   EXPECT_EQ(static_cast<size_t>(std::count(csv.begin(), csv.end(), '\n')), views + 1);
-  EXPECT_THAT(ReadText(output_dir() / "metrics.json"), HasSubstr("\"track_extension\": {\"observations_added\": "));
+  EXPECT_THAT(ReadFile(output_dir() / "metrics.json"), HasSubstr("\"track_extension\": {\"observations_added\": "));
 }
 
 }  // namespace
