@@ -100,6 +100,25 @@ DEFINE_string(
     kDefaults.retriangulated_landmarks == sfm::RetriangulatedLandmarks::kAddNew ? "add" : "replace",
     "With --retriangulate_refined: 'add' (only landmarks of tracks that had none) or 'replace' (every "
     "landmark re-triangulated).");
+DEFINE_bool(extend_tracks, kDefaults.extend_tracks,
+            "Track extension: project every point landmark into the frames its track misses and join the one "
+            "compatible junction inside its uncertainty gate, or merge the track it belongs to; by default inside "
+            "the bundle adjustment, after its first fine solve (--extend_tracks_stage).");
+DEFINE_string(extend_tracks_stage, "inside",
+              "With --extend_tracks, where it runs: 'inside' (the bundle adjustment, after its fine solve, then "
+              "two fine solves and an outlier round more), 'coarse' (inside it, on its coarse stage's poses, before its "
+              "fine solves), 'structure' (after it; the changed landmarks refined on the refined poses "
+              "held fixed) or 'resolve' (after it, then a second bundle adjustment of everything).");
+DEFINE_bool(extend_tracks_merge, kDefaults.track_extension.merge_tracks,
+            "Track extension: merge two tracks when a projection finds the other's junction.");
+DEFINE_double(extend_tracks_pixel_sigma, kDefaults.track_extension.pixel_sigma_px,
+              "Track extension: pixel noise of a junction location in the gate, pixels.");
+DEFINE_double(extend_tracks_rotation_step, kDefaults.track_extension.rotation_step_rad,
+              "Track extension: the refined poses' rotation error per frame (random walk) in the gate, radians.");
+DEFINE_double(extend_tracks_max_gate_px, kDefaults.track_extension.max_gate_px,
+              "Track extension: the largest gate radius, pixels (a wider gate is not searched).");
+DEFINE_double(extend_tracks_max_angle_deg, kDefaults.track_extension.max_angle_deg,
+              "Track extension: the largest angle between a junction segment and its predicted direction, degrees.");
 DEFINE_bool(wireframe_ba_pose_error, kDefaults.triangulation.wireframe.pose_error_from_bundle_adjustment,
             "Wireframe selection: the pose error of the determination test from bundle adjustment's own pose "
             "covariance instead of the fixed random walk.");
@@ -126,6 +145,24 @@ bool OptionsFromFlags(sfm::PipelineOptions* options, std::string* error) {
   if (!sfm::MatchingFromFlags(&options->junctions, &options->matching, error)) return false;
   sfm::MatchingRefineFromFlags(&options->matching);
   options->bundle_adjustment = FLAGS_bundle_adjustment;
+  options->extend_tracks = FLAGS_extend_tracks;
+  if (FLAGS_extend_tracks_stage == "inside") {
+    options->extend_tracks_stage = sfm::TrackExtensionStage::kInAdjustment;
+  } else if (FLAGS_extend_tracks_stage == "coarse") {
+    options->extend_tracks_stage = sfm::TrackExtensionStage::kAfterCoarse;
+  } else if (FLAGS_extend_tracks_stage == "structure") {
+    options->extend_tracks_stage = sfm::TrackExtensionStage::kAfterStructure;
+  } else if (FLAGS_extend_tracks_stage == "resolve") {
+    options->extend_tracks_stage = sfm::TrackExtensionStage::kAfterResolve;
+  } else {
+    *error = "--extend_tracks_stage must be 'inside', 'coarse', 'structure' or 'resolve', not '" + FLAGS_extend_tracks_stage + "'";
+    return false;
+  }
+  options->track_extension.pixel_sigma_px = FLAGS_extend_tracks_pixel_sigma;
+  options->track_extension.merge_tracks = FLAGS_extend_tracks_merge;
+  options->track_extension.rotation_step_rad = FLAGS_extend_tracks_rotation_step;
+  options->track_extension.max_gate_px = FLAGS_extend_tracks_max_gate_px;
+  options->track_extension.max_angle_deg = FLAGS_extend_tracks_max_angle_deg;
   options->bundle_adjustment_options.outlier_threshold_px = FLAGS_ba_outlier_threshold;
   options->bundle_adjustment_options.robust_loss_scale_px = FLAGS_ba_loss_scale;
   options->bundle_adjustment_options.observability_rounds = FLAGS_ba_observability_rounds;

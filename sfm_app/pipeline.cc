@@ -160,13 +160,49 @@ void LogFloorLandmarks(const std::string& stage, const PipelineResult& result) {
   }
 }
 
+// The track extension's counts into the result and the log.
+void RecordTrackExtension(const TrackExtensionReport& report, Clock::time_point start, PipelineResult* result) {
+  TrackExtensionSummary& summary = result->track_extension;
+  summary.ran = true;
+  summary.observations_added = report.observations_added;
+  summary.tracks_merged = report.tracks_merged;
+  summary.ambiguous = report.ambiguous;
+  summary.points_changed = static_cast<int>(report.changed_points.size());
+  summary.lines_changed = static_cast<int>(report.changed_lines.size());
+  summary.seconds = SecondsSince(start);
+  LOG(INFO) << "track extension: " << report.observations_added << " observations added, "
+            << report.tracks_merged << " tracks merged (" << report.merges_refused << " refused), "
+            << report.ambiguous << " ambiguous projections, " << report.gate_too_wide << " gates too wide, "
+            << report.no_junction << " empty, " << report.incompatible
+            << " with no compatible junction; refused merges: " << report.merge_overlap << " sharing a frame, "
+            << report.merge_disagree << " disagreeing points, " << report.merge_unexplained << " not explained by the point; " << summary.points_changed << " points and "
+            << summary.lines_changed << " lines changed; now " << result->tracks.size() << " tracks; "
+            << summary.seconds << " s";
+}
+
 // Bundle adjustment from the odometry: refined poses and landmarks.
 Status Refine(const Sequence& sequence, const PipelineOptions& options, PipelineResult* result) {
   std::vector<Pose3> world_T_base_refined;
   BundleAdjustmentSummary summary;
+  MapHook extend;
+  if (options.extend_tracks && (options.extend_tracks_stage == TrackExtensionStage::kInAdjustment ||
+                                options.extend_tracks_stage == TrackExtensionStage::kAfterCoarse)) {
+    // The track extension inside the adjustment; its later solves refine what it changed.
+    extend.when = options.extend_tracks_stage == TrackExtensionStage::kAfterCoarse ? MapHook::kAfterCoarse
+                                                                                  : MapHook::kAfterFine;
+    extend.change = [&](const std::vector<Pose3>& world_T_base, Landmarks* landmarks) {
+      const Clock::time_point start = Clock::now();
+      const Calibration& calibration = sequence.calibration;
+      TrackExtensionReport report;
+      ExtendTracks(calibration.camera.K(), calibration.camera.width, calibration.camera.height,
+                   CamerasFromBases(world_T_base, calibration.base_T_camera), result->junctions,
+                   options.track_extension, &result->tracks, landmarks, &report);
+      RecordTrackExtension(report, start, result);
+    };
+  }
   SFM_RETURN_IF_ERROR(BundleAdjust(sequence.calibration, OdometryBasePoses(sequence),
                                    options.bundle_adjustment_options, &result->landmarks, &world_T_base_refined,
-                                   &summary));
+                                   &summary, extend));
   result->unobservable_lines += summary.lines_unobservable;
   result->bundle_adjustment = summary;
   result->world_T_camera_refined = CamerasFromBases(world_T_base_refined, sequence.calibration.base_T_camera);
@@ -176,6 +212,7 @@ Status Refine(const Sequence& sequence, const PipelineOptions& options, Pipeline
             << summary.landmarks_unobservable_after_last_solve << " landmarks after the last solve, "
             << summary.observability_solves << " solves more); "
             << "RMS " << summary.point_rms_px << " px (points), " << summary.line_rms_px << " px (lines); "
+            << summary.solves << " solves, " << summary.iterations << " iterations, " << summary.time_s << " s; "
             << summary.solver_report;
   LOG(INFO) << summary.floor_prior_report
             << (summary.floor_prior_used ? "; odometry scale " + std::to_string(summary.odometry_scale) : "");
@@ -233,6 +270,85 @@ Status RetriangulateOnRefinedPoses(const Sequence& sequence, const PipelineOptio
             << summary.line_rms_px << " px (lines); " << summary.floor_prior_report
             << (summary.floor_prior_used ? "; odometry scale " + std::to_string(summary.odometry_scale) : "");
   LogFloorLandmarks("second", *result);
+  return Status::Ok();
+}
+
+// Tracks extended and merged by projecting the adjusted points into the frames they miss
+// (track_extension.h); the landmarks that gained observations are then refined alone on the
+// refined poses held fixed, by the adjustment's outlier rules (RefineLandmarksOnFixedPoses), and
+// replace their old selves. The trajectory is unchanged.
+Status ExtendTracksOnRefinedPoses(const Sequence& sequence, const PipelineOptions& options, PipelineResult* result) {
+  const Clock::time_point start = Clock::now();
+  const Calibration& calibration = sequence.calibration;
+  TrackExtensionReport report;
+  ExtendTracks(calibration.camera.K(), calibration.camera.width, calibration.camera.height,
+               result->world_T_camera_refined, result->junctions, options.track_extension, &result->tracks,
+               &result->landmarks, &report);
+  // The changed landmarks as a map of their own (every changed line's point is changed too, or
+  // joins it), refined, then put back after the unchanged ones.
+  Landmarks& map = result->landmarks;
+  std::vector<bool> point_in(map.points.size(), false), line_in(map.lines.size(), false);
+  for (int p : report.changed_points) point_in[p] = true;
+  for (int l : report.changed_lines) {
+    line_in[l] = true;
+    if (map.lines[l].point_landmark >= 0) point_in[map.lines[l].point_landmark] = true;
+  }
+  Landmarks changed, kept;
+  std::vector<int> index_in(map.points.size(), -1);
+  for (size_t p = 0; p < map.points.size(); ++p) {
+    Landmarks& to = point_in[p] ? changed : kept;
+    index_in[p] = static_cast<int>(to.points.size());
+    to.points.push_back(std::move(map.points[p]));
+  }
+  for (size_t l = 0; l < map.lines.size(); ++l) {
+    LineLandmark line = std::move(map.lines[l]);
+    if (line.point_landmark >= 0) {
+      CHECK(line_in[l] || !point_in[line.point_landmark]) << "a changed point's line left out";
+      line.point_landmark = index_in[line.point_landmark];
+    }
+    (line_in[l] ? changed : kept).lines.push_back(std::move(line));
+  }
+  BundleAdjustmentSummary structure;
+  SFM_RETURN_IF_ERROR(RefineLandmarksOnFixedPoses(
+      calibration, BasesFromCameras(result->world_T_camera_refined, calibration.base_T_camera),
+      options.bundle_adjustment_options, &changed, &structure));
+  const int offset = static_cast<int>(kept.points.size());
+  for (PointLandmark& point : changed.points) kept.points.push_back(std::move(point));
+  for (LineLandmark& line : changed.lines) {
+    if (line.point_landmark >= 0) line.point_landmark += offset;
+    kept.lines.push_back(std::move(line));
+  }
+  map = std::move(kept);
+  RecordTrackExtension(report, start, result);
+  TrackExtensionSummary& summary = result->track_extension;
+  summary.observations_removed = structure.observations_removed;
+  summary.seconds = SecondsSince(start);
+  LOG(INFO) << "track extension: the changed landmarks refined on the fixed poses, "
+            << structure.observations_removed << " outlier observations removed; now " << map.points.size()
+            << " points, " << map.lines.size() << " lines; " << summary.seconds << " s";
+  if (options.extend_tracks_stage != TrackExtensionStage::kAfterResolve) return Status::Ok();
+
+  std::vector<Pose3> world_T_base_second;
+  BundleAdjustmentSummary second;
+  // The first adjustment's line search already placed the odometry's scale, and the second starts
+  // from it: its own search (three solves more) would only repeat it.
+  BundleAdjustmentOptions second_options = options.bundle_adjustment_options;
+  second_options.floor_scale_line_search = false;
+  SFM_RETURN_IF_ERROR(BundleAdjust(calibration, OdometryBasePoses(sequence),
+                                   BasesFromCameras(result->world_T_camera_refined, calibration.base_T_camera),
+                                   result->bundle_adjustment.odometry_scale, second_options,
+                                   &result->landmarks, &world_T_base_second, &second));
+  result->bundle_adjustment = second;
+  summary.second_adjustment = true;
+  result->world_T_camera_refined = CamerasFromBases(world_T_base_second, calibration.base_T_camera);
+  summary.seconds = SecondsSince(start);
+  LOG(INFO) << "second bundle adjustment on the extended tracks: " << second.points << " points, " << second.lines
+            << " lines; " << second.observations_removed << " outlier observations removed; RMS "
+            << second.point_rms_px << " px (points), " << second.line_rms_px << " px (lines); "
+            << second.floor_prior_report
+            << (second.floor_prior_used ? "; odometry scale " + std::to_string(second.odometry_scale) : "")
+            << "; " << second.solves << " solves, " << second.iterations << " iterations, " << second.time_s
+            << " s; extension and solve " << summary.seconds << " s";
   return Status::Ok();
 }
 
@@ -309,6 +425,7 @@ Status PipelineOptions::Check() const {
   SFM_RETURN_IF_ERROR(junctions.Check());
   SFM_RETURN_IF_ERROR(matching.Check());
   SFM_RETURN_IF_ERROR(triangulation.Check());
+  if (extend_tracks) SFM_RETURN_IF_ERROR(track_extension.Check());
   return bundle_adjustment_options.Check();
 }
 
@@ -342,6 +459,10 @@ Status RunPipeline(const PipelineOptions& options, PipelineResult* result_out) {
   Reconstruct(sequence, options, &result);
   if (options.bundle_adjustment) {
     SFM_RETURN_IF_ERROR(Refine(sequence, options, &result));
+    if (options.extend_tracks && (options.extend_tracks_stage == TrackExtensionStage::kAfterStructure ||
+                                  options.extend_tracks_stage == TrackExtensionStage::kAfterResolve)) {
+      SFM_RETURN_IF_ERROR(ExtendTracksOnRefinedPoses(sequence, options, &result));
+    }
     if (options.retriangulate_refined != RetriangulateRefined::kOff) {
       SFM_RETURN_IF_ERROR(RetriangulateOnRefinedPoses(sequence, options, &result));
     }

@@ -6,6 +6,7 @@
 
 #include "backend/bundle_adjustment/bundle_adjustment_options.h"
 #include "backend/triangulation/landmark_merge.h"
+#include "backend/triangulation/track_extension.h"
 #include "backend/triangulation/triangulation_options.h"
 #include "frontend/junctions/junction_options.h"
 #include "frontend/matching/matching_options.h"
@@ -21,6 +22,14 @@ namespace sfm {
 // adjustment of everything, starting from the refined poses, the odometry still its prior).
 enum class RetriangulateRefined { kOff, kStructure, kFull };
 
+// Where the track extension runs (docs/tracks_and_triangulation.md, "Track extension"):
+// inside the bundle adjustment, after its fine solve and outlier rounds, then two fine solves more
+// and an outlier round (MapHook::kAfterFine); inside it on the coarse stage's poses, before its fine
+// solves (kAfterCoarse); after it, the changed landmarks refined on the refined poses held fixed (the
+// trajectory unchanged); or after it with a second bundle adjustment of everything starting from
+// the refined poses (the odometry still the prior).
+enum class TrackExtensionStage { kInAdjustment, kAfterCoarse, kAfterStructure, kAfterResolve };
+
 struct PipelineOptions {
   std::string sequence_dir;   // a SPEC section 1 sequence directory
   std::string output_dir;     // created if needed; existing files of the same names are replaced
@@ -34,6 +43,12 @@ struct PipelineOptions {
   RetriangulateRefined retriangulate_refined = RetriangulateRefined::kOff;
   // Which re-triangulated landmarks join the map (landmark_merge.h).
   RetriangulatedLandmarks retriangulated_landmarks = RetriangulatedLandmarks::kAddNew;
+  // After the bundle adjustment, extend and merge the tracks by projecting each point landmark into
+  // the frames its track misses (track_extension.h), then refine the landmarks that changed on the
+  // refined poses held fixed (docs/tracks_and_triangulation.md, "Track extension on the refined poses").
+  bool extend_tracks = true;
+  TrackExtensionStage extend_tracks_stage = TrackExtensionStage::kInAdjustment;
+  TrackExtensionOptions track_extension;
 
   // OK, or a message naming the first bad setting.
   Status Check() const;

@@ -134,6 +134,20 @@ std::string RetriangulationJson(const PipelineResult& result) {
          ", \"second_adjustment\": " + (summary.second_adjustment ? "true" : "false") + "}";
 }
 
+// Not in SPEC's list: what the track extension did (null when it did not run, --extend_tracks=false).
+std::string TrackExtensionJson(const PipelineResult& result) {
+  const TrackExtensionSummary& summary = result.track_extension;
+  if (!summary.ran) return "null";
+  return "{\"observations_added\": " + std::to_string(summary.observations_added) +
+         ", \"tracks_merged\": " + std::to_string(summary.tracks_merged) +
+         ", \"ambiguous\": " + std::to_string(summary.ambiguous) +
+         ", \"observations_removed\": " + std::to_string(summary.observations_removed) +
+         ", \"points_changed\": " + std::to_string(summary.points_changed) +
+         ", \"lines_changed\": " + std::to_string(summary.lines_changed) +
+         ", \"second_adjustment\": " + (summary.second_adjustment ? "true" : "false") +
+         ", \"time_s\": " + JsonNumber(summary.seconds) + "}";
+}
+
 std::optional<double> Ate(const std::optional<DriftMetrics>& drift) {
   return drift ? std::optional<double>(drift->ate_m) : std::nullopt;
 }
@@ -184,6 +198,7 @@ std::string MetricsJson(const Sequence& sequence, const PipelineResult& result) 
        << "  \"floor_prior\": " << FloorPriorJson(result, refined) << ",\n"
        << "  \"odometry_rotation_bias_rad\": " << RotationBiasJson(result, refined) << ",\n"
        << "  \"retriangulation\": " << RetriangulationJson(result) << ",\n"
+       << "  \"track_extension\": " << TrackExtensionJson(result) << ",\n"
        << "  \"wireframe\": " << WireframeJson(result) << "\n"
        << "}\n";
   return json.str();

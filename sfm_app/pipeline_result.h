@@ -26,6 +26,18 @@ struct RetriangulationSummary {
   int observations_removed = 0;  // outlier observations of the new landmarks, on the refined poses
 };
 
+// What the track extension on the refined poses did (PipelineOptions::extend_tracks).
+struct TrackExtensionSummary {
+  bool ran = false;
+  int observations_added = 0;    // unassigned junctions joined to a track
+  int tracks_merged = 0;         // tracks absorbed into another
+  int ambiguous = 0;             // projections with two or more compatible junctions in the gate
+  int observations_removed = 0;  // outlier observations of the changed landmarks, on the refined poses
+  int points_changed = 0, lines_changed = 0;
+  bool second_adjustment = false;  // the poses are a second adjustment's (extend_tracks_resolve)
+  double seconds = 0;            // the step's own time (extension and refinement)
+};
+
 struct PipelineResult {
   std::vector<Junctions> junctions;       // per frame
   std::vector<TopologyGraph> graphs;      // per frame
@@ -40,6 +52,7 @@ struct PipelineResult {
   std::vector<Pose3> world_T_camera_refined;               // empty until bundle adjustment ran
   BundleAdjustmentSummary bundle_adjustment;               // when it ran (floor prior, counts)
   RetriangulationSummary retriangulation;
+  TrackExtensionSummary track_extension;
   std::optional<std::vector<Pose3>> world_T_camera_truth;  // when the sequence has ground truth
   std::optional<DriftMetrics> drift_odometry, drift_refined;  // against the ground truth
   StageTimes times;

@@ -117,7 +117,7 @@ class BundleAdjuster {
   }
   bool EstimatesRotationBias() const { return with_bias_; }
 
-  Status Run() {
+  Status Run(const MapHook& map_hook = MapHook()) {
     summary_->frames = static_cast<int>(poses_.size());
     DropUnusableObservations();
     RemoveLandmarksWithFewViews();
@@ -150,6 +150,14 @@ class BundleAdjuster {
     RemoveLandmarksWithFewViews();
     DropUnobservableLandmarks(/*refined=*/true);
     if (CountObservations() == 0) return RevertToOdometry("no landmark left observable on the refined poses");
+    // The caller's change of the coarse map (track extension), judged by the same removals.
+    if (map_hook.change && map_hook.when == MapHook::kAfterCoarse) {
+      map_hook.change(RefinedPoses(), landmarks_);
+      DropUnusableObservations();
+      RemoveLandmarksWithFewViews();
+      DropUnobservableLandmarks(/*refined=*/true);
+      if (CountObservations() == 0) return RevertToOdometry("no landmark left after the coarse map's change");
+    }
     // 5. The floor prior, decided on the coarse map (its floor is where the odometry's scale put it).
     SelectFloor(/*first=*/true);
     if (options_.floor_rescale_start) RescaleToFloor();
@@ -158,6 +166,19 @@ class BundleAdjuster {
     bool loose = options_.outlier_rounds > 0;
     SFM_RETURN_IF_ERROR(Solve(options_.robust_loss_scale_px, /*with_lines=*/true,
                               loose ? options_.intermediate_function_tolerance : options_.function_tolerance));
+    // The caller's change of the fine map (track extension), before the outlier rounds, which judge
+    // the new observations as the old ones, and whose solves refine it with the poses.
+    if (map_hook.change && map_hook.when == MapHook::kAfterFine) {
+      map_hook.change(RefinedPoses(), landmarks_);
+      DropUnusableObservations();
+      RemoveLandmarksWithFewViews();
+      DropUnobservableLandmarks(/*refined=*/true);
+      if (CountObservations() == 0) return RevertToOdometry("no landmark left after the map's change");
+      SelectFloor(/*first=*/false);
+      if (options_.outlier_rounds == 0) {
+        SFM_RETURN_IF_ERROR(Solve(options_.robust_loss_scale_px, /*with_lines=*/true, options_.function_tolerance));
+      }
+    }
     for (int round = 0; round < options_.outlier_rounds; ++round) {
       const int outliers = RemoveOutliers(options_.outlier_threshold_px);
       RemoveLandmarksWithFewViews();
@@ -848,6 +869,9 @@ class BundleAdjuster {
     }
     ++summary_->solves;
     summary_->iterations += ceres_summary.num_successful_steps + ceres_summary.num_unsuccessful_steps;
+    VLOG(2) << "solve: " << ceres_summary.num_successful_steps + ceres_summary.num_unsuccessful_steps
+            << " iterations at loss scale " << loss_scale_px << " px" << (with_lines ? " with lines, " : ", ")
+            << ceres_summary.total_time_in_seconds << " s";
     summary_->final_cost = ceres_summary.final_cost;
     summary_->converged = summary_->converged && ceres_summary.termination_type == ceres::CONVERGENCE;
     summary_->solver_report = ceres_summary.BriefReport();
@@ -996,15 +1020,17 @@ Status RefineLandmarksOnFixedPoses(const Calibration& calibration, const std::ve
 
 Status BundleAdjust(const Calibration& calibration, const std::vector<Pose3>& world_T_base_odometry,
                     const BundleAdjustmentOptions& options, Landmarks* landmarks,
-                    std::vector<Pose3>* world_T_base_refined, BundleAdjustmentSummary* summary) {
+                    std::vector<Pose3>* world_T_base_refined, BundleAdjustmentSummary* summary,
+                    const MapHook& map_hook) {
   return BundleAdjust(calibration, world_T_base_odometry, world_T_base_odometry, /*odometry_scale_start=*/1,
-                      options, landmarks, world_T_base_refined, summary);
+                      options, landmarks, world_T_base_refined, summary, map_hook);
 }
 
 Status BundleAdjust(const Calibration& calibration, const std::vector<Pose3>& world_T_base_odometry,
                     const std::vector<Pose3>& world_T_base_start, double odometry_scale_start,
                     const BundleAdjustmentOptions& options, Landmarks* landmarks,
-                    std::vector<Pose3>* world_T_base_refined, BundleAdjustmentSummary* summary) {
+                    std::vector<Pose3>* world_T_base_refined, BundleAdjustmentSummary* summary,
+                    const MapHook& map_hook) {
   CHECK(landmarks != nullptr);
   CHECK(world_T_base_refined != nullptr);
   CHECK(summary != nullptr);
@@ -1040,7 +1066,7 @@ Status BundleAdjust(const Calibration& calibration, const std::vector<Pose3>& wo
   }
   BundleAdjuster adjuster(calibration, world_T_base_odometry, world_T_base_start, odometry_scale_start,
                           options, landmarks, summary);
-  const Status status = adjuster.Run();
+  const Status status = adjuster.Run(map_hook);
   summary->odometry_rotation_bias_estimated = adjuster.EstimatesRotationBias();
   if (summary->odometry_rotation_bias_estimated) {
     const std::array<double, 3>& b = summary->odometry_rotation_bias_rad;

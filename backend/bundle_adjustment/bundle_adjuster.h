@@ -11,6 +11,7 @@
 // and solves again. Details, units and measured figures: docs/bundle_adjustment.md.
 #pragma once
 
+#include <functional>
 #include <vector>
 
 #include "backend/bundle_adjustment/bundle_adjustment_options.h"
@@ -41,9 +42,24 @@ namespace sfm {
 // removals) the refined trajectory is the odometry and the status OK; summary.solver_report says why. Errors:
 // bad options, inconsistent input (an observation of a frame that does not exist, a non-positive noise sigma,
 // K not positive), or Ceres failing; the outputs are then unspecified.
+//
+// `map_hook` (optional): called once with the poses world_T_base of that moment and the landmarks,
+// which it may change (observations added, landmarks merged or dropped; point_landmark indices
+// kept valid): the pipeline's track extension (docs/tracks_and_triangulation.md, "Track
+// extension"). kAfterCoarse: after the coarse stage, before the floor prior is decided and the fine
+// solves; the landmarks then pass the removals of the coarse stage. kAfterFine: after the first fine
+// solve, before its outlier rounds, which then judge the new observations as the old ones (beyond
+// outlier_threshold_px removed) and whose solves refine the changed map with the poses (with no
+// outlier round, one fine solve more).
+struct MapHook {
+  enum When { kAfterCoarse, kAfterFine };
+  When when = kAfterFine;
+  std::function<void(const std::vector<Pose3>& world_T_base, Landmarks* landmarks)> change;
+};
 Status BundleAdjust(const Calibration& calibration, const std::vector<Pose3>& world_T_base_odometry,
                     const BundleAdjustmentOptions& options, Landmarks* landmarks,
-                    std::vector<Pose3>* world_T_base_refined, BundleAdjustmentSummary* summary);
+                    std::vector<Pose3>* world_T_base_refined, BundleAdjustmentSummary* summary,
+                    const MapHook& map_hook = MapHook());
 
 // The same, the solves starting from `world_T_base_start` and the odometry's scale factor from
 // `odometry_scale_start` (e.g. an earlier adjustment's refined poses and summary.odometry_scale)
@@ -54,7 +70,8 @@ Status BundleAdjust(const Calibration& calibration, const std::vector<Pose3>& wo
 Status BundleAdjust(const Calibration& calibration, const std::vector<Pose3>& world_T_base_odometry,
                     const std::vector<Pose3>& world_T_base_start, double odometry_scale_start,
                     const BundleAdjustmentOptions& options, Landmarks* landmarks,
-                    std::vector<Pose3>* world_T_base_refined, BundleAdjustmentSummary* summary);
+                    std::vector<Pose3>* world_T_base_refined, BundleAdjustmentSummary* summary,
+                    const MapHook& map_hook = MapHook());
 
 // Refines `landmarks` in place on the poses world_T_base, which are held: each point and each line
 // alone at the fine loss scale, then the outlier rounds of BundleAdjust (observations beyond
