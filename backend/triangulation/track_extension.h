@@ -4,7 +4,7 @@
 // A junction that already belongs to another track merges the two tracks (and their landmarks)
 // when their frames do not overlap, the point explains every view of the other track (each is the
 // one compatible junction in its frame's gate) and the two points agree within their uncertainty.
-// docs/tracks_and_triangulation.md, "Track extension on the refined poses".
+// docs/tracks_and_triangulation.md, "Track extension".
 // Pixels are undistorted pixels (K only); positions in the world frame, metres.
 #pragma once
 

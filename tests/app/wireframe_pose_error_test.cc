@@ -44,7 +44,7 @@ TEST(WireframePoseError, BundleAdjustmentCovarianceIsUsedAndCalibratedFrameToFra
   // The covariance's calibration against the adjustment's own error model. With the track
   // extension (on by default) the refined centres' lag-1 error falls by a quarter (0.00107 -> 0.00080
   // m) and the predicted by a tenth (0.00183 -> 0.00165 m): pessimistic by 2.07x, past this test's 2x
-  // (docs/backend_results.md, "Session 5: track extension").
+  // (docs/backend_results.md, "Session 6: track extension").
   options.extend_tracks = false;
   PipelineResult result;
   const Status status = RunPipeline(options, &result);
