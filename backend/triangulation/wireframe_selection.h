@@ -32,6 +32,7 @@ struct WireframeSelectionReport {
   int lines_beyond_tolerance = 0;   // the same, lines (with their own vertex, or their point's)
   double predicted_share = 0;       // the drawn vertices' predicted share within tolerance_m (0: off)
   int points_kept = 0, lines_kept = 0;
+  int lines_far_end_at_point = 0;   // kept lines whose end1 is a drawn point (far_end_at_point_px)
   double pixel_sigma_px = 0;      // the noise the chi-square tests used
   // Set by the pipeline: the pose error model of the determination test ("random_walk" or
   // "bundle_adjustment"), and the seconds the bundle adjustment's pose covariance took (0 without).
