@@ -149,12 +149,14 @@ struct WireframeOptions {
   // end-points (median distance along them <= far_end_along_px), and lies ahead of the line's
   // start (its junction point, else end0) within far_end_max_angle_deg of the segment, end1 is
   // that point; with far_end_shares_vertex the edge ends at the point's own vertex
-  // (LineLandmark::end1_point_landmark), else at a vertex of its own at the point's position.
+  // (LineLandmark::end1_point_landmark), else (the default) at a vertex of its own at the point's
+  // position, as the far end had before (sharing lowers the share: the far ends it merges into
+  // points are mostly within 5 cm; docs/backend_results.md, session 6 "lineend").
   // docs/tracks_and_triangulation.md, "Far ends at junction points".
   double far_end_at_point_px = 0;
   double far_end_along_px = 5;
   double far_end_max_angle_deg = 15;
-  bool far_end_shares_vertex = true;
+  bool far_end_shares_vertex = false;
 
   Status Check() const {
     auto bad = [](const std::string& what) { return Status::Error("WireframeOptions: " + what); };

@@ -446,6 +446,7 @@ TEST_F(WireframeSelectionTest, AFarEndAtADrawnPointIsThatPoint) {
   EXPECT_EQ(kept.lines[0].end1_point_landmark, -1);
   EXPECT_EQ(report.lines_far_end_at_point, 0);
   options.far_end_at_point_px = 1;
+  options.far_end_shares_vertex = true;
   kept = SelectWireframeLandmarks(K_, cameras_, landmarks, options, &report);
   ASSERT_EQ(kept.lines.size(), 1u);
   EXPECT_EQ(kept.lines[0].end1, bottom);
