@@ -131,6 +131,16 @@ DEFINE_double(wireframe_tolerance_share, kDefaults.triangulation.wireframe.toler
 DEFINE_bool(wireframe_plane_noise, kDefaults.triangulation.wireframe.line_sigma_subtracts_plane_noise,
             "Wireframe selection: a line vertex's sigma subtracts the information its planes' own noise "
             "fakes (a line whose planes spread no more than that noise is undetermined).");
+DEFINE_double(wireframe_far_end_at_point_px, kDefaults.triangulation.wireframe.far_end_at_point_px,
+              "Wireframe selection: a line's far end is taken at a drawn junction point when its observed "
+              "image lines lie within this many pixels of its projections (median over the views, across "
+              "the lines; 0: off; docs/tracks_and_triangulation.md, \"Far ends at junction points\").");
+DEFINE_double(wireframe_far_end_along_px, kDefaults.triangulation.wireframe.far_end_along_px,
+              "Wireframe selection, --wireframe_far_end_at_point_px: the largest median distance, pixels, "
+              "along the observed image lines between the point's projections and the far end-points.");
+DEFINE_bool(wireframe_far_end_shares_vertex, kDefaults.triangulation.wireframe.far_end_shares_vertex,
+            "Wireframe selection, --wireframe_far_end_at_point_px: the edge ends at the point's own vertex "
+            "(false: at a vertex of its own at the point's position).");
 
 namespace {
 
@@ -174,6 +184,9 @@ bool OptionsFromFlags(sfm::PipelineOptions* options, std::string* error) {
   options->triangulation.wireframe.line_sigma_subtracts_plane_noise = FLAGS_wireframe_plane_noise;
   options->triangulation.wireframe.tolerance_m = FLAGS_wireframe_tolerance_m;
   options->triangulation.wireframe.tolerance_share = FLAGS_wireframe_tolerance_share;
+  options->triangulation.wireframe.far_end_at_point_px = FLAGS_wireframe_far_end_at_point_px;
+  options->triangulation.wireframe.far_end_along_px = FLAGS_wireframe_far_end_along_px;
+  options->triangulation.wireframe.far_end_shares_vertex = FLAGS_wireframe_far_end_shares_vertex;
   options->bundle_adjustment_options.floor_base_prior = FLAGS_floor_base_prior;
   options->bundle_adjustment_options.floor_rescale_start = FLAGS_floor_rescale_start;
   options->bundle_adjustment_options.floor_scale_line_search = FLAGS_floor_scale_line_search;

@@ -414,7 +414,8 @@ void SelectWireframe(const Sequence& sequence, const PipelineOptions& options, P
             << report.points_uncertain << " undetermined; lines " << report.lines_untestable
             << " untestable, " << report.lines_inconsistent << " inconsistent, "
             << report.lines_uncertain_end0 + report.lines_uncertain_end1 << " undetermined, "
-            << report.lines_unbounded << " unbounded";
+            << report.lines_unbounded << " unbounded; " << report.lines_far_end_at_point
+            << " far ends at drawn points";
 }
 
 }  // namespace

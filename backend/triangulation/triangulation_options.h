@@ -141,6 +141,22 @@ struct WireframeOptions {
   // share. 0: off. docs/tracks_and_triangulation.md, "An accuracy asked of the map".
   double tolerance_m = 0;
   double tolerance_share = 0.9;  // in (0, 1)
+  // A drawn line's far end taken at a drawn junction point (option, 0: off). The point is
+  // measured directly in each of its views; the line's far end is the intersection of the 3D line
+  // (whose direction a biased image segment tilts) with the far end-point's viewing ray, an
+  // extrapolation. When a drawn point (not the line's own) projects, in the line's views, onto the
+  // observed image lines (median distance across them <= far_end_at_point_px) at the observed far
+  // end-points (median distance along them <= far_end_along_px), and lies ahead of the line's
+  // start (its junction point, else end0) within far_end_max_angle_deg of the segment, end1 is
+  // that point; with far_end_shares_vertex the edge ends at the point's own vertex
+  // (LineLandmark::end1_point_landmark), else (the default) at a vertex of its own at the point's
+  // position, as the far end had before (sharing lowers the share: the far ends it merges into
+  // points are mostly within 5 cm; docs/backend_results.md, session 6 "lineend").
+  // docs/tracks_and_triangulation.md, "Far ends at junction points".
+  double far_end_at_point_px = 0;
+  double far_end_along_px = 5;
+  double far_end_max_angle_deg = 15;
+  bool far_end_shares_vertex = false;
 
   Status Check() const {
     auto bad = [](const std::string& what) { return Status::Error("WireframeOptions: " + what); };
@@ -149,6 +165,13 @@ struct WireframeOptions {
     if (!(consistency_level > 0 && consistency_level < 1)) return bad("consistency_level must be in (0, 1)");
     if (!(tolerance_m >= 0 && std::isfinite(tolerance_m))) return bad("tolerance_m must be finite and >= 0");
     if (!(tolerance_share > 0 && tolerance_share < 1)) return bad("tolerance_share must be in (0, 1)");
+    if (!(far_end_at_point_px >= 0 && std::isfinite(far_end_at_point_px))) {
+      return bad("far_end_at_point_px must be finite and >= 0");
+    }
+    if (!(far_end_along_px > 0 && std::isfinite(far_end_along_px))) return bad("far_end_along_px must be finite and > 0");
+    if (!(far_end_max_angle_deg > 0 && far_end_max_angle_deg <= 90)) {
+      return bad("far_end_max_angle_deg must be in (0, 90]");
+    }
     if (!(min_equivalent_parallax_deg > 0 && min_equivalent_parallax_deg < 90)) {
       return bad("min_equivalent_parallax_deg must be in (0, 90)");
     }

@@ -122,6 +122,59 @@ void DropBeyondTolerance(const WireframeOptions& options, const std::vector<doub
   *selected = std::move(kept);
 }
 
+double Median(std::vector<double> values) {
+  auto middle = values.begin() + values.size() / 2;
+  std::nth_element(values.begin(), middle, values.end());
+  return *middle;
+}
+
+// WireframeOptions::far_end_at_point_px: a kept line's end1 at the drawn point whose projections
+// lie on the line's observed image lines (median distance across, over its views, <=
+// far_end_at_point_px) at its observed far ends (median distance along <= far_end_along_px),
+// ahead of the line's start within far_end_max_angle_deg; the best such point by the sum of the
+// two medians relative to their bounds. Runs after every other rule: the points are final.
+void FarEndsAtPoints(const Eigen::Matrix3d& K, const std::vector<Pose3>& world_T_camera,
+                     const WireframeOptions& options, Landmarks* selected, WireframeSelectionReport* counts) {
+  const double cos_max = std::cos(options.far_end_max_angle_deg * kPi / 180);
+  for (LineLandmark& line : selected->lines) {
+    const Eigen::Vector3d start =
+        line.point_landmark >= 0 ? selected->points[line.point_landmark].position : line.end0;
+    const Eigen::Vector3d along = line.end1 - start;
+    if (!(along.norm() > 0)) continue;
+    int best = -1;
+    double best_cost = std::numeric_limits<double>::infinity();
+    for (size_t i = 0; i < selected->points.size(); ++i) {
+      if (static_cast<int>(i) == line.point_landmark) continue;
+      const Eigen::Vector3d& x = selected->points[i].position;
+      const Eigen::Vector3d to_point = x - start;
+      if (!(to_point.norm() > 0) || to_point.normalized().dot(along.normalized()) < cos_max) continue;
+      std::vector<double> across, along_px;
+      bool in_front = true;
+      for (const LineObservation& observation : line.observations) {
+        const Eigen::Vector3d in_camera = world_T_camera[observation.frame].Inverse() * x;
+        const Eigen::Vector2d d = observation.p1 - observation.p0;
+        if (!(in_camera.z() > 0 && d.norm() > 0)) {
+          in_front = false;
+          break;
+        }
+        const Eigen::Vector2d t = d.normalized();
+        const Eigen::Vector2d r = (K * in_camera).hnormalized() - observation.p1;
+        across.push_back(std::abs(t.x() * r.y() - t.y() * r.x()));
+        along_px.push_back(std::abs(t.dot(r)));
+      }
+      if (!in_front || across.empty()) continue;
+      const double a = Median(across), b = Median(along_px);
+      if (a > options.far_end_at_point_px || b > options.far_end_along_px) continue;
+      const double cost = a / options.far_end_at_point_px + b / options.far_end_along_px;
+      if (cost < best_cost) best = static_cast<int>(i), best_cost = cost;
+    }
+    if (best < 0) continue;
+    line.end1 = selected->points[best].position;
+    if (options.far_end_shares_vertex) line.end1_point_landmark = best;
+    ++counts->lines_far_end_at_point;
+  }
+}
+
 }  // namespace
 
 double MaxVertexSigma(const WireframeOptions& options, double fx, double depth) {
@@ -298,6 +351,7 @@ Landmarks SelectWireframeLandmarks(const Eigen::Matrix3d& K, const std::vector<P
   if (options.tolerance_m > 0) {
     DropBeyondTolerance(options, point_sigmas, end0_sigmas, end1_sigmas, &selected, &counts);
   }
+  if (options.far_end_at_point_px > 0) FarEndsAtPoints(K, world_T_camera, options, &selected, &counts);
   counts.pixel_sigma_px = sigma_px;
   counts.points_kept = static_cast<int>(selected.points.size());
   counts.lines_kept = static_cast<int>(selected.lines.size());

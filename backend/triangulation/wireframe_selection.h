@@ -32,6 +32,7 @@ struct WireframeSelectionReport {
   int lines_beyond_tolerance = 0;   // the same, lines (with their own vertex, or their point's)
   double predicted_share = 0;       // the drawn vertices' predicted share within tolerance_m (0: off)
   int points_kept = 0, lines_kept = 0;
+  int lines_far_end_at_point = 0;   // kept lines whose end1 is a drawn point (far_end_at_point_px)
   double pixel_sigma_px = 0;      // the noise the chi-square tests used
   // Set by the pipeline: the pose error model of the determination test ("random_walk" or
   // "bundle_adjustment"), and the seconds the bundle adjustment's pose covariance took (0 without).
@@ -65,6 +66,9 @@ PoseDrift WireframePoseDrift(const WireframeOptions& options, const std::vector<
 // vertices are within the bound (LinePositionSigma at end1, and at end0 unless end0 is a kept
 // point). A line whose point was dropped takes its own end0 (the median of its back-projected
 // junction locations) and point_landmark -1; point_landmark is renumbered. Order is preserved.
+// With options.far_end_at_point_px > 0 a kept line's end1 is then moved to a kept point that its
+// observed image lines and far end-points agree with (end1_point_landmark set when
+// far_end_shares_vertex).
 // options must pass Check(), every observation must index world_T_camera (CHECKed).
 Landmarks SelectWireframeLandmarks(const Eigen::Matrix3d& K, const std::vector<Pose3>& world_T_camera,
                                    const Landmarks& landmarks, const WireframeOptions& options,
