@@ -141,7 +141,7 @@ struct WireframeOptions {
   // share. 0: off. docs/tracks_and_triangulation.md, "An accuracy asked of the map".
   double tolerance_m = 0;
   double tolerance_share = 0.9;  // in (0, 1)
-  // A drawn line's far end taken at a drawn junction point (option, 0: off). The point is
+  // A drawn line's far end taken at a drawn junction point (0: off). The point is
   // measured directly in each of its views; the line's far end is the intersection of the 3D line
   // (whose direction a biased image segment tilts) with the far end-point's viewing ray, an
   // extrapolation. When a drawn point (not the line's own) projects, in the line's views, onto the
@@ -152,8 +152,10 @@ struct WireframeOptions {
   // (LineLandmark::end1_point_landmark), else (the default) at a vertex of its own at the point's
   // position, as the far end had before (sharing lowers the share: the far ends it merges into
   // points are mostly within 5 cm; docs/backend_results.md, session 6 "lineend").
-  // docs/tracks_and_triangulation.md, "Far ends at junction points".
-  double far_end_at_point_px = 0;
+  // docs/tracks_and_triangulation.md, "Far ends at junction points". Default 1 px: about 3 sigma
+  // of the 0.3 px pixel noise the wireframe's tests use (3 px moves more far ends but breaks two to
+  // three times as many good ones).
+  double far_end_at_point_px = 1;
   double far_end_along_px = 5;
   double far_end_max_angle_deg = 15;
   bool far_end_shares_vertex = false;

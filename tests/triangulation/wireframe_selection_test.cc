@@ -439,6 +439,7 @@ TEST_F(WireframeSelectionTest, AFarEndAtADrawnPointIsThatPoint) {
   landmarks.points.push_back(Point(bottom));
   landmarks.lines.push_back(Line(top, overshoot, 0));
   WireframeOptions options;
+  options.far_end_at_point_px = 0;  // off
   WireframeSelectionReport report;
   Landmarks kept = SelectWireframeLandmarks(K_, cameras_, landmarks, options, &report);
   ASSERT_EQ(kept.lines.size(), 1u);
