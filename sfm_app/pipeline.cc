@@ -220,6 +220,30 @@ Status Refine(const Sequence& sequence, const PipelineOptions& options, Pipeline
   return Status::Ok();
 }
 
+// A second bundle adjustment of the changed map (`what` says how, for the log), starting from the
+// refined poses and the first adjustment's odometry scale; the odometry stays the prior. Its
+// poses and summary replace the first's.
+Status AdjustAgainFromRefinedPoses(const Sequence& sequence, const BundleAdjustmentOptions& bundle_options,
+                                   const std::string& what, PipelineResult* result) {
+  const Calibration& calibration = sequence.calibration;
+  std::vector<Pose3> world_T_base_second;
+  BundleAdjustmentSummary summary;
+  SFM_RETURN_IF_ERROR(BundleAdjust(calibration, OdometryBasePoses(sequence),
+                                   BasesFromCameras(result->world_T_camera_refined, calibration.base_T_camera),
+                                   result->bundle_adjustment.odometry_scale, bundle_options, &result->landmarks,
+                                   &world_T_base_second, &summary));
+  result->bundle_adjustment = summary;
+  result->world_T_camera_refined = CamerasFromBases(world_T_base_second, calibration.base_T_camera);
+  LOG(INFO) << "second bundle adjustment " << what << ": " << summary.points << " points, " << summary.lines
+            << " lines; " << summary.observations_removed << " outlier observations removed; RMS "
+            << summary.point_rms_px << " px (points), " << summary.line_rms_px << " px (lines); "
+            << summary.floor_prior_report
+            << (summary.floor_prior_used ? "; odometry scale " + std::to_string(summary.odometry_scale) : "")
+            << "; " << summary.solves << " solves, " << summary.iterations << " iterations, " << summary.time_s
+            << " s";
+  return Status::Ok();
+}
+
 // Every track triangulated again on the refined poses: tracks whose triangulation failed on the
 // drifting odometry (parallax, reprojection) can pass now. The new landmarks are refined on the
 // refined poses held fixed and pass the adjustment's outlier rules before they join the map
@@ -256,19 +280,9 @@ Status RetriangulateOnRefinedPoses(const Sequence& sequence, const PipelineOptio
             << " new lines at an existing point)";
   if (options.retriangulate_refined != RetriangulateRefined::kFull) return Status::Ok();
 
-  std::vector<Pose3> world_T_base_second;
-  BundleAdjustmentSummary summary;
-  SFM_RETURN_IF_ERROR(BundleAdjust(
-      calibration, OdometryBasePoses(sequence), world_T_base_refined, result->bundle_adjustment.odometry_scale,
-      options.bundle_adjustment_options, &result->landmarks, &world_T_base_second, &summary));
-  result->bundle_adjustment = summary;
+  SFM_RETURN_IF_ERROR(AdjustAgainFromRefinedPoses(sequence, options.bundle_adjustment_options,
+                                                  "from the refined poses", result));
   result->retriangulation.second_adjustment = true;
-  result->world_T_camera_refined = CamerasFromBases(world_T_base_second, calibration.base_T_camera);
-  LOG(INFO) << "second bundle adjustment from the refined poses: " << summary.points << " points, "
-            << summary.lines << " lines; " << summary.observations_removed
-            << " outlier observations removed; RMS " << summary.point_rms_px << " px (points), "
-            << summary.line_rms_px << " px (lines); " << summary.floor_prior_report
-            << (summary.floor_prior_used ? "; odometry scale " + std::to_string(summary.odometry_scale) : "");
   LogFloorLandmarks("second", *result);
   return Status::Ok();
 }
@@ -328,27 +342,14 @@ Status ExtendTracksOnRefinedPoses(const Sequence& sequence, const PipelineOption
             << " points, " << map.lines.size() << " lines; " << summary.seconds << " s";
   if (options.extend_tracks_stage != TrackExtensionStage::kAfterResolve) return Status::Ok();
 
-  std::vector<Pose3> world_T_base_second;
-  BundleAdjustmentSummary second;
   // The first adjustment's line search already placed the odometry's scale, and the second starts
   // from it: its own search (three solves more) would only repeat it.
   BundleAdjustmentOptions second_options = options.bundle_adjustment_options;
   second_options.floor_scale_line_search = false;
-  SFM_RETURN_IF_ERROR(BundleAdjust(calibration, OdometryBasePoses(sequence),
-                                   BasesFromCameras(result->world_T_camera_refined, calibration.base_T_camera),
-                                   result->bundle_adjustment.odometry_scale, second_options,
-                                   &result->landmarks, &world_T_base_second, &second));
-  result->bundle_adjustment = second;
+  SFM_RETURN_IF_ERROR(AdjustAgainFromRefinedPoses(sequence, second_options, "on the extended tracks", result));
   summary.second_adjustment = true;
-  result->world_T_camera_refined = CamerasFromBases(world_T_base_second, calibration.base_T_camera);
   summary.seconds = SecondsSince(start);
-  LOG(INFO) << "second bundle adjustment on the extended tracks: " << second.points << " points, " << second.lines
-            << " lines; " << second.observations_removed << " outlier observations removed; RMS "
-            << second.point_rms_px << " px (points), " << second.line_rms_px << " px (lines); "
-            << second.floor_prior_report
-            << (second.floor_prior_used ? "; odometry scale " + std::to_string(second.odometry_scale) : "")
-            << "; " << second.solves << " solves, " << second.iterations << " iterations, " << second.time_s
-            << " s; extension and solve " << summary.seconds << " s";
+  LOG(INFO) << "track extension and its second adjustment: " << summary.seconds << " s";
   return Status::Ok();
 }
 

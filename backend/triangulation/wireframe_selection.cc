@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <utility>
 
 #include "backend/triangulation/landmark_uncertainty.h"
 #include "backend/triangulation/line_triangulation.h"
@@ -122,7 +123,8 @@ void DropBeyondTolerance(const WireframeOptions& options, const std::vector<doub
   *selected = std::move(kept);
 }
 
-double Median(std::vector<double> values) {
+// The element at index size / 2 once sorted (the upper of the two middle ones for an even count).
+double UpperMedian(std::vector<double> values) {
   auto middle = values.begin() + values.size() / 2;
   std::nth_element(values.begin(), middle, values.end());
   return *middle;
@@ -163,7 +165,7 @@ void FarEndsAtPoints(const Eigen::Matrix3d& K, const std::vector<Pose3>& world_T
         along_px.push_back(std::abs(t.dot(r)));
       }
       if (!in_front || across.empty()) continue;
-      const double a = Median(across), b = Median(along_px);
+      const double a = UpperMedian(across), b = UpperMedian(along_px);
       if (a > options.far_end_at_point_px || b > options.far_end_along_px) continue;
       const double cost = a / options.far_end_at_point_px + b / options.far_end_along_px;
       if (cost < best_cost) best = static_cast<int>(i), best_cost = cost;
@@ -187,11 +189,7 @@ PoseDrift WireframePoseDrift(const WireframeOptions& options, const std::vector<
   for (size_t f = 1; f < world_T_camera.size(); ++f) {
     steps.push_back((world_T_camera[f].translation - world_T_camera[f - 1].translation).norm());
   }
-  double median_step = 0;
-  if (!steps.empty()) {
-    std::nth_element(steps.begin(), steps.begin() + steps.size() / 2, steps.end());
-    median_step = steps[steps.size() / 2];
-  }
+  const double median_step = steps.empty() ? 0 : UpperMedian(std::move(steps));
   return PoseDrift{options.pose_rotation_step_rad, options.pose_translation_step_fraction * median_step};
 }
 
@@ -211,9 +209,8 @@ double EstimatePixelSigma(const Eigen::Matrix3d& K, const std::vector<Pose3>& wo
     }
   }
   if (components.empty()) return 0;
-  auto middle = components.begin() + components.size() / 2;
-  std::nth_element(components.begin(), middle, components.end());
-  return 1.4826 * *middle;  // the median absolute deviation of a zero-mean Gaussian is 0.6745 sigma
+  // The median absolute deviation of a zero-mean Gaussian is 0.6745 sigma.
+  return 1.4826 * UpperMedian(std::move(components));
 }
 
 Landmarks SelectWireframeLandmarks(const Eigen::Matrix3d& K, const std::vector<Pose3>& world_T_camera,
