@@ -86,8 +86,9 @@ DEFINE_string(miss_dir, "",
               "segments are missing: length, contrast, the closest detection) and a crop of each such vertex "
               "(8x enlarged, true long edges orange), for finding why edges get no segment.");
 DEFINE_bool(truth_in_image, true,
-            "Generated: a true edge's length counts only inside the undistorted image (with barrel distortion "
-            "the stored image sees beyond it); false: the whole visible part, as before session 7.");
+            "Generated: true vertices count only --radius px inside the undistorted image, and a true edge's "
+            "length only inside it (with barrel distortion the stored image sees beyond it); false: as before "
+            "session 7 (only the stored image's border applies).");
 DEFINE_double(radius, 3.0, "A true junction is found when a detected one lies within this, px.");
 DEFINE_double(min_edge_px, kTruthDefaults.min_edge_px,
               "Generated: a vertex is detectable when at least two visible edges at least this long (px) meet there.");
@@ -386,14 +387,21 @@ std::vector<Eigen::Vector2d> Locations(const Junctions& junctions) {
 }
 
 // Undistorted pixels whose distorted position lies in the stored image, `margin` px inside it:
-// where the undistorted image shows the scene and not the black fill.
-cv::Mat ValidMask(const Camera& camera, double margin) {
+// where the undistorted image shows the scene and not the black fill. With `in_image`, also
+// `margin` px inside the undistorted image itself (without distortion the same condition; with
+// barrel distortion the undistorted frame's border maps well inside the stored image, so without
+// it vertices on the undistorted image's edge would count, which the detector cannot see).
+cv::Mat ValidMask(const Camera& camera, double margin, bool in_image) {
   cv::Mat mask(camera.height, camera.width, CV_8U, cv::Scalar(255));
   for (int y = 0; y < camera.height; ++y) {
     for (int x = 0; x < camera.width; ++x) {
       const Eigen::Vector2d d = camera.DistortPixel(Eigen::Vector2d(x, y));
-      const bool inside = d.x() >= margin && d.y() >= margin && d.x() <= camera.width - 1 - margin &&
-                          d.y() <= camera.height - 1 - margin;
+      bool inside = d.x() >= margin && d.y() >= margin && d.x() <= camera.width - 1 - margin &&
+                    d.y() <= camera.height - 1 - margin;
+      if (in_image) {
+        inside = inside && x >= margin && y >= margin && x <= camera.width - 1 - margin &&
+                 y <= camera.height - 1 - margin;
+      }
       mask.at<uchar>(y, x) = inside ? 255 : 0;
     }
   }
@@ -643,8 +651,10 @@ Status MeasureSequence(const std::string& directory, const std::string& clean_di
     }
   }
   const Camera& camera = sequence.calibration.camera;
-  const ImageUndistorter undistorter(camera);
-  const cv::Mat valid = ValidMask(camera, FLAGS_radius);
+  UndistortInterpolation interpolation;
+  if (std::string error; !UndistortInterpolationFromFlags(&interpolation, &error)) return Status::Error(error);
+  const ImageUndistorter undistorter(camera, interpolation);
+  const cv::Mat valid = ValidMask(camera, FLAGS_radius, FLAGS_truth_in_image);
   TrueJunctionOptions truth_options;
   truth_options.min_edge_px = FLAGS_min_edge_px;
   if (FLAGS_truth_in_image) {
