@@ -130,7 +130,7 @@ std::string Goal(int part, int whole, double goal) {
 double Median(std::vector<double> v) { return Quantile(std::move(v), 0.5); }
 
 struct Settings {
-  UndistortInterpolation undistort_interpolation = UndistortInterpolation::kCubic;
+  UndistortInterpolation undistort_interpolation = kDetectionInterpolation;
   SegmentDetectorOptions segments;
   JunctionDetectorOptions junctions;
   MatchingOptions matching;

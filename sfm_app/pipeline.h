@@ -35,9 +35,9 @@ struct PipelineOptions {
   std::string sequence_dir;   // a SPEC section 1 sequence directory
   std::string output_dir;     // created if needed; existing files of the same names are replaced
   bool show_progress = true;  // a progress line on stderr (only when stderr is a terminal)
-  // Resampling of each frame to the undistorted image (lens distortion only). Cubic, not linear:
-  // bilinear resampling blurs (docs/junction_results.md, "Session 7: lens distortion").
-  UndistortInterpolation undistort_interpolation = UndistortInterpolation::kCubic;
+  // Resampling of each frame to the undistorted image (lens distortion only; see
+  // kDetectionInterpolation).
+  UndistortInterpolation undistort_interpolation = kDetectionInterpolation;
   SegmentDetectorOptions segments;
   JunctionDetectorOptions junctions;
   MatchingOptions matching;

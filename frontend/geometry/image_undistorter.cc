@@ -14,6 +14,14 @@ bool ParseUndistortInterpolation(const std::string& name, UndistortInterpolation
   return true;
 }
 
+const char* UndistortInterpolationName(UndistortInterpolation interpolation) {
+  switch (interpolation) {
+    case UndistortInterpolation::kCubic: return "cubic";
+    case UndistortInterpolation::kLanczos4: return "lanczos4";
+    default: return "linear";
+  }
+}
+
 ImageUndistorter::ImageUndistorter(const Camera& camera, UndistortInterpolation interpolation)
     : width_(camera.width),
       height_(camera.height),

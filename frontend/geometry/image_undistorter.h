@@ -13,8 +13,15 @@ namespace sfm {
 // How the undistorted image is resampled from the stored one (cv::remap's interpolation).
 enum class UndistortInterpolation { kLinear, kCubic, kLanczos4 };
 
+// The resampling of frames before detection (PipelineOptions, the apps' --undistort_interpolation):
+// cubic, since bilinear blurs every edge (keeps about 0.89 of a step's peak gradient, cubic 0.99)
+// and merges close corners (docs/junction_results.md, "Session 7: lens distortion").
+constexpr UndistortInterpolation kDetectionInterpolation = UndistortInterpolation::kCubic;
+
 // "linear", "cubic" or "lanczos4"; false for any other name.
 bool ParseUndistortInterpolation(const std::string& name, UndistortInterpolation* interpolation);
+// The name ParseUndistortInterpolation reads.
+const char* UndistortInterpolationName(UndistortInterpolation interpolation);
 
 class ImageUndistorter {
  public:

@@ -29,8 +29,8 @@ namespace sfm {
 // in *error, for another name.
 bool SegmentMethodFromFlags(SegmentDetectorOptions* options, std::string* error);
 
-// Group sfm_flags_undistort: --undistort_interpolation (linear | cubic | lanczos4; default cubic,
-// PipelineOptions::undistort_interpolation's). False, with a one-line message in *error, for another
+// Group sfm_flags_undistort: --undistort_interpolation (linear | cubic | lanczos4; default
+// kDetectionInterpolation, cubic). False, with a one-line message in *error, for another
 // name.
 bool UndistortInterpolationFromFlags(UndistortInterpolation* interpolation, std::string* error);
 

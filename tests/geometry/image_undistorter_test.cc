@@ -66,6 +66,11 @@ TEST(ImageUndistorterTest, ParsesTheInterpolationNames) {
   EXPECT_TRUE(ParseUndistortInterpolation("linear", &interpolation));
   EXPECT_EQ(interpolation, UndistortInterpolation::kLinear);
   EXPECT_FALSE(ParseUndistortInterpolation("nearest", &interpolation));
+  for (const UndistortInterpolation i :
+       {UndistortInterpolation::kLinear, UndistortInterpolation::kCubic, UndistortInterpolation::kLanczos4}) {
+    ASSERT_TRUE(ParseUndistortInterpolation(UndistortInterpolationName(i), &interpolation));
+    EXPECT_EQ(interpolation, i);
+  }
 }
 
 // Session 7 (docs/junction_results.md, "Session 7: lens distortion"): bilinear resampling blurs the
