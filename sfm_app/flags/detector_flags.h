@@ -30,7 +30,7 @@ namespace sfm {
 bool SegmentMethodFromFlags(SegmentDetectorOptions* options, std::string* error);
 
 // Group sfm_flags_undistort: --undistort_interpolation (linear | cubic | lanczos4; default
-// kDetectionInterpolation, cubic). False, with a one-line message in *error, for another
+// kDetectionInterpolation, linear). False, with a one-line message in *error, for another
 // name.
 bool UndistortInterpolationFromFlags(UndistortInterpolation* interpolation, std::string* error);
 
