@@ -85,6 +85,10 @@ DEFINE_string(miss_dir, "",
               "If set, write there misses.csv (one row per long edge of each missed detectable vertex whose "
               "segments are missing: length, contrast, the closest detection) and a crop of each such vertex "
               "(8x enlarged, true long edges orange), for finding why edges get no segment.");
+DEFINE_bool(truth_in_image, true,
+            "Generated: true vertices count only --radius px inside the undistorted image, and a true edge's "
+            "length only inside it (with barrel distortion the stored image sees beyond it); false: as before "
+            "session 7 (only the stored image's border applies).");
 DEFINE_double(radius, 3.0, "A true junction is found when a detected one lies within this, px.");
 DEFINE_double(min_edge_px, kTruthDefaults.min_edge_px,
               "Generated: a vertex is detectable when at least two visible edges at least this long (px) meet there.");
@@ -258,7 +262,21 @@ std::string VariantName(int k) {
   }
 }
 
+// Rings of distance from the principal point (undistorted px) for the recall by radius: where lens
+// distortion stretches the undistorted image most (the periphery), recall can differ.
+constexpr int kNumRings = 5;
+constexpr double kRingEdges[kNumRings + 1] = {0, 100, 175, 250, 325, 1e9};
+int RingOf(const Camera& camera, const Eigen::Vector2d& p) {
+  const double r = std::hypot(p.x() - camera.cx, p.y() - camera.cy);
+  int k = 0;
+  while (k + 1 < kNumRings && r >= kRingEdges[k + 1]) ++k;
+  return k;
+}
+
 struct GeneratedStats {
+  std::array<int, kNumRings> ring_detectable{}, ring_found{};
+  std::array<std::array<int, kNumMissKinds>, kNumRings> ring_misses{};  // by WhyMissed
+  std::array<double, kNumRings> ring_stretch{};  // the undistortion's radial stretch at the ring's middle
   std::array<int, kNumVariants> variant_count{}, variant_found{};
   std::array<std::vector<double>, kNumVariants> variant_errors;
   int frames = 0;
@@ -280,6 +298,11 @@ struct GeneratedStats {
   bool has_contrast = false;  // a noise-free twin was measured
 
   void Add(const GeneratedStats& o) {
+    for (int k = 0; k < kNumRings; ++k) {
+      ring_detectable[k] += o.ring_detectable[k];
+      ring_found[k] += o.ring_found[k];
+      for (int j = 0; j < kNumMissKinds; ++j) ring_misses[k][j] += o.ring_misses[k][j];
+    }
     for (int k = 0; k < kNumMissKinds; ++k) misses[k] += o.misses[k];
     for (int k = 0; k < kNumCrowdedKinds; ++k) crowded[k] += o.crowded[k];
     for (int k = 0; k < kNumMissKinds; ++k) contrast_misses[k] += o.contrast_misses[k];
@@ -364,14 +387,21 @@ std::vector<Eigen::Vector2d> Locations(const Junctions& junctions) {
 }
 
 // Undistorted pixels whose distorted position lies in the stored image, `margin` px inside it:
-// where the undistorted image shows the scene and not the black fill.
-cv::Mat ValidMask(const Camera& camera, double margin) {
+// where the undistorted image shows the scene and not the black fill. With `in_image`, also
+// `margin` px inside the undistorted image itself (without distortion the same condition; with
+// barrel distortion the undistorted frame's border maps well inside the stored image, so without
+// it vertices on the undistorted image's edge would count, which the detector cannot see).
+cv::Mat ValidMask(const Camera& camera, double margin, bool in_image) {
   cv::Mat mask(camera.height, camera.width, CV_8U, cv::Scalar(255));
   for (int y = 0; y < camera.height; ++y) {
     for (int x = 0; x < camera.width; ++x) {
       const Eigen::Vector2d d = camera.DistortPixel(Eigen::Vector2d(x, y));
-      const bool inside = d.x() >= margin && d.y() >= margin && d.x() <= camera.width - 1 - margin &&
-                          d.y() <= camera.height - 1 - margin;
+      bool inside = d.x() >= margin && d.y() >= margin && d.x() <= camera.width - 1 - margin &&
+                    d.y() <= camera.height - 1 - margin;
+      if (in_image) {
+        inside = inside && x >= margin && y >= margin && x <= camera.width - 1 - margin &&
+                 y <= camera.height - 1 - margin;
+      }
       mask.at<uchar>(y, x) = inside ? 255 : 0;
     }
   }
@@ -621,13 +651,27 @@ Status MeasureSequence(const std::string& directory, const std::string& clean_di
     }
   }
   const Camera& camera = sequence.calibration.camera;
-  const ImageUndistorter undistorter(camera);
-  const cv::Mat valid = ValidMask(camera, FLAGS_radius);
+  UndistortInterpolation interpolation;
+  if (std::string error; !UndistortInterpolationFromFlags(&interpolation, &error)) return Status::Error(error);
+  const ImageUndistorter undistorter(camera, interpolation);
+  const cv::Mat valid = ValidMask(camera, FLAGS_radius, FLAGS_truth_in_image);
   TrueJunctionOptions truth_options;
   truth_options.min_edge_px = FLAGS_min_edge_px;
+  if (FLAGS_truth_in_image) {
+    truth_options.image_width = camera.width;
+    truth_options.image_height = camera.height;
+  }
   EndpointOffsetOptions offset_options;
   offset_options.max_abs_t = FLAGS_max_abs_t;
   stats->assign(methods.size(), GeneratedStats());
+  // Radial stretch of the undistortion in the middle of each ring (1 without distortion): how many
+  // undistorted pixels one stored pixel becomes along the radius, d r_u / d r_d, measured along x.
+  for (int k = 0; k < kNumRings; ++k) {
+    const double r = k + 1 < kNumRings ? 0.5 * (kRingEdges[k] + kRingEdges[k + 1]) : 360.0;
+    const Eigen::Vector2d p(camera.cx + r, camera.cy), q(camera.cx + r + 1, camera.cy);
+    const double stretch = 1.0 / (camera.DistortPixel(q) - camera.DistortPixel(p)).norm();
+    for (GeneratedStats& s : *stats) s.ring_stretch[k] = stretch;
+  }
 
   for (size_t f = 0; f < sequence.frames.size(); ++f) {
     cv::Mat image;
@@ -735,6 +779,11 @@ Status MeasureSequence(const std::string& directory, const std::string& clean_di
         ++s.confusion[detectable_type[match.truth]][static_cast<int>(junctions[match.detected].type)];
       }
       for (int type : detectable_type) ++s.true_by_type[type];
+      for (size_t i = 0; i < detectable.size(); ++i) {
+        const int ring = RingOf(camera, detectable[i]);
+        ++s.ring_detectable[ring];
+        if (detectable_found[i]) ++s.ring_found[ring];
+      }
       // The literal wording: a detected junction within the radius, shared or not.
       for (const Eigen::Vector2d& p : detectable) {
         if (std::any_of(detected.begin(), detected.end(),
@@ -746,6 +795,7 @@ Status MeasureSequence(const std::string& directory, const std::string& clean_di
         if (detectable_found[i]) continue;
         const MissKind kind = WhyMissed(*detectable_vertex[i], any_truth, segments, junction_options.max_gap_px);
         ++s.misses[kind];
+        ++s.ring_misses[RingOf(camera, detectable[i])][kind];
         if (!contrast.empty() && detectable_seen[i]) ++s.contrast_misses[kind];
         const MissKind inner = WhySegmentsMissed(*detectable_vertex[i], segments, junction_options.max_gap_px);
         if (!FLAGS_miss_dir.empty() && inner == kNotJoined) {
@@ -1085,6 +1135,19 @@ int main(int argc, char** argv) {
          << "| detected | precision | segments/frame | ms/frame segments + junctions |\n"
          << "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   std::vector<GeneratedStats> pooled(methods.size());
+  // Recall by distance from the principal point, and the reasons of the misses there.
+  std::ostringstream rings;
+  rings << "\n### Recall by distance from the principal point\n\n"
+        << "Detectable vertices by their distance r from (cx, cy) in the undistorted image: found / count "
+        << "(recall), then the misses as crowded / edges missing / ends far / not joined. \"stretch\": "
+        << "d r_undistorted / d r_stored at the ring's middle (360 px for the last), 1 without distortion.\n\n"
+        << "| sequence | segments |";
+  for (int k = 0; k < kNumRings; ++k) {
+    rings << " r " << kRingEdges[k] << (k + 1 < kNumRings ? "-" + Fixed(kRingEdges[k + 1], 0) : "+") << " px |";
+  }
+  rings << "\n|---|---|";
+  for (int k = 0; k < kNumRings; ++k) rings << "---|";
+  rings << "\n";
   for (const auto& [name, directory, clean] : sequences) {
     std::fprintf(stderr, "benchmark_junctions: measuring %s\n", directory.c_str());
     std::vector<GeneratedStats> stats;
@@ -1093,6 +1156,17 @@ int main(int argc, char** argv) {
       return fail(1, s.message());
     }
     for (size_t m = 0; m < methods.size(); ++m) pooled[m].Add(stats[m]);
+    for (size_t m = 0; m < methods.size(); ++m) {
+      const GeneratedStats& s = stats[m];
+      rings << "| " << name << " | " << methods[m].name << " |";
+      for (int k = 0; k < kNumRings; ++k) {
+        rings << " " << s.ring_found[k] << " / " << s.ring_detectable[k] << " ("
+              << Percent(s.ring_found[k], s.ring_detectable[k]) << "), miss " << s.ring_misses[k][kCrowded] << "/"
+              << s.ring_misses[k][kEdgesMissing] << "/" << s.ring_misses[k][kEndsFar] << "/"
+              << s.ring_misses[k][kNotJoined] << ", stretch " << Fixed(s.ring_stretch[k], 2) << " |";
+      }
+      rings << "\n";
+    }
     for (size_t m = 0; m < methods.size(); ++m) {
       const GeneratedStats& s = stats[m];
       report << "| " << name << " | " << methods[m].name << " | " << s.frames << " | " << s.detectable << " | "
@@ -1117,6 +1191,7 @@ int main(int argc, char** argv) {
            << " + " << Fixed(s.junction_ms / s.frames, 2) << " |\n";
   }
 
+  report << rings.str();
   report << "\n### Other readings of \"detectable\", all generated frames\n\n"
          << "| vertices | segments | count | found | recall | median error (px) |\n|---|---|---|---|---|---|\n";
   for (size_t m = 0; m < methods.size(); ++m) {

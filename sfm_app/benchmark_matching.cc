@@ -130,6 +130,7 @@ std::string Goal(int part, int whole, double goal) {
 double Median(std::vector<double> v) { return Quantile(std::move(v), 0.5); }
 
 struct Settings {
+  UndistortInterpolation undistort_interpolation = kDetectionInterpolation;
   SegmentDetectorOptions segments;
   JunctionDetectorOptions junctions;
   MatchingOptions matching;
@@ -158,7 +159,7 @@ std::vector<Eigen::Vector2d> JudgedLocations(const LoadedFrame& frame) {
 }
 
 Status LoadFrames(const Sequence& sequence, const Settings& settings, std::vector<LoadedFrame>* frames) {
-  const ImageUndistorter undistorter(sequence.calibration.camera);
+  const ImageUndistorter undistorter(sequence.calibration.camera, settings.undistort_interpolation);
   frames->resize(sequence.frames.size());
   for (size_t f = 0; f < sequence.frames.size(); ++f) {
     cv::Mat image;
@@ -859,6 +860,7 @@ int main(int argc, char** argv) {
   Settings settings;
   std::string error;
   if (!SegmentMethodFromFlags(&settings.segments, &error)) return fail(2, error);
+  if (!UndistortInterpolationFromFlags(&settings.undistort_interpolation, &error)) return fail(2, error);
   SegmentBranchesFromFlags(&settings.segments.fast);
   JunctionChoiceFromFlags(&settings.junctions);
   MatchingOptions& matching = settings.matching;

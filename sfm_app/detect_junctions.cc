@@ -78,6 +78,8 @@ int main(int argc, char** argv) {
   sfm::SegmentDetectorOptions segment_options;
   std::string flag_error;
   if (!sfm::SegmentMethodFromFlags(&segment_options, &flag_error)) return Fail(2, flag_error);
+  sfm::UndistortInterpolation interpolation;
+  if (!sfm::UndistortInterpolationFromFlags(&interpolation, &flag_error)) return Fail(2, flag_error);
   segment_options.min_length = FLAGS_min_segment_length;
   sfm::SegmentBranchesFromFlags(&segment_options.fast);
   sfm::JunctionDetectorOptions junction_options;
@@ -102,7 +104,7 @@ int main(int argc, char** argv) {
                          " but " + FLAGS_camera + " calibrates " + std::to_string(camera.width) + "x" +
                          std::to_string(camera.height));
     }
-    grey = sfm::ImageUndistorter(camera).Apply(grey);
+    grey = sfm::ImageUndistorter(camera, interpolation).Apply(grey);
   }
   for (const std::string* output : {&FLAGS_json, &FLAGS_overlay}) {
     if (output->empty()) continue;

@@ -149,6 +149,7 @@ bool OptionsFromFlags(sfm::PipelineOptions* options, std::string* error) {
   options->sequence_dir = FLAGS_sequence;
   options->output_dir = FLAGS_output;
   options->show_progress = FLAGS_progress;
+  if (!sfm::UndistortInterpolationFromFlags(&options->undistort_interpolation, error)) return false;
   if (!sfm::SegmentMethodFromFlags(&options->segments, error)) return false;
   sfm::SegmentBranchesFromFlags(&options->segments.fast);
   sfm::JunctionChoiceFromFlags(&options->junctions);

@@ -113,6 +113,8 @@ int main(int argc, char** argv) {
   sfm::MatchingOptions matching_options;
   std::string error;
   if (!OptionsFromFlags(&segment_options, &junction_options, &matching_options, &error)) return Fail(2, error);
+  sfm::UndistortInterpolation interpolation;
+  if (!sfm::UndistortInterpolationFromFlags(&interpolation, &error)) return Fail(2, error);
 
   // Input, and output places, all checked before any work.
   sfm::Sequence sequence;
@@ -161,7 +163,7 @@ int main(int argc, char** argv) {
 
   // Detection and matching.
   const auto start = std::chrono::steady_clock::now();
-  const sfm::ImageUndistorter undistorter(calibration.camera);
+  const sfm::ImageUndistorter undistorter(calibration.camera, interpolation);
   const cv::Mat grey_a = undistorter.Apply(image_a), grey_b = undistorter.Apply(image_b);
   const sfm::LineSegments segments_a = sfm::DetectLineSegments(grey_a, segment_options);
   const sfm::LineSegments segments_b = sfm::DetectLineSegments(grey_b, segment_options);

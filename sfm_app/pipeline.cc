@@ -47,7 +47,7 @@ Status LoadImages(const Sequence& sequence, Progress* progress, std::vector<cv::
 // Paper section 2: junctions and topology graph of every frame, in undistorted pixels.
 void DetectJunctionsOfAllFrames(const Sequence& sequence, const std::vector<cv::Mat>& images,
                                 const PipelineOptions& options, Progress* progress, PipelineResult* result) {
-  const ImageUndistorter undistorter(sequence.calibration.camera);
+  const ImageUndistorter undistorter(sequence.calibration.camera, options.undistort_interpolation);
   const int n = static_cast<int>(images.size());
   result->junctions.resize(n);
   result->graphs.resize(n);

@@ -8,6 +8,7 @@
 #include "backend/triangulation/landmark_merge.h"
 #include "backend/triangulation/track_extension.h"
 #include "backend/triangulation/triangulation_options.h"
+#include "frontend/geometry/image_undistorter.h"
 #include "frontend/junctions/junction_options.h"
 #include "frontend/matching/matching_options.h"
 #include "frontend/segments/segment_detector.h"
@@ -34,6 +35,9 @@ struct PipelineOptions {
   std::string sequence_dir;   // a SPEC section 1 sequence directory
   std::string output_dir;     // created if needed; existing files of the same names are replaced
   bool show_progress = true;  // a progress line on stderr (only when stderr is a terminal)
+  // Resampling of each frame to the undistorted image (lens distortion only; see
+  // kDetectionInterpolation).
+  UndistortInterpolation undistort_interpolation = kDetectionInterpolation;
   SegmentDetectorOptions segments;
   JunctionDetectorOptions junctions;
   MatchingOptions matching;

@@ -6,7 +6,28 @@
 
 namespace sfm {
 
-ImageUndistorter::ImageUndistorter(const Camera& camera) : width_(camera.width), height_(camera.height) {
+bool ParseUndistortInterpolation(const std::string& name, UndistortInterpolation* interpolation) {
+  if (name == "linear") *interpolation = UndistortInterpolation::kLinear;
+  else if (name == "cubic") *interpolation = UndistortInterpolation::kCubic;
+  else if (name == "lanczos4") *interpolation = UndistortInterpolation::kLanczos4;
+  else return false;
+  return true;
+}
+
+const char* UndistortInterpolationName(UndistortInterpolation interpolation) {
+  switch (interpolation) {
+    case UndistortInterpolation::kCubic: return "cubic";
+    case UndistortInterpolation::kLanczos4: return "lanczos4";
+    default: return "linear";
+  }
+}
+
+ImageUndistorter::ImageUndistorter(const Camera& camera, UndistortInterpolation interpolation)
+    : width_(camera.width),
+      height_(camera.height),
+      interpolation_(interpolation == UndistortInterpolation::kCubic      ? cv::INTER_CUBIC
+                     : interpolation == UndistortInterpolation::kLanczos4 ? cv::INTER_LANCZOS4
+                                                                          : cv::INTER_LINEAR) {
   if (!camera.HasDistortion()) return;
   const cv::Matx33d camera_matrix(camera.fx, 0, camera.cx, 0, camera.fy, camera.cy, 0, 0, 1);
   const cv::Matx<double, 1, 5> coefficients(camera.distortion[0], camera.distortion[1], camera.distortion[2],
@@ -21,7 +42,7 @@ cv::Mat ImageUndistorter::Apply(const cv::Mat& image) const {
   CHECK_EQ(image.rows, height_);
   if (map_x_.empty()) return image;
   cv::Mat undistorted;
-  cv::remap(image, undistorted, map_x_, map_y_, cv::INTER_LINEAR, cv::BORDER_CONSTANT, cv::Scalar::all(0));
+  cv::remap(image, undistorted, map_x_, map_y_, interpolation_, cv::BORDER_CONSTANT, cv::Scalar::all(0));
   return undistorted;
 }
 

@@ -17,17 +17,36 @@ struct Arm {
   int segment = -1;  // index into FrameTruth::segments
 };
 
-// For every vertex of the frame, the visible edge parts that start at it.
-std::map<int, std::vector<Arm>> ArmsOfVertices(const Wireframe& wireframe, const FrameTruth& frame) {
+// The part of from -> to that stays in [-0.5, width - 0.5] x [-0.5, height - 0.5] from `from` on
+// (`from` inside): its far end. Unchanged when width or height is not positive.
+Eigen::Vector2d ClipToImage(const Eigen::Vector2d& from, const Eigen::Vector2d& to, int width, int height) {
+  if (width <= 0 || height <= 0) return to;
+  const Eigen::Vector2d d = to - from;
+  double u = 1;  // fraction of from -> to inside (Liang-Barsky, one side only: `from` is inside)
+  const double low[2] = {-0.5, -0.5}, high[2] = {width - 0.5, height - 0.5};
+  for (int a = 0; a < 2; ++a) {
+    if (d[a] > 0 && from[a] + u * d[a] > high[a]) u = (high[a] - from[a]) / d[a];
+    if (d[a] < 0 && from[a] + u * d[a] < low[a]) u = (low[a] - from[a]) / d[a];
+  }
+  return from + std::max(0.0, u) * d;
+}
+
+// For every vertex of the frame, the visible edge parts that start at it (clipped to the image
+// when the options give its size).
+std::map<int, std::vector<Arm>> ArmsOfVertices(const Wireframe& wireframe, const FrameTruth& frame,
+                                               const TrueJunctionOptions& options) {
   std::map<int, std::vector<Arm>> arms;
+  auto arm = [&](const Eigen::Vector2d& at, const Eigen::Vector2d& far, int index) {
+    const Eigen::Vector2d end = ClipToImage(at, far, options.image_width, options.image_height);
+    return Arm{end, (end - at).norm(), index};
+  };
   for (size_t i = 0; i < frame.segments.size(); ++i) {
     const VisibleSegment& s = frame.segments[i];
     const WireEdge& edge = wireframe.edges.at(s.edge);
-    const double length = (s.pixel[1] - s.pixel[0]).norm();
     const int index = static_cast<int>(i);
     // end[0] is at t[0]; it is the edge's own end (vertex_a) only when marked kVertex.
-    if (s.end[0] == SegmentEnd::kVertex) arms[edge.vertex_a].push_back({s.pixel[1], length, index});
-    if (s.end[1] == SegmentEnd::kVertex) arms[edge.vertex_b].push_back({s.pixel[0], length, index});
+    if (s.end[0] == SegmentEnd::kVertex) arms[edge.vertex_a].push_back(arm(s.pixel[0], s.pixel[1], index));
+    if (s.end[1] == SegmentEnd::kVertex) arms[edge.vertex_b].push_back(arm(s.pixel[1], s.pixel[0], index));
   }
   return arms;
 }
@@ -112,7 +131,7 @@ std::vector<double> EdgeContrasts(const cv::Mat& image, const FrameTruth& frame,
 
 FrameTrueJunctions TrueJunctionsOfFrame(const Wireframe& wireframe, const FrameTruth& frame,
                                         const TrueJunctionOptions& options) {
-  const std::map<int, std::vector<Arm>> arms_of = ArmsOfVertices(wireframe, frame);
+  const std::map<int, std::vector<Arm>> arms_of = ArmsOfVertices(wireframe, frame, options);
   FrameTrueJunctions result;
   for (const VisibleVertex& v : frame.vertices) {
     const auto it = arms_of.find(v.vertex);
@@ -154,7 +173,7 @@ FrameTrueJunctions TrueJunctionsOfFrame(const Wireframe& wireframe, const FrameT
 
 std::vector<TrueSegment> TrueSegmentsOfFrame(const Wireframe& wireframe, const FrameTruth& frame,
                                              const TrueJunctionOptions& options) {
-  const std::map<int, std::vector<Arm>> arms_of = ArmsOfVertices(wireframe, frame);
+  const std::map<int, std::vector<Arm>> arms_of = ArmsOfVertices(wireframe, frame, options);
   std::vector<TrueSegment> result;
   for (const VisibleSegment& s : frame.segments) {
     TrueSegment t;

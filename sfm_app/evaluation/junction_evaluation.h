@@ -34,6 +34,11 @@ struct TrueJunctionOptions {
   // as detectable, counting only long edges whose contrast is at least min_contrast.
   const std::vector<double>* segment_contrast = nullptr;
   double min_contrast = 0;
+  // When positive: the undistorted image's size. Each edge part then counts (for min_edge_px, and
+  // its far end) only up to where it leaves the image, [-0.5, size - 0.5]. Without distortion the
+  // truth's visible parts already end there; with barrel distortion the stored image sees beyond
+  // the undistorted frame, so a part can run on outside the image the detector is given.
+  int image_width = 0, image_height = 0;
 };
 
 // A visible wireframe vertex where at least two visible edges meet, not just two collinear ones.

@@ -14,6 +14,7 @@
 
 #include <string>
 
+#include "frontend/geometry/image_undistorter.h"
 #include "frontend/junctions/junction_options.h"
 #include "frontend/matching/matching_options.h"
 #include "frontend/segments/segment_detector.h"
@@ -27,6 +28,11 @@ namespace sfm {
 // Group sfm_flags_segment_method: --segments (fast | reference). False, with a one-line message
 // in *error, for another name.
 bool SegmentMethodFromFlags(SegmentDetectorOptions* options, std::string* error);
+
+// Group sfm_flags_undistort: --undistort_interpolation (linear | cubic | lanczos4; default
+// kDetectionInterpolation, linear). False, with a one-line message in *error, for another
+// name.
+bool UndistortInterpolationFromFlags(UndistortInterpolation* interpolation, std::string* error);
 
 // Group sfm_flags_segment_branches: --branches_at_free_ends, --branches_to_far_corners,
 // --bridges_past_corners, --short_pieces_at_contacts, --min_contact_length.

@@ -150,6 +150,29 @@ TEST(TrueJunctionsOfFrameTest, DetectableNeedsTwoLongNonCollinearEdges) {
   EXPECT_EQ(truth.occlusions[0], Eigen::Vector2d(400, 250));
 }
 
+// Session 7 (benchmark_junctions --truth_in_image): with the image size given, an edge counts only
+// up to where it leaves the image. Vertex 0 at (100, 100) has edges 60 px right and 40 px down; in a
+// 640 x 108 image the downward one keeps 7.5 px (to y = 107.5), under min_edge_px = 10, so vertex
+// 0 is no longer detectable; in 640 x 130 it keeps 29.5 px and its far end is at y = 129.5.
+TEST(TrueJunctionsOfFrameTest, WithTheImageSizeEdgesCountOnlyInsideTheImage) {
+  const SmallFrame f = MakeSmallFrame();
+  TrueJunctionOptions options;
+  options.image_width = 640;
+  options.image_height = 108;
+  FrameTrueJunctions truth = TrueJunctionsOfFrame(f.wireframe, f.frame, options);
+  ASSERT_GE(truth.vertices.size(), 1u);
+  EXPECT_EQ(truth.vertices[0].vertex, 0);
+  EXPECT_FALSE(truth.vertices[0].detectable);
+  EXPECT_EQ(truth.vertices[0].num_long_edges, 1);
+  options.image_height = 130;
+  truth = TrueJunctionsOfFrame(f.wireframe, f.frame, options);
+  ASSERT_GE(truth.vertices.size(), 1u);
+  EXPECT_TRUE(truth.vertices[0].detectable);
+  ASSERT_EQ(truth.vertices[0].long_edge_ends.size(), 2u);
+  EXPECT_NEAR(truth.vertices[0].long_edge_ends[0].x(), 160, 1e-9);  // inside: unchanged
+  EXPECT_NEAR(truth.vertices[0].long_edge_ends[1].y(), 129.5, 1e-9);
+}
+
 TEST(EdgeContrastsTest, MeanStepAcrossEachEdgeAndTheContrastReading) {
   const SmallFrame f = MakeSmallFrame();
   // Above y = 100: 80; below it, 120 right of x = 100 and 117 left of it. So the edges along
