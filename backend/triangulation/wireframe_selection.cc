@@ -130,12 +130,18 @@ double UpperMedian(std::vector<double> values) {
   return *middle;
 }
 
-// WireframeOptions::line_variance_factor: the lines' variance of unit weight, the typical
-// chi2 / dof of their residuals at sigma_px, estimated robustly (the lines include wrong
-// groupings): the median over the lines of chi2 / m(dof), m(k) the median of a chi-square variable
-// with k degrees of freedom, so that lines whose residuals follow the noise model give 1 whatever
-// their number of views. 1 when no line has a degree of freedom, or when the median is 0 (noise-free
-// observations).
+// The variance of unit weight of a set of landmarks from their residuals' chi2 / m(dof), m(k) the
+// median of a chi-square variable with k degrees of freedom: the median of the ratios, so that
+// landmarks whose residuals follow the noise model give 1 whatever their number of views, robust to
+// the wrong tracks and groupings among them. 1 when there is none, or when the median is 0
+// (noise-free observations).
+double UnitVariance(std::vector<double> ratios) {
+  const double median = ratios.empty() ? 0.0 : UpperMedian(std::move(ratios));
+  return median > 0 ? median : 1.0;
+}
+
+// WireframeOptions::line_variance_factor: the lines' variance of unit weight, their residuals'
+// chi2 at sigma_px (LineChiSquare on world_T_camera) over m(dof).
 double LineUnitVariance(const Eigen::Matrix3d& K, const std::vector<Pose3>& world_T_camera,
                         const Landmarks& landmarks, double sigma_px) {
   std::vector<double> ratios;
@@ -150,8 +156,35 @@ double LineUnitVariance(const Eigen::Matrix3d& K, const std::vector<Pose3>& worl
     const double chi_square = LineChiSquare(K, views, line.point, line.direction, sigma_px, &dof);
     if (dof >= 1 && std::isfinite(chi_square)) ratios.push_back(chi_square / ChiSquareQuantile(0.5, dof));
   }
-  const double median = ratios.empty() ? 0.0 : UpperMedian(std::move(ratios));
-  return median > 0 ? median : 1.0;
+  return UnitVariance(std::move(ratios));
+}
+
+// WireframeOptions::point_variance_factor: the same for the points (PointChiSquare).
+double PointUnitVariance(const Eigen::Matrix3d& K, const std::vector<Pose3>& world_T_camera,
+                         const Landmarks& landmarks, double sigma_px) {
+  std::vector<double> ratios;
+  for (const PointLandmark& point : landmarks.points) {
+    std::vector<Pose3> cameras;
+    std::vector<Eigen::Vector2d> pixels;
+    for (const PointObservation& observation : point.observations) {
+      CHECK(observation.frame >= 0 && observation.frame < static_cast<int>(world_T_camera.size()))
+          << "frame " << observation.frame;
+      cameras.push_back(world_T_camera[observation.frame]);
+      pixels.push_back(observation.pixel);
+    }
+    int dof = 0;
+    const double chi_square = PointChiSquare(K, cameras, pixels, point.position, sigma_px, &dof);
+    if (dof >= 1 && std::isfinite(chi_square)) ratios.push_back(chi_square / ChiSquareQuantile(0.5, dof));
+  }
+  return UnitVariance(std::move(ratios));
+}
+
+// A landmark's own a-posteriori variance factor relative to its kind's variance of unit weight, as
+// a factor on its sigmas: sqrt(chi2 / dof / unit_variance) when above 1, else 1 (never below the
+// first-order sigma). 1 without a degree of freedom.
+double OwnSigmaFactor(double chi_square, int dof, double unit_variance) {
+  if (dof < 1) return 1.0;
+  return std::sqrt(std::max(1.0, chi_square / dof / unit_variance));
 }
 
 // WireframeOptions::far_end_at_point_px: a kept line's end1 at the drawn point whose projections
@@ -275,6 +308,8 @@ Landmarks SelectWireframeLandmarks(const Eigen::Matrix3d& K, const std::vector<P
   WireframeSelectionReport counts;
   const double line_unit_variance =
       options.line_variance_factor ? LineUnitVariance(K, world_T_camera, landmarks, sigma_px) : 1.0;
+  const double point_unit_variance =
+      options.point_variance_factor ? PointUnitVariance(K, world_T_camera, landmarks, sigma_px) : 1.0;
   Landmarks selected;
   std::vector<int> new_index(landmarks.points.size(), -1);
   // The drawn vertices' sigmas, for the accuracy asked (tolerance_m): kept points', and kept lines'
@@ -305,7 +340,11 @@ Landmarks SelectWireframeLandmarks(const Eigen::Matrix3d& K, const std::vector<P
       ++counts.points_occlusion_untested;
       continue;
     }
-    const double point_sigma = PointPositionSigma(K, cameras, frames, point.position, sigma_px, drift);
+    // The point's own variance factor (point_variance_factor), as for the lines below.
+    const double point_factor =
+        options.point_variance_factor ? OwnSigmaFactor(chi_square, dof, point_unit_variance) : 1.0;
+    const double point_sigma =
+        point_factor * PointPositionSigma(K, cameras, frames, point.position, sigma_px, drift);
     if (!determined(point_sigma, SmallestDepth(cameras, point.position))) {
       ++counts.points_uncertain;
       continue;
@@ -356,9 +395,7 @@ Landmarks SelectWireframeLandmarks(const Eigen::Matrix3d& K, const std::vector<P
     // The line's own variance factor (line_variance_factor): its residuals' chi2 / dof relative to
     // the lines' typical one, when above 1, scales its covariance (both vertices' sigmas by the
     // square root).
-    const double factor = options.line_variance_factor && dof >= 1
-                              ? std::sqrt(std::max(1.0, chi_square / dof / line_unit_variance))
-                              : 1.0;
+    const double factor = options.line_variance_factor ? OwnSigmaFactor(chi_square, dof, line_unit_variance) : 1.0;
     const double end0_sigma =
         kept.point_landmark < 0 ? factor * LinePositionSigma(K, views, kept.end0, kept.direction, sigma_px, drift,
                                                              options.line_sigma_subtracts_plane_noise)

@@ -536,6 +536,52 @@ TEST_F(WireframeSelectionTest, ALineNoisierThanTheOthersGetsALargerSigma) {
   EXPECT_EQ(kept.lines.size(), 9u);
 }
 
+// WireframeOptions::point_variance_factor. Eight corners 3 m ahead observed 0.1 px off in x,
+// alternately to either side in the five views: chi-square 5 x (0.1 / 0.3)^2 = 0.556 on 7 degrees
+// of freedom, 0.0875 of chi-square(7)'s median (6.35): the points' variance of unit weight. A ninth
+// corner at a depth where its sigma is 0.82 of the bound (31 m, low parallax over the 1 m path),
+// observed 0.3 px off alternately: chi-square 5, chi2 / dof 0.71 (passes, and below 1), 8.2 times
+// the unit variance, so its sigma times 2.9 is over the bound: drawn off, not drawn on. Observed
+// like the others it is drawn on.
+TEST_F(WireframeSelectionTest, APointNoisierThanTheOthersGetsALargerSigma) {
+  auto shift_pixels = [](PointLandmark* point, double shift) {
+    for (PointObservation& observation : point->observations) {
+      observation.pixel.x() += observation.frame % 2 == 0 ? shift : -shift;
+    }
+  };
+  Landmarks landmarks;
+  for (int i = 0; i < 8; ++i) {
+    landmarks.points.push_back(Point({-0.6 + 0.15 * i, 0.2, 3}));
+    shift_pixels(&landmarks.points.back(), 0.1);
+  }
+  const Eigen::Vector3d far(0.5, 0.2, 31);
+  landmarks.points.push_back(Point(far));
+  shift_pixels(&landmarks.points.back(), 0.3);
+  WireframeOptions options;
+  const std::vector<int> frames = {0, 1, 2, 3, 4};
+  const double sigma = PointPositionSigma(K_, cameras_, frames, far, 0.3, WireframePoseDrift(options, cameras_));
+  EXPECT_NEAR(sigma / MaxVertexSigma(options, 450, 31), 0.82, 0.03);
+  std::vector<Eigen::Vector2d> pixels;
+  for (const PointObservation& observation : landmarks.points[8].observations) pixels.push_back(observation.pixel);
+  int dof = 0;
+  EXPECT_NEAR(PointChiSquare(K_, cameras_, pixels, far, 0.3, &dof), 5.0, 0.01);
+  ASSERT_EQ(dof, 7);
+  EXPECT_NEAR(ChiSquareQuantile(0.5, 7), 6.35, 0.02);
+
+  WireframeSelectionReport report;
+  Landmarks kept = SelectWireframeLandmarks(K_, cameras_, landmarks, options, &report);  // off
+  EXPECT_EQ(kept.points.size(), 9u);
+  options.point_variance_factor = true;
+  kept = SelectWireframeLandmarks(K_, cameras_, landmarks, options, &report);
+  EXPECT_EQ(kept.points.size(), 8u);
+  EXPECT_EQ(report.points_uncertain, 1);
+
+  landmarks.points[8] = Point(far);
+  shift_pixels(&landmarks.points[8], 0.1);  // as noisy as the others
+  kept = SelectWireframeLandmarks(K_, cameras_, landmarks, options, &report);
+  EXPECT_EQ(kept.points.size(), 9u);
+}
+
 TEST(WireframeOptionsTest, BadOptionsAreRejected) {
   WireframeOptions options;
   EXPECT_TRUE(options.Check().ok());
