@@ -164,12 +164,12 @@ struct WireframeOptions {
   // (LineChiSquare at the test's pixel noise), v0 the lines' variance of unit weight (the median
   // over the lines of chi2 / median of chi-square(dof), 1 for residuals as the noise model says),
   // i.e. its covariance by v / v0 (the estimated variance factor of a least-squares adjustment,
-  // Foerstner & Wrobel 2016, "Photogrammetric Computer Vision", sec. 4.2.3, applied per line). The
+  // Foerstner & Wrobel 2016, "Photogrammetric Computer Vision", ch. 4; applied per line). The
   // first-order sigma assumes every view's end-points are off by independent pixel noise; a line
   // whose views disagree more than the other lines' do (a double edge's segments switching between
   // its two edges, a wrong grouping) gets the larger sigma its residuals show, before the
   // determination test (rule 2) and the accuracy asked (rule 3). Relative to the lines' own level,
-  // not to pixel_sigma_px: the lines' end-points fit 2-5 times better than the 0.3 px the tests
+  // not to pixel_sigma_px: the lines' end-points fit 2-3 times better than the 0.3 px the tests
   // assume (v0 0.11-0.28 on the generated sequences), so against the assumed noise almost no line
   // exceeds 1 (measured: -0.0004..+0.003 in the share). Never below the first-order sigma.
   // docs/tracks_and_triangulation.md, "A line's own variance factor"; docs/backend_results.md,
