@@ -141,6 +141,12 @@ DEFINE_double(wireframe_far_end_along_px, kDefaults.triangulation.wireframe.far_
 DEFINE_bool(wireframe_far_end_shares_vertex, kDefaults.triangulation.wireframe.far_end_shares_vertex,
             "Wireframe selection, --wireframe_far_end_at_point_px: the edge ends at the point's own vertex "
             "(false: at a vertex of its own at the point's position).");
+DEFINE_bool(wireframe_line_variance_factor, kDefaults.triangulation.wireframe.line_variance_factor,
+            "Wireframe selection: a line's vertex sigmas scaled by sqrt(its chi2 / dof over the lines' typical one) when "
+            "above 1 (docs/tracks_and_triangulation.md, \"A line's own variance factor\").");
+DEFINE_bool(wireframe_point_variance_factor, kDefaults.triangulation.wireframe.point_variance_factor,
+            "Wireframe selection: a point's sigma scaled by sqrt(its chi2 / dof over the points' typical one) when "
+            "above 1 (docs/tracks_and_triangulation.md, \"A line's own variance factor\").");
 
 namespace {
 
@@ -188,6 +194,8 @@ bool OptionsFromFlags(sfm::PipelineOptions* options, std::string* error) {
   options->triangulation.wireframe.far_end_at_point_px = FLAGS_wireframe_far_end_at_point_px;
   options->triangulation.wireframe.far_end_along_px = FLAGS_wireframe_far_end_along_px;
   options->triangulation.wireframe.far_end_shares_vertex = FLAGS_wireframe_far_end_shares_vertex;
+  options->triangulation.wireframe.line_variance_factor = FLAGS_wireframe_line_variance_factor;
+  options->triangulation.wireframe.point_variance_factor = FLAGS_wireframe_point_variance_factor;
   options->bundle_adjustment_options.floor_base_prior = FLAGS_floor_base_prior;
   options->bundle_adjustment_options.floor_rescale_start = FLAGS_floor_rescale_start;
   options->bundle_adjustment_options.floor_scale_line_search = FLAGS_floor_scale_line_search;

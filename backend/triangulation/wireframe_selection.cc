@@ -130,6 +130,63 @@ double UpperMedian(std::vector<double> values) {
   return *middle;
 }
 
+// The variance of unit weight of a set of landmarks from their residuals' chi2 / m(dof), m(k) the
+// median of a chi-square variable with k degrees of freedom: the median of the ratios, so that
+// landmarks whose residuals follow the noise model give 1 whatever their number of views, robust to
+// the wrong tracks and groupings among them. 1 when there is none, or when the median is 0
+// (noise-free observations).
+double UnitVariance(std::vector<double> ratios) {
+  const double median = ratios.empty() ? 0.0 : UpperMedian(std::move(ratios));
+  return median > 0 ? median : 1.0;
+}
+
+// WireframeOptions::line_variance_factor: the lines' variance of unit weight, their residuals'
+// chi2 at sigma_px (LineChiSquare on world_T_camera) over m(dof).
+double LineUnitVariance(const Eigen::Matrix3d& K, const std::vector<Pose3>& world_T_camera,
+                        const Landmarks& landmarks, double sigma_px) {
+  std::vector<double> ratios;
+  for (const LineLandmark& line : landmarks.lines) {
+    std::vector<LineSegmentView> views;
+    for (const LineObservation& observation : line.observations) {
+      CHECK(observation.frame >= 0 && observation.frame < static_cast<int>(world_T_camera.size()))
+          << "frame " << observation.frame;
+      views.push_back({world_T_camera[observation.frame], observation.p0, observation.p1, observation.frame});
+    }
+    int dof = 0;
+    const double chi_square = LineChiSquare(K, views, line.point, line.direction, sigma_px, &dof);
+    if (dof >= 1 && std::isfinite(chi_square)) ratios.push_back(chi_square / ChiSquareQuantile(0.5, dof));
+  }
+  return UnitVariance(std::move(ratios));
+}
+
+// WireframeOptions::point_variance_factor: the same for the points (PointChiSquare).
+double PointUnitVariance(const Eigen::Matrix3d& K, const std::vector<Pose3>& world_T_camera,
+                         const Landmarks& landmarks, double sigma_px) {
+  std::vector<double> ratios;
+  for (const PointLandmark& point : landmarks.points) {
+    std::vector<Pose3> cameras;
+    std::vector<Eigen::Vector2d> pixels;
+    for (const PointObservation& observation : point.observations) {
+      CHECK(observation.frame >= 0 && observation.frame < static_cast<int>(world_T_camera.size()))
+          << "frame " << observation.frame;
+      cameras.push_back(world_T_camera[observation.frame]);
+      pixels.push_back(observation.pixel);
+    }
+    int dof = 0;
+    const double chi_square = PointChiSquare(K, cameras, pixels, point.position, sigma_px, &dof);
+    if (dof >= 1 && std::isfinite(chi_square)) ratios.push_back(chi_square / ChiSquareQuantile(0.5, dof));
+  }
+  return UnitVariance(std::move(ratios));
+}
+
+// A landmark's own a-posteriori variance factor relative to its kind's variance of unit weight, as
+// a factor on its sigmas: sqrt(chi2 / dof / unit_variance) when above 1, else 1 (never below the
+// first-order sigma). 1 without a degree of freedom.
+double OwnSigmaFactor(double chi_square, int dof, double unit_variance) {
+  if (dof < 1) return 1.0;
+  return std::sqrt(std::max(1.0, chi_square / dof / unit_variance));
+}
+
 // WireframeOptions::far_end_at_point_px: a kept line's end1 at the drawn point whose projections
 // lie on the line's observed image lines (median distance across, over its views, <=
 // far_end_at_point_px) at its observed far ends (median distance along <= far_end_along_px),
@@ -249,6 +306,10 @@ Landmarks SelectWireframeLandmarks(const Eigen::Matrix3d& K, const std::vector<P
     return depth > 0 && sigma <= MaxVertexSigma(bound_options, fx, depth);
   };
   WireframeSelectionReport counts;
+  const double line_unit_variance =
+      options.line_variance_factor ? LineUnitVariance(K, world_T_camera, landmarks, sigma_px) : 1.0;
+  const double point_unit_variance =
+      options.point_variance_factor ? PointUnitVariance(K, world_T_camera, landmarks, sigma_px) : 1.0;
   Landmarks selected;
   std::vector<int> new_index(landmarks.points.size(), -1);
   // The drawn vertices' sigmas, for the accuracy asked (tolerance_m): kept points', and kept lines'
@@ -279,7 +340,11 @@ Landmarks SelectWireframeLandmarks(const Eigen::Matrix3d& K, const std::vector<P
       ++counts.points_occlusion_untested;
       continue;
     }
-    const double point_sigma = PointPositionSigma(K, cameras, frames, point.position, sigma_px, drift);
+    // The point's own variance factor (point_variance_factor), as for the lines below.
+    const double point_factor =
+        options.point_variance_factor ? OwnSigmaFactor(chi_square, dof, point_unit_variance) : 1.0;
+    const double point_sigma =
+        point_factor * PointPositionSigma(K, cameras, frames, point.position, sigma_px, drift);
     if (!determined(point_sigma, SmallestDepth(cameras, point.position))) {
       ++counts.points_uncertain;
       continue;
@@ -327,16 +392,20 @@ Landmarks SelectWireframeLandmarks(const Eigen::Matrix3d& K, const std::vector<P
     kept.direction = (segment.end1 - segment.end0).normalized();
     kept.end0 = kept.point_landmark >= 0 ? line.end0 : segment.end0;
     kept.end1 = segment.end1;
+    // The line's own variance factor (line_variance_factor): its residuals' chi2 / dof relative to
+    // the lines' typical one, when above 1, scales its covariance (both vertices' sigmas by the
+    // square root).
+    const double factor = options.line_variance_factor ? OwnSigmaFactor(chi_square, dof, line_unit_variance) : 1.0;
     const double end0_sigma =
-        kept.point_landmark < 0 ? LinePositionSigma(K, views, kept.end0, kept.direction, sigma_px, drift,
-                                                    options.line_sigma_subtracts_plane_noise)
+        kept.point_landmark < 0 ? factor * LinePositionSigma(K, views, kept.end0, kept.direction, sigma_px, drift,
+                                                             options.line_sigma_subtracts_plane_noise)
                                 : -1;
     if (kept.point_landmark < 0 && !determined(end0_sigma, SmallestDepth(cameras, kept.end0))) {
       ++counts.lines_uncertain_end0;
       continue;
     }
-    const double end1_sigma = LinePositionSigma(K, views, kept.end1, kept.direction, sigma_px, drift,
-                                                options.line_sigma_subtracts_plane_noise);
+    const double end1_sigma = factor * LinePositionSigma(K, views, kept.end1, kept.direction, sigma_px, drift,
+                                                         options.line_sigma_subtracts_plane_noise);
     if (!determined(end1_sigma, SmallestDepth(cameras, kept.end1))) {
       ++counts.lines_uncertain_end1;
       continue;

@@ -468,6 +468,120 @@ TEST_F(WireframeSelectionTest, AFarEndAtADrawnPointIsThatPoint) {
   EXPECT_EQ(report.lines_far_end_at_point, 0);
 }
 
+// WireframeOptions::line_variance_factor. Eight vertical edges from drawn corners 3 m ahead whose
+// far end-points are observed 0.1 px across their image lines, alternately to either side in the
+// five views: chi-square 5 x (0.1 / 0.3)^2 = 0.556 on 6 degrees of freedom, 0.104 of the median of
+// chi-square(6) (5.35): the lines' variance of unit weight. A ninth edge from a corner 3 m ahead, 40
+// degrees off the cameras' path (its planes spread little): its far end's first-order sigma is 0.81
+// of the bound (0.107 m against 0.131 m at 3.64 m). Observed 0.3 px across, alternately (a segment
+// switching between the two edges of a double edge), its chi-square is 5, chi2 / dof 0.83: it passes
+// the consistency test (22.5 at 0.999) and is drawn without the factor (and would be with a factor
+// against the assumed noise alone, which needs chi2 / dof > 1). Against the other lines it is 8.0
+// times the unit variance: its sigma times sqrt(8.0) = 2.8 is 2.3 times the bound, not drawn. Observed
+// like the others (0.1 px) its factor is below 1, so its first-order sigma stands: drawn.
+TEST_F(WireframeSelectionTest, ALineNoisierThanTheOthersGetsALargerSigma) {
+  auto shift_far_ends = [](LineLandmark* line, double shift) {
+    for (LineObservation& observation : line->observations) {
+      const Eigen::Vector2d t = (observation.p1 - observation.p0).normalized();
+      observation.p1 += (observation.frame % 2 == 0 ? shift : -shift) * Eigen::Vector2d(-t.y(), t.x());
+    }
+  };
+  Landmarks landmarks;
+  for (int i = 0; i < 8; ++i) {
+    const Eigen::Vector3d top(-0.6 + 0.15 * i, 0.2, 3);
+    landmarks.points.push_back(Point(top));
+    landmarks.lines.push_back(Line(top, top + Eigen::Vector3d(0, -0.8, 0), i));
+    shift_far_ends(&landmarks.lines.back(), 0.1);
+  }
+  const Eigen::Vector3d corner(0.5, 0.3, 3);
+  const Eigen::Vector3d end1 = corner + Eigen::Vector3d(std::cos(40 * M_PI / 180), 0.0, std::sin(40 * M_PI / 180));
+  landmarks.points.push_back(Point(corner));
+  const LineLandmark exact = Line(corner, end1, 8);
+  landmarks.lines.push_back(exact);
+  shift_far_ends(&landmarks.lines.back(), 0.3);
+
+  auto chi_square_of = [&](const LineLandmark& line, int* dof) {
+    std::vector<LineSegmentView> views;
+    for (const LineObservation& observation : line.observations) {
+      views.push_back({cameras_[observation.frame], observation.p0, observation.p1, observation.frame});
+    }
+    return LineChiSquare(K_, views, line.point, line.direction, 0.3, dof);
+  };
+  int dof = 0;
+  EXPECT_NEAR(chi_square_of(landmarks.lines[0], &dof), 0.556, 0.01);
+  ASSERT_EQ(dof, 6);
+  EXPECT_NEAR(ChiSquareQuantile(0.5, 6), 5.35, 0.02);
+  EXPECT_NEAR(chi_square_of(landmarks.lines[8], &dof), 5.0, 0.05);
+  EXPECT_LT(5.0 / 6, 1.0);
+  WireframeOptions options;
+  std::vector<LineSegmentView> views;
+  for (const LineObservation& observation : landmarks.lines[8].observations) {
+    views.push_back({cameras_[observation.frame], observation.p0, observation.p1, observation.frame});
+  }
+  const double sigma = LinePositionSigma(K_, views, end1, exact.direction, 0.3, WireframePoseDrift(options, cameras_), true);
+  EXPECT_NEAR(sigma / MaxVertexSigma(options, 450, end1.z()), 0.81, 0.03);
+
+  WireframeSelectionReport report;
+  Landmarks kept = SelectWireframeLandmarks(K_, cameras_, landmarks, options, &report);  // off
+  EXPECT_EQ(kept.lines.size(), 9u);
+  options.line_variance_factor = true;
+  kept = SelectWireframeLandmarks(K_, cameras_, landmarks, options, &report);
+  EXPECT_EQ(kept.lines.size(), 8u);  // the eight vertical edges: factor 1
+  EXPECT_EQ(report.lines_uncertain_end1, 1);
+  EXPECT_EQ(kept.points.size(), 9u);
+
+  landmarks.lines[8] = exact;
+  shift_far_ends(&landmarks.lines[8], 0.1);  // as noisy as the others
+  kept = SelectWireframeLandmarks(K_, cameras_, landmarks, options, &report);
+  EXPECT_EQ(kept.lines.size(), 9u);
+}
+
+// WireframeOptions::point_variance_factor. Eight corners 3 m ahead observed 0.1 px off in x,
+// alternately to either side in the five views: chi-square 5 x (0.1 / 0.3)^2 = 0.556 on 7 degrees
+// of freedom, 0.0875 of chi-square(7)'s median (6.35): the points' variance of unit weight. A ninth
+// corner at a depth where its sigma is 0.82 of the bound (31 m, low parallax over the 1 m path),
+// observed 0.3 px off alternately: chi-square 5, chi2 / dof 0.71 (passes, and below 1), 8.2 times
+// the unit variance, so its sigma times 2.9 is over the bound: drawn off, not drawn on. Observed
+// like the others it is drawn on.
+TEST_F(WireframeSelectionTest, APointNoisierThanTheOthersGetsALargerSigma) {
+  auto shift_pixels = [](PointLandmark* point, double shift) {
+    for (PointObservation& observation : point->observations) {
+      observation.pixel.x() += observation.frame % 2 == 0 ? shift : -shift;
+    }
+  };
+  Landmarks landmarks;
+  for (int i = 0; i < 8; ++i) {
+    landmarks.points.push_back(Point({-0.6 + 0.15 * i, 0.2, 3}));
+    shift_pixels(&landmarks.points.back(), 0.1);
+  }
+  const Eigen::Vector3d far(0.5, 0.2, 31);
+  landmarks.points.push_back(Point(far));
+  shift_pixels(&landmarks.points.back(), 0.3);
+  WireframeOptions options;
+  const std::vector<int> frames = {0, 1, 2, 3, 4};
+  const double sigma = PointPositionSigma(K_, cameras_, frames, far, 0.3, WireframePoseDrift(options, cameras_));
+  EXPECT_NEAR(sigma / MaxVertexSigma(options, 450, 31), 0.82, 0.03);
+  std::vector<Eigen::Vector2d> pixels;
+  for (const PointObservation& observation : landmarks.points[8].observations) pixels.push_back(observation.pixel);
+  int dof = 0;
+  EXPECT_NEAR(PointChiSquare(K_, cameras_, pixels, far, 0.3, &dof), 5.0, 0.01);
+  ASSERT_EQ(dof, 7);
+  EXPECT_NEAR(ChiSquareQuantile(0.5, 7), 6.35, 0.02);
+
+  WireframeSelectionReport report;
+  Landmarks kept = SelectWireframeLandmarks(K_, cameras_, landmarks, options, &report);  // off
+  EXPECT_EQ(kept.points.size(), 9u);
+  options.point_variance_factor = true;
+  kept = SelectWireframeLandmarks(K_, cameras_, landmarks, options, &report);
+  EXPECT_EQ(kept.points.size(), 8u);
+  EXPECT_EQ(report.points_uncertain, 1);
+
+  landmarks.points[8] = Point(far);
+  shift_pixels(&landmarks.points[8], 0.1);  // as noisy as the others
+  kept = SelectWireframeLandmarks(K_, cameras_, landmarks, options, &report);
+  EXPECT_EQ(kept.points.size(), 9u);
+}
+
 TEST(WireframeOptionsTest, BadOptionsAreRejected) {
   WireframeOptions options;
   EXPECT_TRUE(options.Check().ok());
