@@ -174,12 +174,12 @@ struct WireframeOptions {
   // exceeds 1 (measured: -0.0004..+0.003 in the share). Never below the first-order sigma.
   // docs/tracks_and_triangulation.md, "A line's own variance factor"; docs/backend_results.md,
   // session 7.
-  bool line_variance_factor = false;
+  bool line_variance_factor = true;
   // The same for the points: a point's sigma times sqrt(v / v0) when above 1, v its residuals'
   // chi2 / dof (PointChiSquare), v0 the points' variance of unit weight (median of chi2 / median of
   // chi-square(dof) over the points). Off by default; measured after line_variance_factor, on the
   // same development sequences (docs/backend_results.md, session 7).
-  bool point_variance_factor = false;
+  bool point_variance_factor = true;
 
   Status Check() const {
     auto bad = [](const std::string& what) { return Status::Error("WireframeOptions: " + what); };

@@ -522,6 +522,8 @@ TEST_F(WireframeSelectionTest, ALineNoisierThanTheOthersGetsALargerSigma) {
   EXPECT_NEAR(sigma / MaxVertexSigma(options, 450, end1.z()), 0.81, 0.03);
 
   WireframeSelectionReport report;
+  options.line_variance_factor = false;
+  options.point_variance_factor = false;
   Landmarks kept = SelectWireframeLandmarks(K_, cameras_, landmarks, options, &report);  // off
   EXPECT_EQ(kept.lines.size(), 9u);
   options.line_variance_factor = true;
@@ -569,6 +571,7 @@ TEST_F(WireframeSelectionTest, APointNoisierThanTheOthersGetsALargerSigma) {
   EXPECT_NEAR(ChiSquareQuantile(0.5, 7), 6.35, 0.02);
 
   WireframeSelectionReport report;
+  options.point_variance_factor = false;
   Landmarks kept = SelectWireframeLandmarks(K_, cameras_, landmarks, options, &report);  // off
   EXPECT_EQ(kept.points.size(), 9u);
   options.point_variance_factor = true;
