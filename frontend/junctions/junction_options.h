@@ -53,6 +53,13 @@ struct JunctionDetectorOptions {
   // refinement's constrained search (MatchingOptions::refine_constrain_to_prior_gate) now avoids:
   // every one of 16 seeds >= 98.1 % (docs/junction_results.md, docs/matching_results.md "Session 5").
   bool choose_by_end_likelihood = true;
+  // A T whose stem's end-point lies at another segment A's line a few pixels beyond A's end-point,
+  // which a chosen junction W already holds, is replaced by the corner of A's line and the stem, at
+  // least min_arm_px beyond W: two true vertices on one line (a short stub of A's line between
+  // them), where an end-point belongs to one junction would give W only (junction_detector.cc,
+  // CornersBeyondTakenEnds; docs/junctions.md step 3). Needs choose_by_end_likelihood. Measured in
+  // docs/junction_results.md, "Session 7".
+  bool corner_beyond_taken_end = false;
 
   Status Check() const {
     auto bad = [](const std::string& what) { return Status::Error("JunctionDetectorOptions: " + what); };
