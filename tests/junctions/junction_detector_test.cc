@@ -383,5 +383,30 @@ TEST(JunctionDetectorTest, CornerBeyondATakenEndReplacesTheT) {
   EXPECT_NEAR(short_stub[0].second, 4, 1e-6);
 }
 
+// corner_beyond_taken_end_free: as above, but x comes from the upper left (its line y = x meets
+// b's line at (4, 4), inside b, where x would run 6.6 px past its end: no T), so b's end-point is
+// in no junction and only W = (0, 0) is found. With the rule, a's line also serves V = (0, 4),
+// 4 px beyond W: b's end 1 px short there (ln f + 1.943 = 1.59 > 0), the corner a-b is added.
+// Protects: one junction without the rule (and with the T replacement alone), W and V to 1e-9 px
+// with it.
+TEST(JunctionDetectorTest, CornerBeyondATakenEndServesAFreeEndPoint) {
+  const LineSegments segments = {Segment(0, -40, 0, -1), Segment(-30, -30, -0.707107, -0.707107),
+                                 Segment(40, 4, 1, 4)};
+  JunctionDetectorOptions options;
+  ASSERT_EQ(DetectJunctions(segments, options).size(), 1u);
+  options.corner_beyond_taken_end = true;
+  ASSERT_EQ(DetectJunctions(segments, options).size(), 1u);
+  options.corner_beyond_taken_end_free = true;
+  const Junctions junctions = DetectJunctions(segments, options);
+  ASSERT_EQ(junctions.size(), 2u);
+  std::vector<std::pair<double, double>> found;
+  for (const Junction& j : junctions) found.emplace_back(j.location.x(), j.location.y());
+  std::sort(found.begin(), found.end());
+  EXPECT_NEAR(found[0].first, 0, 1e-9);  // W
+  EXPECT_NEAR(found[0].second, 0, 1e-9);
+  EXPECT_NEAR(found[1].first, 0, 1e-9);  // V
+  EXPECT_NEAR(found[1].second, 4, 1e-9);
+}
+
 }  // namespace
 }  // namespace sfm
