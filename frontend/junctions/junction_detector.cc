@@ -614,7 +614,9 @@ Junctions DetectJunctions(const LineSegments& segments, const JunctionDetectorOp
     for (Group& group : weighted) group.score = EndLikelihoodWeight(group, lines, options);
     chosen = ChooseJunctions(weighted, graph.hits().size(), 3 * n);
     MergeCoincidingJunctions(candidates, options.max_gap_px, &chosen);
-    if (options.corner_beyond_taken_end || options.corner_beyond_taken_end_free) CornersBeyondTakenEnds(candidates, graph, lines, options, &chosen);
+    if (options.corner_beyond_taken_end || options.corner_beyond_taken_end_free) {
+      CornersBeyondTakenEnds(candidates, graph, lines, options, &chosen);
+    }
   } else {
     chosen = ChooseJunctions(candidates, graph.hits().size(), 3 * n);
   }
