@@ -451,7 +451,7 @@ void MergeCoincidingJunctions(const std::vector<Group>& candidates, double max_g
 //   - A's end-point is held by another chosen junction W, v lies beyond W along A's line (A stops
 //     shorter of v than of W: W stays the explanation of A's end-point), at least min_arm_px from
 //     W (a shorter stub cannot be told from an end-point overshoot: the rule of the T against the
-//     L), and
+//     L) and from every other chosen junction (closer, it is not told apart from that one), and
 //   - v explains B's end-point better than where it is: the per-end-point term of
 //     EndLikelihoodWeight (the choice's own criterion) is larger at v than at B's T
 //     (corner_beyond_taken_end: the T is replaced, the number of junctions is unchanged), or
@@ -487,6 +487,14 @@ void CornersBeyondTakenEnds(const std::vector<Group>& candidates, const PairGrap
     if (candidates[c].nodes.size() == 2) pair_of_hit[candidates[c].hits.front()] = c;
   }
   const int num_chosen = static_cast<int>(chosen->size());
+  // A corner within min_arm_px of a chosen junction other than `k` (the T it would replace) is not
+  // told apart from that junction: W, or any other.
+  auto near_other_junction = [&](const Eigen::Vector2d& v, int k) {
+    for (int j = 0; j < num_chosen; ++j) {
+      if (j != k && ((candidates[(*chosen)[j]].Location() - v).norm() < options.min_arm_px)) return true;
+    }
+    return false;
+  };
   auto try_end = [&](int b, int k, double current) {
     int best = -1;
     double best_term = current;
@@ -498,7 +506,7 @@ void CornersBeyondTakenEnds(const std::vector<Group>& candidates, const PairGrap
       if (holder[a] < 0 || holder[a] == k || pair_of_hit[h] < 0) continue;
       const Eigen::Vector2d& v = *hit.location;
       const Eigen::Vector2d w = candidates[(*chosen)[holder[a]]].Location();
-      if ((v - w).norm() < options.min_arm_px) continue;
+      if ((v - w).norm() < options.min_arm_px || near_other_junction(v, k)) continue;
       if (!(end_term(a, v).first < end_term(a, w).first)) continue;  // v beyond W along A's line
       const double term = end_term(b, v).second;
       if (term > best_term) {

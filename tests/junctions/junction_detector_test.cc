@@ -408,5 +408,27 @@ TEST(JunctionDetectorTest, CornerBeyondATakenEndServesAFreeEndPoint) {
   EXPECT_NEAR(found[1].second, 4, 1e-9);
 }
 
+// The same with an L of c (vertical, x = -2, from below) and d (horizontal, y = 6, from the left)
+// at (-2, 6), 2.83 px from V = (0, 4): c and d are parallel to a and b (2 px off their lines: no
+// intersection, no collinear link), and their pairs with a and b lose to W and to the L c-d. The
+// corner at V is within min_arm_px of the L c-d, not told apart from it, so none is added.
+// Protects: 2 junctions (W and the L c-d), not 3.
+TEST(JunctionDetectorTest, CornerBeyondATakenEndNotNextToAnotherJunction) {
+  const LineSegments segments = {Segment(0, -40, 0, -1), Segment(-30, -30, -0.707107, -0.707107),
+                                 Segment(40, 4, 1, 4), Segment(-2, 46, -2, 7), Segment(-42, 6, -3, 6)};
+  JunctionDetectorOptions options;
+  options.corner_beyond_taken_end = true;
+  options.corner_beyond_taken_end_free = true;
+  const Junctions junctions = DetectJunctions(segments, options);
+  ASSERT_EQ(junctions.size(), 2u);
+  std::vector<std::pair<double, double>> found;
+  for (const Junction& j : junctions) found.emplace_back(j.location.x(), j.location.y());
+  std::sort(found.begin(), found.end());
+  EXPECT_NEAR(found[0].first, -2, 1e-9);  // the L c-d
+  EXPECT_NEAR(found[0].second, 6, 1e-9);
+  EXPECT_NEAR(found[1].first, 0, 1e-9);  // W
+  EXPECT_NEAR(found[1].second, 0, 1e-9);
+}
+
 }  // namespace
 }  // namespace sfm
