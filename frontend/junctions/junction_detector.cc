@@ -506,10 +506,11 @@ void CornersBeyondTakenEnds(const std::vector<Group>& candidates, const PairGrap
       if (holder[a] < 0 || holder[a] == k || pair_of_hit[h] < 0) continue;
       const Eigen::Vector2d& v = *hit.location;
       const Eigen::Vector2d w = candidates[(*chosen)[holder[a]]].Location();
-      if ((v - w).norm() < options.min_arm_px || near_other_junction(v, k)) continue;
+      if ((v - w).norm() < options.min_arm_px) continue;
       if (!(end_term(a, v).first < end_term(a, w).first)) continue;  // v beyond W along A's line
       const double term = end_term(b, v).second;
-      if (term > best_term) {
+      // The scan over the chosen junctions last: it is the one test that is not O(1).
+      if (term > best_term && !near_other_junction(v, k)) {
         best_term = term;
         best = pair_of_hit[h];
       }
