@@ -440,6 +440,111 @@ void MergeCoincidingJunctions(const std::vector<Group>& candidates, double max_g
   std::sort(chosen->begin(), chosen->end());
 }
 
+
+// JunctionDetectorOptions::corner_beyond_taken_end and corner_beyond_taken_end_free
+// (docs/junctions.md, step 3). Where two true vertices lie a few pixels apart on one line (a segment
+// A ends at the vertex W where a third edge X leaves it, and A's line goes on for a short stub, of
+// another contrast, to the vertex V where a segment B ends), A's end-point belongs to W's junction,
+// so B's end-point goes to the next line its ray meets (a T on X's interior just past X's end at W)
+// or to none, and V gets no junction. This lets A's line serve V as well. B's end-point moves to
+// the pair (A, B), at its eq. (6) point v, when
+//   - A's end-point is held by another chosen junction W, v lies beyond W along A's line (A stops
+//     shorter of v than of W: W stays the explanation of A's end-point), at least min_arm_px from
+//     W (a shorter stub cannot be told from an end-point overshoot: the rule of the T against the
+//     L) and from every other chosen junction (closer, it is not told apart from that one), and
+//   - v explains B's end-point better than where it is: the per-end-point term of
+//     EndLikelihoodWeight (the choice's own criterion) is larger at v than at B's T
+//     (corner_beyond_taken_end: the T is replaced, the number of junctions is unchanged), or
+//     positive when B's end-point is in no junction (corner_beyond_taken_end_free: the corner is
+//     added). A's end-point is not counted again: W already explains it.
+// This is an end-point in two junctions, which in general was measured and rejected (precision
+// 72 %, docs/junctions.md "Ambiguous cases"); here only on A's line beyond its junction, and only
+// for an end-point that no junction explains better.
+void CornersBeyondTakenEnds(const std::vector<Group>& candidates, const PairGraph& graph,
+                            const std::vector<SegmentLine>& lines, const JunctionDetectorOptions& options,
+                            std::vector<int>* chosen) {
+  const int graph_nodes = 3 * static_cast<int>(lines.size());
+  const double baseline = 0.5 * std::log(options.min_probability);
+  auto end_term = [&](int node, const Eigen::Vector2d& at) {
+    const SegmentLine& line = lines[SegmentOf(node)];
+    // t of this end-point (eq. 8), not of the end nearer `at`.
+    const bool end1 = ContactOf(node) == Contact::kEnd1;
+    const Eigen::Vector2d end = end1 ? line.p1 : line.p0;
+    const Eigen::Vector2d outward = end1 ? line.n : Eigen::Vector2d(-line.n);
+    const double t = (end - at).dot(outward);
+    return std::pair<double, double>(t, std::max(0.0, std::log(options.endpoint_model.F(t)) - baseline));
+  };
+  // The chosen junction holding each end-point node (index into *chosen, -1: none), and the pair
+  // candidate of each hit (-1: none, a collinear link).
+  std::vector<int> holder(graph_nodes, -1);
+  for (int k = 0; k < static_cast<int>(chosen->size()); ++k) {
+    for (int node : candidates[(*chosen)[k]].nodes) {
+      if (ContactOf(node) != Contact::kThrough) holder[node] = k;
+    }
+  }
+  std::vector<int> pair_of_hit(graph.hits().size(), -1);
+  for (int c = 0; c < static_cast<int>(candidates.size()); ++c) {
+    if (candidates[c].nodes.size() == 2) pair_of_hit[candidates[c].hits.front()] = c;
+  }
+  const int num_chosen = static_cast<int>(chosen->size());
+  // A corner within min_arm_px of a chosen junction other than `k` (the T it would replace) is not
+  // told apart from that junction: W, or any other.
+  auto near_other_junction = [&](const Eigen::Vector2d& v, int k) {
+    for (int j = 0; j < num_chosen; ++j) {
+      if (j != k && ((candidates[(*chosen)[j]].Location() - v).norm() < options.min_arm_px)) return true;
+    }
+    return false;
+  };
+  auto try_end = [&](int b, int k, double current) {
+    int best = -1;
+    double best_term = current;
+    for (int e = 0; e < graph.degree(b); ++e) {
+      const int h = graph.incident(b)[e];
+      const PairHit& hit = graph.hit(h);
+      const int a = OtherNode(hit, b);
+      if (!hit.location || ContactOf(a) == Contact::kThrough) continue;
+      if (holder[a] < 0 || holder[a] == k || pair_of_hit[h] < 0) continue;
+      const Eigen::Vector2d& v = *hit.location;
+      const Eigen::Vector2d w = candidates[(*chosen)[holder[a]]].Location();
+      if ((v - w).norm() < options.min_arm_px) continue;
+      if (!(end_term(a, v).first < end_term(a, w).first)) continue;  // v beyond W along A's line
+      const double term = end_term(b, v).second;
+      // The scan over the chosen junctions last: it is the one test that is not O(1).
+      if (term > best_term && !near_other_junction(v, k)) {
+        best_term = term;
+        best = pair_of_hit[h];
+      }
+    }
+    return best;
+  };
+  for (int k = 0; k < num_chosen && options.corner_beyond_taken_end; ++k) {
+    const Group& junction = candidates[(*chosen)[k]];
+    if (junction.nodes.size() != 2) continue;
+    int b = -1, interior = 0;
+    for (int node : junction.nodes) {
+      if (ContactOf(node) == Contact::kThrough) ++interior;
+      else b = node;
+    }
+    if (interior != 1 || b < 0) continue;  // a T: one end-point, one interior
+    const int best = try_end(b, k, end_term(b, junction.Location()).second);
+    if (best >= 0) (*chosen)[k] = best;
+  }
+  if (options.corner_beyond_taken_end_free) {
+    // End-points in no junction: explained by nothing (0), so any corner beyond with a positive
+    // term is an improvement; the corner is added.
+    std::vector<int> added;
+    for (int b = 0; b < graph_nodes; ++b) {
+      if (ContactOf(b) == Contact::kThrough || holder[b] >= 0 || graph.degree(b) == 0) continue;
+      const int best = try_end(b, -1, 0.0);
+      if (best >= 0) added.push_back(best);
+    }
+    std::sort(added.begin(), added.end());
+    added.erase(std::unique(added.begin(), added.end()), added.end());
+    chosen->insert(chosen->end(), added.begin(), added.end());
+  }
+  std::sort(chosen->begin(), chosen->end());
+}
+
 }  // namespace
 
 Junctions DetectJunctions(const LineSegments& segments, const JunctionDetectorOptions& options) {
@@ -518,6 +623,9 @@ Junctions DetectJunctions(const LineSegments& segments, const JunctionDetectorOp
     for (Group& group : weighted) group.score = EndLikelihoodWeight(group, lines, options);
     chosen = ChooseJunctions(weighted, graph.hits().size(), 3 * n);
     MergeCoincidingJunctions(candidates, options.max_gap_px, &chosen);
+    if (options.corner_beyond_taken_end || options.corner_beyond_taken_end_free) {
+      CornersBeyondTakenEnds(candidates, graph, lines, options, &chosen);
+    }
   } else {
     chosen = ChooseJunctions(candidates, graph.hits().size(), 3 * n);
   }

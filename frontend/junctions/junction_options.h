@@ -53,6 +53,16 @@ struct JunctionDetectorOptions {
   // refinement's constrained search (MatchingOptions::refine_constrain_to_prior_gate) now avoids:
   // every one of 16 seeds >= 98.1 % (docs/junction_results.md, docs/matching_results.md "Session 5").
   bool choose_by_end_likelihood = true;
+  // Two true vertices a few pixels apart on one line (a stub of a segment A's line between them):
+  // A's end-point belongs to the junction W at the first, so the second gets none. With these,
+  // A's line also serves a corner with a segment B at least min_arm_px beyond W, when that corner
+  // explains B's end-point better (junction_detector.cc, CornersBeyondTakenEnds; docs/junctions.md
+  // step 3): corner_beyond_taken_end replaces B's T by the corner (the number of junctions is
+  // unchanged), corner_beyond_taken_end_free adds the corner when B's end-point is in no junction.
+  // Need choose_by_end_likelihood. Off by default; measured in docs/junction_results.md,
+  // "Session 7".
+  bool corner_beyond_taken_end = false;
+  bool corner_beyond_taken_end_free = false;
 
   Status Check() const {
     auto bad = [](const std::string& what) { return Status::Error("JunctionDetectorOptions: " + what); };

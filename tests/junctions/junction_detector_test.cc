@@ -334,5 +334,101 @@ TEST(JunctionDetectorTest, ThirtyCubesAllVertices) {
   for (size_t j = 0; j < junctions.size(); ++j) EXPECT_EQ(junctions[j].id, static_cast<int>(j));
 }
 
+// corner_beyond_taken_end (the fitted default model: mu 0.353, threshold 0.0205, per-end-point
+// baseline ln sqrt(0.0205) = -1.943). Two true vertices on one vertical line: W = (0, 0), where a
+// (from above) ends 1 px short and x (the diagonal from the lower left) ends 1 px short, and
+// V = (0, 4), 4 px further down a's line, where b (from the right) ends 1 px short. b's ray meets
+// x's line at P = (-4, 4), 4.66 px inside x (a T, b 5 px short: f = 0.171). The choice takes the L
+// a-x at W (a's end-point explained 1 px short, not 5) and, for b, the T at P: a's end-point belongs
+// to one junction. With the rule, a's line also serves V (4 px beyond W, over min_arm_px = 3): b's
+// end-point is explained there 1 px short (ln f + 1.943 = 1.59 against 0.18 at P), so the T becomes
+// the L a-b at V. Protects: the two junctions at W and V to 1e-9 px with the rule (the T at P
+// without it), and no change when the stub W-V is under min_arm_px.
+TEST(JunctionDetectorTest, CornerBeyondATakenEndReplacesTheT) {
+  auto segments_with_gap = [](double gap) {
+    // b 1 px short of V = (0, gap); x's line y = -x meets b's line at (-gap, gap).
+    return LineSegments{Segment(0, -40, 0, -1), Segment(-30, 30, -0.707107, 0.707107),
+                        Segment(40, gap, 1, gap)};
+  };
+  auto sorted_locations = [](const Junctions& junctions) {
+    std::vector<std::pair<double, double>> found;
+    for (const Junction& j : junctions) found.emplace_back(j.location.x(), j.location.y());
+    std::sort(found.begin(), found.end());
+    return found;
+  };
+  JunctionDetectorOptions options;
+  const auto without = sorted_locations(DetectJunctions(segments_with_gap(4), options));
+  ASSERT_EQ(without.size(), 2u);
+  EXPECT_NEAR(without[0].first, -4, 1e-6);  // the T on x
+  EXPECT_NEAR(without[0].second, 4, 1e-6);
+  EXPECT_NEAR(without[1].first, 0, 1e-6);  // W
+  EXPECT_NEAR(without[1].second, 0, 1e-6);
+
+  options.corner_beyond_taken_end = true;
+  const Junctions with_rule = DetectJunctions(segments_with_gap(4), options);
+  const auto with = sorted_locations(with_rule);
+  ASSERT_EQ(with.size(), 2u);
+  EXPECT_NEAR(with[0].first, 0, 1e-9);  // W
+  EXPECT_NEAR(with[0].second, 0, 1e-9);
+  EXPECT_NEAR(with[1].first, 0, 1e-9);  // V
+  EXPECT_NEAR(with[1].second, 4, 1e-9);
+  for (const Junction& j : with_rule) EXPECT_EQ(j.type, JunctionType::kL);
+
+  // With min_arm_px = 4.5 the stub W-V (4 px) is under it, not told from a's end overshooting W;
+  // the T (4.66 px inside x, still a T) stays.
+  options.min_arm_px = 4.5;
+  const auto short_stub = sorted_locations(DetectJunctions(segments_with_gap(4), options));
+  ASSERT_EQ(short_stub.size(), 2u);
+  EXPECT_NEAR(short_stub[0].first, -4, 1e-6);
+  EXPECT_NEAR(short_stub[0].second, 4, 1e-6);
+}
+
+// corner_beyond_taken_end_free: as above, but x comes from the upper left (its line y = x meets
+// b's line at (4, 4), inside b, where x would run 6.6 px past its end: no T), so b's end-point is
+// in no junction and only W = (0, 0) is found. With the rule, a's line also serves V = (0, 4),
+// 4 px beyond W: b's end 1 px short there (ln f + 1.943 = 1.59 > 0), the corner a-b is added.
+// Protects: one junction without the rule (and with the T replacement alone), W and V to 1e-9 px
+// with it.
+TEST(JunctionDetectorTest, CornerBeyondATakenEndServesAFreeEndPoint) {
+  const LineSegments segments = {Segment(0, -40, 0, -1), Segment(-30, -30, -0.707107, -0.707107),
+                                 Segment(40, 4, 1, 4)};
+  JunctionDetectorOptions options;
+  ASSERT_EQ(DetectJunctions(segments, options).size(), 1u);
+  options.corner_beyond_taken_end = true;
+  ASSERT_EQ(DetectJunctions(segments, options).size(), 1u);
+  options.corner_beyond_taken_end_free = true;
+  const Junctions junctions = DetectJunctions(segments, options);
+  ASSERT_EQ(junctions.size(), 2u);
+  std::vector<std::pair<double, double>> found;
+  for (const Junction& j : junctions) found.emplace_back(j.location.x(), j.location.y());
+  std::sort(found.begin(), found.end());
+  EXPECT_NEAR(found[0].first, 0, 1e-9);  // W
+  EXPECT_NEAR(found[0].second, 0, 1e-9);
+  EXPECT_NEAR(found[1].first, 0, 1e-9);  // V
+  EXPECT_NEAR(found[1].second, 4, 1e-9);
+}
+
+// The same with an L of c (vertical, x = -2, from below) and d (horizontal, y = 6, from the left)
+// at (-2, 6), 2.83 px from V = (0, 4): c and d are parallel to a and b (2 px off their lines: no
+// intersection, no collinear link), and their pairs with a and b lose to W and to the L c-d. The
+// corner at V is within min_arm_px of the L c-d, not told apart from it, so none is added.
+// Protects: 2 junctions (W and the L c-d), not 3.
+TEST(JunctionDetectorTest, CornerBeyondATakenEndNotNextToAnotherJunction) {
+  const LineSegments segments = {Segment(0, -40, 0, -1), Segment(-30, -30, -0.707107, -0.707107),
+                                 Segment(40, 4, 1, 4), Segment(-2, 46, -2, 7), Segment(-42, 6, -3, 6)};
+  JunctionDetectorOptions options;
+  options.corner_beyond_taken_end = true;
+  options.corner_beyond_taken_end_free = true;
+  const Junctions junctions = DetectJunctions(segments, options);
+  ASSERT_EQ(junctions.size(), 2u);
+  std::vector<std::pair<double, double>> found;
+  for (const Junction& j : junctions) found.emplace_back(j.location.x(), j.location.y());
+  std::sort(found.begin(), found.end());
+  EXPECT_NEAR(found[0].first, -2, 1e-9);  // the L c-d
+  EXPECT_NEAR(found[0].second, 6, 1e-9);
+  EXPECT_NEAR(found[1].first, 0, 1e-9);  // W
+  EXPECT_NEAR(found[1].second, 0, 1e-9);
+}
+
 }  // namespace
 }  // namespace sfm
