@@ -63,6 +63,9 @@ DEFINE_bool(ba_single_pose_block, kDefaults.bundle_adjustment_options.single_pos
 DEFINE_bool(ba_inner_iterations_throughout, kDefaults.bundle_adjustment_options.inner_iterations_throughout,
             "Bundle adjustment: keep Ceres's inner iterations on through every step of a solve (false: Ceres "
             "turns them off once they gain little, the solver before session 6; slower on corridors).");
+DEFINE_bool(ba_two_view_lines_apart, kDefaults.bundle_adjustment_options.two_view_lines_apart,
+            "Bundle adjustment: leave the lines seen in exactly two views (not on the floor prior) out of the joint "
+            "solves and solve each alone on their poses (they fit any poses exactly; same minimum, smaller solves).");
 DEFINE_double(ba_loss_scale, kDefaults.bundle_adjustment_options.robust_loss_scale_px,
               "Bundle adjustment: scale (px) of the robust loss on image residuals.");
 DEFINE_string(floor_prior, FloorPriorName(kDefaults.bundle_adjustment_options.floor_prior),
@@ -187,6 +190,7 @@ bool OptionsFromFlags(sfm::PipelineOptions* options, std::string* error) {
   options->bundle_adjustment_options.inner_iterations_poses = FLAGS_ba_inner_iterations_poses;
   options->bundle_adjustment_options.single_pose_block = FLAGS_ba_single_pose_block;
   options->bundle_adjustment_options.inner_iterations_throughout = FLAGS_ba_inner_iterations_throughout;
+  options->bundle_adjustment_options.two_view_lines_apart = FLAGS_ba_two_view_lines_apart;
   options->triangulation.wireframe.pose_error_from_bundle_adjustment = FLAGS_wireframe_ba_pose_error;
   options->triangulation.wireframe.line_sigma_subtracts_plane_noise = FLAGS_wireframe_plane_noise;
   options->triangulation.wireframe.tolerance_m = FLAGS_wireframe_tolerance_m;

@@ -648,15 +648,19 @@ class BundleAdjuster {
   }
 
   // Each line alone, the poses held where they are (one small problem per line, 4 unknowns). A
-  // line whose solve fails keeps its estimate.
-  void RefineLinesOnFixedPoses(double loss_scale_px) {
+  // line whose solve fails keeps its estimate. `subset`: only those lines (indices), else all.
+  // Returns the sum of their final costs (Ceres's, 1/2 sum of the loss).
+  double RefineLinesOnFixedPoses(double loss_scale_px, const std::vector<int>* subset = nullptr) {
     const auto start = std::chrono::steady_clock::now();
     const std::unique_ptr<ceres::LossFunction> loss = MakeLoss(loss_scale_px);
     ceres::Problem::Options problem_options;
     problem_options.loss_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
     problem_options.manifold_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
     const ceres::Solver::Options solver_options = SolverOptions(ceres::DENSE_QR);
-    for (LineLandmark& line : landmarks_->lines) {
+    const size_t count = subset ? subset->size() : landmarks_->lines.size();
+    double cost = 0;
+    for (size_t k = 0; k < count; ++k) {
+      LineLandmark& line = landmarks_->lines[subset ? (*subset)[k] : k];
       OrthonormalLine parameters = OrthonormalLineFromPointDirection(line.point, line.direction);
       ceres::Problem problem(problem_options);
       problem.AddParameterBlock(parameters.data(), 6, &line_manifold_);
@@ -670,10 +674,34 @@ class BundleAdjuster {
       }
       ceres::Solver::Summary ceres_summary;
       ceres::Solve(solver_options, &problem, &ceres_summary);
-      if (ceres_summary.IsSolutionUsable()) WriteBackLine(parameters, &line);
+      if (ceres_summary.IsSolutionUsable()) {
+        WriteBackLine(parameters, &line);
+        cost += ceres_summary.final_cost;
+      } else {
+        cost += ceres_summary.initial_cost;
+      }
     }
-    VLOG(1) << "bundle adjustment: " << landmarks_->lines.size() << " lines solved alone on fixed poses in "
+    VLOG(1) << "bundle adjustment: " << count << " lines solved alone on fixed poses in "
             << std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() << " s";
+    return cost;
+  }
+
+  // The lines of a joint solve (`joint`, indices in order) and those solved apart after it
+  // (options.two_view_lines_apart): a line with exactly two views has 4 residuals (the two
+  // end-point distances per view) for its 4 degrees of freedom; on any poses it fits both views
+  // exactly (the line where its two back-projected planes meet, which the observability check
+  // keeps at an angle), so its least cost is 0 on every pose and the joint minimum over the poses
+  // is the same without it. The floor prior's lines stay: their prior is a fifth and sixth
+  // residual, which the poses must then satisfy too.
+  void SplitLines(std::vector<int>* joint, std::vector<int>* apart) const {
+    std::vector<bool> on_floor(landmarks_->lines.size(), false);
+    if (scale_free_) {
+      for (int line : floor_.lines) on_floor[line] = true;
+    }
+    for (size_t i = 0; i < landmarks_->lines.size(); ++i) {
+      const bool two_view = landmarks_->lines[i].observations.size() == 2;
+      (options_.two_view_lines_apart && two_view && !on_floor[i] ? apart : joint)->push_back(static_cast<int>(i));
+    }
   }
 
   // Adds `cost` on `blocks` to the joint problem; a pose among the blocks is its rotation's and
@@ -733,8 +761,14 @@ class BundleAdjuster {
     // the blocks of an ordering group by address (a std::set<double*>), and that order is the
     // Schur eliminator's summation order. In a buffer it is the landmarks' order, not the heap's,
     // so that a run gives the same numbers every time.
+    // Lines: all (with_lines), or all but the two-view lines solved apart after the solve.
+    // joint_slot: a line's place among the problem's lines, or -1.
+    std::vector<int> joint_lines, apart_lines;
+    if (with_lines) SplitLines(&joint_lines, &apart_lines);
+    std::vector<int> joint_slot(landmarks_->lines.size(), -1);
+    for (size_t k = 0; k < joint_lines.size(); ++k) joint_slot[joint_lines[k]] = static_cast<int>(k);
     const size_t point_count = landmarks_->points.size();
-    const size_t line_count = with_lines ? landmarks_->lines.size() : 0;
+    const size_t line_count = joint_lines.size();
     std::vector<double> landmark_values(3 * point_count + 6 * line_count);
     auto point_block = [&](size_t i) { return landmark_values.data() + 3 * i; };
     auto line_block = [&](size_t i) { return landmark_values.data() + 3 * point_count + 6 * i; };
@@ -751,7 +785,7 @@ class BundleAdjuster {
     }
 
     for (size_t i = 0; i < line_count; ++i) {
-      const LineLandmark& line = landmarks_->lines[i];
+      const LineLandmark& line = landmarks_->lines[joint_lines[i]];
       double* parameters = line_block(i);
       const OrthonormalLine initial = OrthonormalLineFromPointDirection(line.point, line.direction);
       std::copy(initial.begin(), initial.end(), parameters);
@@ -783,7 +817,7 @@ class BundleAdjuster {
       for (size_t k = 0; with_lines && k < floor_.lines.size(); ++k) {
         problem.AddResidualBlock(
             FloorLineCost::Create(floor_anchors_[k][0], floor_anchors_[k][1], options_.floor_sigma_m), &floor_loss,
-            line_block(floor_.lines[k]));
+            line_block(joint_slot[floor_.lines[k]]));
       }
       if (base_on_floor_) {
         // The first pose is held constant; its prior would be a constant.
@@ -853,6 +887,7 @@ class BundleAdjuster {
     }
     // Where a solve's time goes (docs/backend_results.md, "Session 6: the back end's time").
     VLOG(1) << "bundle adjustment solve: loss " << loss_scale_px << " px, " << (with_lines ? "lines, " : "")
+            << (apart_lines.empty() ? "" : std::to_string(apart_lines.size()) + " two-view lines apart, ")
             << (hold_scale_ ? "scale held, " : "") << "tolerance " << function_tolerance << ": "
             << ceres_summary.num_successful_steps + ceres_summary.num_unsuccessful_steps
             << " iterations, cost " << ceres_summary.initial_cost << " -> " << ceres_summary.final_cost
@@ -880,8 +915,11 @@ class BundleAdjuster {
     for (size_t i = 0; i < line_count; ++i) {
       OrthonormalLine parameters;
       std::copy(line_block(i), line_block(i) + 6, parameters.begin());
-      WriteBackLine(parameters, &landmarks_->lines[i]);
+      WriteBackLine(parameters, &landmarks_->lines[joint_lines[i]]);
     }
+    // The two-view lines on the solve's poses: their least cost there (about 0) completes the
+    // solve's cost, which the scale line search compares.
+    if (!apart_lines.empty()) summary_->final_cost += RefineLinesOnFixedPoses(loss_scale_px, &apart_lines);
     return Status::Ok();
   }
 

@@ -66,6 +66,13 @@ struct BundleAdjustmentOptions {
   // solve after the outlier round took 38 iterations, 5 with them kept on, to the same cost within
   // 3e-6 (docs/bundle_adjustment.md, "Solver"). Off: Ceres's default.
   bool inner_iterations_throughout = true;
+  // The lines seen in exactly two views, not held by the floor prior, left out of the joint solves
+  // and each solved alone on that solve's poses right after it. Such a line has 4 degrees of
+  // freedom and 4 residuals (one per end-point, two views): it fits both views exactly on any
+  // poses (the intersection of its two back-projected planes), so its least cost is 0 whatever the
+  // poses and it cannot move their minimum; out of the joint solve it only costs time
+  // (docs/bundle_adjustment.md, "Two-view lines apart"). Off: every line in the joint solves.
+  bool two_view_lines_apart = false;
   double outlier_threshold_px = 3.0;  // px, an observation's error (norm of its 2 residuals)
   int outlier_rounds = 1;             // remove-outliers-and-solve-again rounds after the joint solve
   // Rounds after the last joint solve: the landmarks that solve itself made unobservable (a line
