@@ -177,8 +177,8 @@ struct WireframeOptions {
   bool line_variance_factor = true;
   // The same for the points: a point's sigma times sqrt(v / v0) when above 1, v its residuals'
   // chi2 / dof (PointChiSquare), v0 the points' variance of unit weight (median of chi2 / median of
-  // chi-square(dof) over the points). On by default since session 7; measured after line_variance_factor, on the
-  // same development sequences (docs/backend_results.md, session 7).
+  // chi-square(dof) over the points). On by default since session 7; measured after
+  // line_variance_factor, on the same development sequences (docs/backend_results.md, session 7).
   bool point_variance_factor = true;
 
   Status Check() const {
