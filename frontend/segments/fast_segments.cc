@@ -174,19 +174,22 @@ class FastDetector {
   // |gx| + |gy| and the edge direction of every pixel; border pixels stay dead (direction 0), so
   // that walks never need a bounds check. Branch-free, so that the compiler vectorises it.
   void ComputeMagnitude() {
-    for (int y = 0; y < rows_; ++y) {
+    // The bounds in locals: the direction map's byte stores may alias any member, so a loop bound
+    // read from cols_ would be reloaded after every store, and that alone blocks vectorisation.
+    const int rows = rows_, cols = cols_;
+    for (int y = 0; y < rows; ++y) {
       const int16_t* dx = gx_.ptr<int16_t>(y);
       const int16_t* dy = gy_.ptr<int16_t>(y);
       int16_t* mag = magnitude_.ptr<int16_t>(y);
       uint8_t* dir = direction_.ptr<uint8_t>(y);
-      const int16_t low = static_cast<int16_t>(y == 0 || y == rows_ - 1 ? INT16_MAX : low_);
-      for (int x = 0; x < cols_; ++x) {
+      const int16_t low = static_cast<int16_t>(y == 0 || y == rows - 1 ? INT16_MAX : low_);
+      for (int x = 0; x < cols; ++x) {
         const int16_t ax = static_cast<int16_t>(std::abs(dx[x])), ay = static_cast<int16_t>(std::abs(dy[x]));
         const int16_t m = static_cast<int16_t>(ax + ay);
         mag[x] = m;
         dir[x] = static_cast<uint8_t>(m >= low ? (ay > ax ? kAlongX : kAlongY) : 0);
       }
-      dir[0] = dir[cols_ - 1] = 0;
+      dir[0] = dir[cols - 1] = 0;
     }
   }
 
@@ -195,15 +198,16 @@ class FastDetector {
   // row's anchors; the marks are then collected eight at a time, skipping empty words.
   void FindAnchors() {
     anchors_.clear();
-    row_marks_.assign(cols_ + 8, 0);
+    const int rows = rows_, cols = cols_;  // locals, as in ComputeMagnitude: the mark stores may alias members
+    row_marks_.assign(cols + 8, 0);
     uint8_t* marks = row_marks_.data();
     const int16_t high = static_cast<int16_t>(high_);
-    for (int y = 1; y + 1 < rows_; ++y) {
+    for (int y = 1; y + 1 < rows; ++y) {
       const int16_t* mag = magnitude_.ptr<int16_t>(y);
       const int16_t* up = magnitude_.ptr<int16_t>(y - 1);
       const int16_t* down = magnitude_.ptr<int16_t>(y + 1);
       const uint8_t* dir = direction_.ptr<uint8_t>(y);
-      for (int x = 1; x + 1 < cols_; ++x) {
+      for (int x = 1; x + 1 < cols; ++x) {
         // All four neighbours are loaded unconditionally: a conditional load blocks vectorisation.
         const int16_t m = mag[x], above = up[x], below = down[x], left = mag[x - 1], right = mag[x + 1];
         const bool across_y = dir[x] == kAlongX;
@@ -215,8 +219,8 @@ class FastDetector {
       // Each mark is a byte of 0 or 1, so a word's set bits are its anchors, lowest x first (the
       // bytes of a little-endian word): taking them by count-trailing-zeros spares the byte loop's
       // mispredicted branches. Marks from cols_ - 1 on stay 0 (never written after the assign).
-      const int row = y * cols_;
-      for (int x = 1; x + 1 < cols_; x += 8) {
+      const int row = y * cols;
+      for (int x = 1; x + 1 < cols; x += 8) {
         uint64_t word;
         std::memcpy(&word, marks + x, sizeof(word));
         for (; word != 0; word &= word - 1) anchors_.push_back(row + x + __builtin_ctzll(word) / 8);
