@@ -91,7 +91,9 @@ class FastDetector {
       cv::GaussianBlur(grey, workspace->smoothed, cv::Size(size, size), sigma, sigma, cv::BORDER_REPLICATE);
       smoothed = &workspace->smoothed;
     }
-    cv::spatialGradient(*smoothed, gx_, gy_, 3, cv::BORDER_REPLICATE);
+    smoothed_ = smoothed;
+    gx_.create(rows_, cols_, CV_16S);  // written by ComputeMagnitude
+    gy_.create(rows_, cols_, CV_16S);
     const double response = SobelStepResponse(sigma);
     low_ = std::max(1, static_cast<int>(std::ceil(options.edge_contrast_low * response)));
     high_ = std::max(low_, static_cast<int>(std::ceil(options.edge_contrast_high * response)));
@@ -176,25 +178,54 @@ class FastDetector {
   }
 
  private:
-  // |gx| + |gy| and the edge direction of every pixel; border pixels stay dead (direction 0), so
-  // that walks never need a bounds check. Branch-free, so that the compiler vectorises it.
+  // The 3 x 3 Sobel derivatives of the smoothed image (cv::spatialGradient's, borders replicated:
+  // gx = [-1 0 1] across x times [1 2 1] down y, gy its transpose), |gx| + |gy| and the edge
+  // direction of every pixel, in one pass (the derivatives are not written and read back before
+  // the magnitude). Integer arithmetic, so the values are exactly cv::spatialGradient's. Border
+  // pixels stay dead (direction 0), so that walks never need a bounds check.
   void ComputeMagnitude() {
-    // The bounds in locals: the direction map's byte stores may alias any member, so a loop bound
-    // read from cols_ would be reloaded after every store, and that alone blocks vectorisation.
-    const int rows = rows_, cols = cols_;
+    const int rows = rows_;
     for (int y = 0; y < rows; ++y) {
-      const int16_t* dx = gx_.ptr<int16_t>(y);
-      const int16_t* dy = gy_.ptr<int16_t>(y);
-      int16_t* mag = magnitude_.ptr<int16_t>(y);
-      uint8_t* dir = direction_.ptr<uint8_t>(y);
-      const int16_t low = static_cast<int16_t>(y == 0 || y == rows - 1 ? INT16_MAX : low_);
-      for (int x = 0; x < cols; ++x) {
-        const int16_t ax = static_cast<int16_t>(std::abs(dx[x])), ay = static_cast<int16_t>(std::abs(dy[x]));
-        const int16_t m = static_cast<int16_t>(ax + ay);
-        mag[x] = m;
-        dir[x] = static_cast<uint8_t>(m >= low ? (ay > ax ? kAlongX : kAlongY) : 0);
-      }
-      dir[0] = dir[cols - 1] = 0;
+      GradientRow(smoothed_->ptr<uint8_t>(std::max(y - 1, 0)), smoothed_->ptr<uint8_t>(y),
+                  smoothed_->ptr<uint8_t>(std::min(y + 1, rows - 1)), cols_,
+                  static_cast<int16_t>(y == 0 || y == rows - 1 ? INT16_MAX : low_), gx_.ptr<int16_t>(y),
+                  gy_.ptr<int16_t>(y), magnitude_.ptr<int16_t>(y), direction_.ptr<uint8_t>(y));
+    }
+  }
+
+  // One row of ComputeMagnitude from the smoothed rows above, at and below it; `low` is the low
+  // threshold (INT16_MAX on the border rows). Branch-free, so that the compiler vectorises it; the
+  // buffers are distinct (restrict parameters: without them the byte loads might alias the stores,
+  // and GCC gives up after too many run-time alias checks).
+  static void GradientRow(const uint8_t* __restrict up, const uint8_t* __restrict mid,
+                          const uint8_t* __restrict down, int cols, int16_t low, int16_t* __restrict dx,
+                          int16_t* __restrict dy, int16_t* __restrict mag, uint8_t* __restrict dir) {
+    // Interior columns; the two border columns below, with x - 1 or x + 1 replicated.
+    for (int x = 1; x + 1 < cols; ++x) {
+      const int16_t gx = static_cast<int16_t>((up[x + 1] - up[x - 1]) + 2 * (mid[x + 1] - mid[x - 1]) +
+                                              (down[x + 1] - down[x - 1]));
+      const int16_t gy = static_cast<int16_t>((down[x - 1] - up[x - 1]) + 2 * (down[x] - up[x]) +
+                                              (down[x + 1] - up[x + 1]));
+      dx[x] = gx;
+      dy[x] = gy;
+      const int16_t ax = static_cast<int16_t>(std::abs(gx)), ay = static_cast<int16_t>(std::abs(gy));
+      const int16_t m = static_cast<int16_t>(ax + ay);
+      mag[x] = m;
+      // m >= low ? (ay > ax ? kAlongX : kAlongY) : 0, as masks: SSE2 has no blend, and the
+      // selects took more instructions than the rest of the loop.
+      const int16_t along = static_cast<int16_t>(kAlongY - (ay > ax));  // kAlongX when ay > ax
+      const int16_t alive = static_cast<int16_t>(-(m >= low));         // all bits set when m >= low
+      dir[x] = static_cast<uint8_t>(along & alive);
+    }
+    static_assert(kAlongY - 1 == kAlongX, "the direction's arithmetic above");
+    for (const int x : {0, cols - 1}) {
+      const int l = std::max(x - 1, 0), r = std::min(x + 1, cols - 1);
+      const int16_t gx = static_cast<int16_t>((up[r] - up[l]) + 2 * (mid[r] - mid[l]) + (down[r] - down[l]));
+      const int16_t gy = static_cast<int16_t>((down[l] - up[l]) + 2 * (down[x] - up[x]) + (down[r] - up[r]));
+      dx[x] = gx;
+      dy[x] = gy;
+      mag[x] = static_cast<int16_t>(std::abs(gx) + std::abs(gy));
+      dir[x] = 0;
     }
   }
 
@@ -208,18 +239,8 @@ class FastDetector {
     uint8_t* marks = row_marks_.data();
     const int16_t high = static_cast<int16_t>(high_);
     for (int y = 1; y + 1 < rows; ++y) {
-      const int16_t* mag = magnitude_.ptr<int16_t>(y);
-      const int16_t* up = magnitude_.ptr<int16_t>(y - 1);
-      const int16_t* down = magnitude_.ptr<int16_t>(y + 1);
-      const uint8_t* dir = direction_.ptr<uint8_t>(y);
-      for (int x = 1; x + 1 < cols; ++x) {
-        // All four neighbours are loaded unconditionally: a conditional load blocks vectorisation.
-        const int16_t m = mag[x], above = up[x], below = down[x], left = mag[x - 1], right = mag[x + 1];
-        const bool across_y = dir[x] == kAlongX;
-        const int16_t before = across_y ? above : left;
-        const int16_t after = across_y ? below : right;
-        marks[x] = static_cast<uint8_t>((m >= high) & (dir[x] != 0) & (m > before) & (m >= after));
-      }
+      AnchorRow(magnitude_.ptr<int16_t>(y - 1), magnitude_.ptr<int16_t>(y), magnitude_.ptr<int16_t>(y + 1),
+                direction_.ptr<uint8_t>(y), cols, high, marks);
       static_assert(__BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__, "marks are read as little-endian words");
       // Each mark is a byte of 0 or 1, so a word's set bits are its anchors, lowest x first (the
       // bytes of a little-endian word): taking them by count-trailing-zeros spares the byte loop's
@@ -230,6 +251,25 @@ class FastDetector {
         std::memcpy(&word, marks + x, sizeof(word));
         for (; word != 0; word &= word - 1) anchors_.push_back(row + x + __builtin_ctzll(word) / 8);
       }
+    }
+  }
+
+  // FindAnchors' marks of one row (not of the border rows): 1 where the magnitude reaches `high`
+  // and is a maximum across the edge. Branch-free, with restrict parameters (see GradientRow), so
+  // that the compiler vectorises it. Here a pixel reaching `high` is alive (its direction is not 0):
+  // ComputeMagnitude sets a direction wherever the magnitude reaches the low threshold <= high,
+  // except on the border rows and columns, which this loop does not visit.
+  static void AnchorRow(const int16_t* __restrict up, const int16_t* __restrict mag,
+                        const int16_t* __restrict down, const uint8_t* __restrict dir, int cols, int16_t high,
+                        uint8_t* __restrict marks) {
+    for (int x = 1; x + 1 < cols; ++x) {
+      // All four neighbours are loaded unconditionally: a conditional load blocks vectorisation.
+      const int16_t m = mag[x], above = up[x], below = down[x], left = mag[x - 1], right = mag[x + 1];
+      // across_y ? above : left, and the same for after, as masks (SSE2 has no blend).
+      const int16_t across_y = static_cast<int16_t>(-(dir[x] == kAlongX));
+      const int16_t before = static_cast<int16_t>((above & across_y) | (left & ~across_y));
+      const int16_t after = static_cast<int16_t>((below & across_y) | (right & ~across_y));
+      marks[x] = static_cast<uint8_t>((m >= high) & (m > before) & (m >= after));
     }
   }
 
@@ -696,6 +736,7 @@ class FastDetector {
 
   const SegmentDetectorOptions& options_;
   const int rows_, cols_;
+  const cv::Mat* smoothed_ = nullptr;  // the pre-smoothed image (or the input), CV_8U, continuous
   int low_ = 0, high_ = 0, min_pixels_ = 0;
   double num_tests_ = 0, log10_tests_ = 0;  // candidate segments tested by the NFA (see Run)
   double log10_short_side_tests_ = 0;       // log10 of the number of short sides between corners
