@@ -17,13 +17,10 @@
 #include "frontend/segments/line_fit.h"
 #include "frontend/segments/nfa.h"
 #include "frontend/segments/parabola_peak.h"
+#include "frontend/segments/sobel_gradient.h"
 
 namespace sfm {
 namespace {
-
-// Edge direction of a pixel whose gradient magnitude reaches the low threshold; 0 otherwise.
-constexpr uint8_t kAlongX = 1;  // the edge runs along x: the gradient is mostly along y
-constexpr uint8_t kAlongY = 2;  // the edge runs along y
 
 // The angle precision of the NFA test: a sample is aligned when its gradient is within 22.5 degrees
 // of the segment's normal (LSD's and EDLines' value).
@@ -91,14 +88,11 @@ class FastDetector {
       cv::GaussianBlur(grey, workspace->smoothed, cv::Size(size, size), sigma, sigma, cv::BORDER_REPLICATE);
       smoothed = &workspace->smoothed;
     }
-    smoothed_ = smoothed;
-    gx_.create(rows_, cols_, CV_16S);  // written by ComputeMagnitude
-    gy_.create(rows_, cols_, CV_16S);
     const double response = SobelStepResponse(sigma);
     low_ = std::max(1, static_cast<int>(std::ceil(options.edge_contrast_low * response)));
     high_ = std::max(low_, static_cast<int>(std::ceil(options.edge_contrast_high * response)));
-    magnitude_.create(rows_, cols_, CV_16S);
-    direction_.create(rows_, cols_, CV_8U);  // every pixel written by ComputeMagnitude
+    // One pass: the derivatives are not written and read back before the magnitude.
+    SobelMagnitude(*smoothed, low_, &gx_, &gy_, &magnitude_, &direction_);
     edge_.create(rows_, cols_, CV_8U);
     edge_.setTo(0);
     // Room for the longest possible walk (Walk); a no-op after the first image of this size.
@@ -110,7 +104,6 @@ class FastDetector {
 
   LineSegments Run() {
     const bool short_pieces = options_.fast.short_pieces_at_contacts;
-    ComputeMagnitude();
     FindAnchors();
     const int16_t* mag = magnitude_.ptr<int16_t>();
     const uint8_t* dir = direction_.ptr<uint8_t>();
@@ -178,63 +171,14 @@ class FastDetector {
   }
 
  private:
-  // The 3 x 3 Sobel derivatives of the smoothed image (cv::spatialGradient's, borders replicated:
-  // gx = [-1 0 1] across x times [1 2 1] down y, gy its transpose), |gx| + |gy| and the edge
-  // direction of every pixel, in one pass (the derivatives are not written and read back before
-  // the magnitude). Integer arithmetic, so the values are exactly cv::spatialGradient's. Border
-  // pixels stay dead (direction 0), so that walks never need a bounds check.
-  void ComputeMagnitude() {
-    const int rows = rows_;
-    for (int y = 0; y < rows; ++y) {
-      GradientRow(smoothed_->ptr<uint8_t>(std::max(y - 1, 0)), smoothed_->ptr<uint8_t>(y),
-                  smoothed_->ptr<uint8_t>(std::min(y + 1, rows - 1)), cols_,
-                  static_cast<int16_t>(y == 0 || y == rows - 1 ? INT16_MAX : low_), gx_.ptr<int16_t>(y),
-                  gy_.ptr<int16_t>(y), magnitude_.ptr<int16_t>(y), direction_.ptr<uint8_t>(y));
-    }
-  }
-
-  // One row of ComputeMagnitude from the smoothed rows above, at and below it; `low` is the low
-  // threshold (INT16_MAX on the border rows). Branch-free, so that the compiler vectorises it; the
-  // buffers are distinct (restrict parameters: without them the byte loads might alias the stores,
-  // and GCC gives up after too many run-time alias checks).
-  static void GradientRow(const uint8_t* __restrict up, const uint8_t* __restrict mid,
-                          const uint8_t* __restrict down, int cols, int16_t low, int16_t* __restrict dx,
-                          int16_t* __restrict dy, int16_t* __restrict mag, uint8_t* __restrict dir) {
-    // Interior columns; the two border columns below, with x - 1 or x + 1 replicated.
-    for (int x = 1; x + 1 < cols; ++x) {
-      const int16_t gx = static_cast<int16_t>((up[x + 1] - up[x - 1]) + 2 * (mid[x + 1] - mid[x - 1]) +
-                                              (down[x + 1] - down[x - 1]));
-      const int16_t gy = static_cast<int16_t>((down[x - 1] - up[x - 1]) + 2 * (down[x] - up[x]) +
-                                              (down[x + 1] - up[x + 1]));
-      dx[x] = gx;
-      dy[x] = gy;
-      const int16_t ax = static_cast<int16_t>(std::abs(gx)), ay = static_cast<int16_t>(std::abs(gy));
-      const int16_t m = static_cast<int16_t>(ax + ay);
-      mag[x] = m;
-      // m >= low ? (ay > ax ? kAlongX : kAlongY) : 0, as masks: SSE2 has no blend, and the
-      // selects took more instructions than the rest of the loop.
-      const int16_t along = static_cast<int16_t>(kAlongY - (ay > ax));  // kAlongX when ay > ax
-      const int16_t alive = static_cast<int16_t>(-(m >= low));         // all bits set when m >= low
-      dir[x] = static_cast<uint8_t>(along & alive);
-    }
-    static_assert(kAlongY - 1 == kAlongX, "the direction's arithmetic above");
-    for (const int x : {0, cols - 1}) {
-      const int l = std::max(x - 1, 0), r = std::min(x + 1, cols - 1);
-      const int16_t gx = static_cast<int16_t>((up[r] - up[l]) + 2 * (mid[r] - mid[l]) + (down[r] - down[l]));
-      const int16_t gy = static_cast<int16_t>((down[l] - up[l]) + 2 * (down[x] - up[x]) + (down[r] - up[r]));
-      dx[x] = gx;
-      dy[x] = gy;
-      mag[x] = static_cast<int16_t>(std::abs(gx) + std::abs(gy));
-      dir[x] = 0;
-    }
-  }
-
   // Pixels above the high threshold that are maxima across the edge (strict on one side, so a
   // plateau of two equal pixels gives one anchor), in raster order. A branch-free pass marks each
   // row's anchors; the marks are then collected eight at a time, skipping empty words.
   void FindAnchors() {
     anchors_.clear();
-    const int rows = rows_, cols = cols_;  // locals, as in ComputeMagnitude: the mark stores may alias members
+    // The bounds in locals: the mark stores may alias any member, so a loop bound read from cols_
+    // would be reloaded after every store, and that alone blocked vectorisation.
+    const int rows = rows_, cols = cols_;
     row_marks_.assign(cols + 8, 0);
     uint8_t* marks = row_marks_.data();
     const int16_t high = static_cast<int16_t>(high_);
@@ -255,9 +199,9 @@ class FastDetector {
   }
 
   // FindAnchors' marks of one row (not of the border rows): 1 where the magnitude reaches `high`
-  // and is a maximum across the edge. Branch-free, with restrict parameters (see GradientRow), so
+  // and is a maximum across the edge. Branch-free, with restrict parameters (see SobelMagnitude), so
   // that the compiler vectorises it. Here a pixel reaching `high` is alive (its direction is not 0):
-  // ComputeMagnitude sets a direction wherever the magnitude reaches the low threshold <= high,
+  // SobelMagnitude sets a direction wherever the magnitude reaches the low threshold <= high,
   // except on the border rows and columns, which this loop does not visit.
   static void AnchorRow(const int16_t* __restrict up, const int16_t* __restrict mag,
                         const int16_t* __restrict down, const uint8_t* __restrict dir, int cols, int16_t high,
@@ -736,7 +680,6 @@ class FastDetector {
 
   const SegmentDetectorOptions& options_;
   const int rows_, cols_;
-  const cv::Mat* smoothed_ = nullptr;  // the pre-smoothed image (or the input), CV_8U, continuous
   int low_ = 0, high_ = 0, min_pixels_ = 0;
   double num_tests_ = 0, log10_tests_ = 0;  // candidate segments tested by the NFA (see Run)
   double log10_short_side_tests_ = 0;       // log10 of the number of short sides between corners
