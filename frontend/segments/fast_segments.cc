@@ -22,6 +22,11 @@
 namespace sfm {
 namespace {
 
+// Added to a pixel's direction (kAlongX, kAlongY) once it is on a chain: the direction map doubles
+// as the chains' map, so no separate map is cleared and read for every image.
+constexpr uint8_t kOnChain = 4;
+static_assert((kOnChain & (kAlongX | kAlongY)) == 0, "kOnChain is a bit of its own");
+
 // The angle precision of the NFA test: a sample is aligned when its gradient is within 22.5 degrees
 // of the segment's normal (LSD's and EDLines' value).
 constexpr double kAlignedProbability = 1.0 / 8;
@@ -38,8 +43,8 @@ struct Workspace {
   cv::Mat smoothed;
   cv::Mat gx, gy;       // CV_16S Sobel derivatives
   cv::Mat magnitude;    // CV_16S |gx| + |gy|
-  cv::Mat direction;    // CV_8U kAlongX, kAlongY, or 0 (below the low threshold or on the border)
-  cv::Mat edge;         // CV_8U 1 on a chain
+  cv::Mat direction;    // CV_8U kAlongX, kAlongY, or 0 (below the low threshold or on the border),
+                        // with kOnChain added once the pixel is on a chain
   std::vector<int> anchors, backward, forward, chain;  // pixel indices y * cols + x
   std::vector<uint8_t> row_marks;                      // 1 at a row's anchors
   std::vector<Eigen::Vector2d> points;                 // sub-pixel points of chain
@@ -64,7 +69,6 @@ class FastDetector {
         gy_(workspace->gy),
         magnitude_(workspace->magnitude),
         direction_(workspace->direction),
-        edge_(workspace->edge),
         anchors_(workspace->anchors),
         row_marks_(workspace->row_marks),
         backward_(workspace->backward),
@@ -93,8 +97,6 @@ class FastDetector {
     high_ = std::max(low_, static_cast<int>(std::ceil(options.edge_contrast_high * response)));
     // One pass: the derivatives are not written and read back before the magnitude.
     SobelMagnitude(*smoothed, low_, &gx_, &gy_, &magnitude_, &direction_);
-    edge_.create(rows_, cols_, CV_8U);
-    edge_.setTo(0);
     // Room for the longest possible walk (Walk); a no-op after the first image of this size.
     const size_t pixels = static_cast<size_t>(rows_) * cols_;
     if (backward_.size() < pixels) backward_.resize(pixels);
@@ -106,16 +108,13 @@ class FastDetector {
     const bool short_pieces = options_.fast.short_pieces_at_contacts;
     FindAnchors();
     const int16_t* mag = magnitude_.ptr<int16_t>();
-    const uint8_t* dir = direction_.ptr<uint8_t>();
-    uint8_t* edge = edge_.ptr<uint8_t>();
+    uint8_t* dir = direction_.ptr<uint8_t>();
     for (const int anchor : anchors_) {
-      if (edge[anchor]) continue;
-      edge[anchor] = 1;
+      if (dir[anchor] & kOnChain) continue;
       const bool along_x = dir[anchor] == kAlongX;
-      const size_t backward =
-          Walk(anchor, along_x ? -1 : 0, along_x ? 0 : -1, mag, dir, edge, backward_.data());
-      const size_t forward =
-          Walk(anchor, along_x ? +1 : 0, along_x ? 0 : +1, mag, dir, edge, forward_.data());
+      dir[anchor] |= kOnChain;
+      const size_t backward = Walk(anchor, along_x ? -1 : 0, along_x ? 0 : -1, mag, dir, backward_.data());
+      const size_t forward = Walk(anchor, along_x ? +1 : 0, along_x ? 0 : +1, mag, dir, forward_.data());
       const bool short_chain = backward + forward + 1 < static_cast<size_t>(min_pixels_);
       if (short_chain && (!short_pieces || backward + forward + 1 < kShortWindow)) continue;
       chain_.assign(std::make_reverse_iterator(backward_.begin() + backward), backward_.rend());
@@ -221,10 +220,9 @@ class FastDetector {
   // direction (dx, dy) (one of them zero) while it is alive and on no chain; the travel axis follows
   // each pixel's edge direction. Writes the pixels visited to out, which has room for every pixel
   // of the image (a walk visits each at most once), and returns their number. A plain array
-  // rather than push_back: the edge map's byte stores may alias a vector's pointers, which were
-  // then reloaded at every step.
-  size_t Walk(int index, int dx, int dy, const int16_t* mag, const uint8_t* dir, uint8_t* edge,
-              int* out) const {
+  // rather than push_back: the direction map's byte stores (kOnChain) may alias a vector's
+  // pointers, which were then reloaded at every step.
+  size_t Walk(int index, int dx, int dy, const int16_t* mag, uint8_t* dir, int* out) const {
     const int stride = cols_;
     size_t count = 0;
     while (true) {
@@ -233,12 +231,14 @@ class FastDetector {
       int next = middle, offset = 0;
       if (mag[middle - side] > mag[next]) next = middle - side, offset = -1;
       if (mag[middle + side] > mag[next]) next = middle + side, offset = +1;
-      if (dir[next] == 0 || edge[next]) return count;
-      edge[next] = 1;
+      // Alive and on no chain: kAlongX or kAlongY without kOnChain (0 is dead).
+      const uint8_t direction = dir[next];
+      if (direction != kAlongX && direction != kAlongY) return count;
+      dir[next] = direction | kOnChain;
       out[count++] = next;
       const int move_x = dx != 0 ? dx : offset;
       const int move_y = dy != 0 ? dy : offset;
-      if (dir[next] == kAlongX) {
+      if (direction == kAlongX) {
         dx = move_x != 0 ? move_x : (mag[next + 1] >= mag[next - 1] ? 1 : -1);
         dy = 0;
       } else {
@@ -253,7 +253,7 @@ class FastDetector {
   // across the edge, when the pixel is their maximum (Devernay's localisation).
   Eigen::Vector2d SubpixelPoint(int index) const {
     const int16_t* mag = magnitude_.ptr<int16_t>();
-    const bool along_x = direction_.ptr<uint8_t>()[index] == kAlongX;
+    const bool along_x = (direction_.ptr<uint8_t>()[index] & ~kOnChain) == kAlongX;
     const int step = along_x ? cols_ : 1;
     const double delta = ParabolaPeakOffset(mag[index - step], mag[index], mag[index + step]).value_or(0.0);
     const int y = index / cols_, x = index % cols_;
@@ -692,7 +692,6 @@ class FastDetector {
   cv::Mat& gy_;
   cv::Mat& magnitude_;
   cv::Mat& direction_;
-  cv::Mat& edge_;
   std::vector<int>& anchors_;
   std::vector<uint8_t>& row_marks_;
   std::vector<int>& backward_;
