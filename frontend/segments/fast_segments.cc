@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <cstring>
 #include <iterator>
+#include <limits>
 #include <utility>
 #include <vector>
 
@@ -16,13 +17,15 @@
 #include "frontend/segments/line_fit.h"
 #include "frontend/segments/nfa.h"
 #include "frontend/segments/parabola_peak.h"
+#include "frontend/segments/sobel_gradient.h"
 
 namespace sfm {
 namespace {
 
-// Edge direction of a pixel whose gradient magnitude reaches the low threshold; 0 otherwise.
-constexpr uint8_t kAlongX = 1;  // the edge runs along x: the gradient is mostly along y
-constexpr uint8_t kAlongY = 2;  // the edge runs along y
+// Added to a pixel's direction (kAlongX, kAlongY) once it is on a chain: the direction map doubles
+// as the chains' map, so no separate map is cleared and read for every image.
+constexpr uint8_t kOnChain = 4;
+static_assert((kOnChain & (kAlongX | kAlongY)) == 0, "kOnChain is a bit of its own");
 
 // The angle precision of the NFA test: a sample is aligned when its gradient is within 22.5 degrees
 // of the segment's normal (LSD's and EDLines' value).
@@ -40,8 +43,8 @@ struct Workspace {
   cv::Mat smoothed;
   cv::Mat gx, gy;       // CV_16S Sobel derivatives
   cv::Mat magnitude;    // CV_16S |gx| + |gy|
-  cv::Mat direction;    // CV_8U kAlongX, kAlongY, or 0 (below the low threshold or on the border)
-  cv::Mat edge;         // CV_8U 1 on a chain
+  cv::Mat direction;    // CV_8U kAlongX, kAlongY, or 0 (below the low threshold or on the border),
+                        // with kOnChain added once the pixel is on a chain
   std::vector<int> anchors, backward, forward, chain;  // pixel indices y * cols + x
   std::vector<uint8_t> row_marks;                      // 1 at a row's anchors
   std::vector<Eigen::Vector2d> points;                 // sub-pixel points of chain
@@ -50,6 +53,9 @@ struct Workspace {
   std::vector<FittedLine> lines;      // their fitted lines (MarkCornerLengths, MarkContactCorners)
   std::vector<Eigen::Vector2d> ends;  // pieces' end-points (MarkContactCorners)
   std::vector<int> short_pieces, cell_begin, cell_fill, cell_ends;  // MarkContactCorners' pieces and grid
+  // Log10BinomialTail(n, k, kAlignedProbability) at [n][k], NaN until first needed (Validate): the
+  // same few (n, k) recur in every image, and each evaluation costs three lgamma and a series.
+  std::vector<std::vector<double>> binomial_tails;
 };
 
 // One image's detection.
@@ -63,7 +69,6 @@ class FastDetector {
         gy_(workspace->gy),
         magnitude_(workspace->magnitude),
         direction_(workspace->direction),
-        edge_(workspace->edge),
         anchors_(workspace->anchors),
         row_marks_(workspace->row_marks),
         backward_(workspace->backward),
@@ -77,7 +82,8 @@ class FastDetector {
         short_pieces_(workspace->short_pieces),
         cell_begin_(workspace->cell_begin),
         cell_fill_(workspace->cell_fill),
-        cell_ends_(workspace->cell_ends) {
+        cell_ends_(workspace->cell_ends),
+        binomial_tails_(workspace->binomial_tails) {
     pieces_.clear();
     const cv::Mat* smoothed = &grey;
     const double sigma = options.fast.presmooth_sigma;
@@ -86,14 +92,11 @@ class FastDetector {
       cv::GaussianBlur(grey, workspace->smoothed, cv::Size(size, size), sigma, sigma, cv::BORDER_REPLICATE);
       smoothed = &workspace->smoothed;
     }
-    cv::spatialGradient(*smoothed, gx_, gy_, 3, cv::BORDER_REPLICATE);
     const double response = SobelStepResponse(sigma);
     low_ = std::max(1, static_cast<int>(std::ceil(options.edge_contrast_low * response)));
     high_ = std::max(low_, static_cast<int>(std::ceil(options.edge_contrast_high * response)));
-    magnitude_.create(rows_, cols_, CV_16S);
-    direction_.create(rows_, cols_, CV_8U);  // every pixel written by ComputeMagnitude
-    edge_.create(rows_, cols_, CV_8U);
-    edge_.setTo(0);
+    // One pass: the derivatives are not written and read back before the magnitude.
+    SobelMagnitude(*smoothed, low_, &gx_, &gy_, &magnitude_, &direction_);
     // Room for the longest possible walk (Walk); a no-op after the first image of this size.
     const size_t pixels = static_cast<size_t>(rows_) * cols_;
     if (backward_.size() < pixels) backward_.resize(pixels);
@@ -103,19 +106,15 @@ class FastDetector {
 
   LineSegments Run() {
     const bool short_pieces = options_.fast.short_pieces_at_contacts;
-    ComputeMagnitude();
     FindAnchors();
     const int16_t* mag = magnitude_.ptr<int16_t>();
-    const uint8_t* dir = direction_.ptr<uint8_t>();
-    uint8_t* edge = edge_.ptr<uint8_t>();
+    uint8_t* dir = direction_.ptr<uint8_t>();
     for (const int anchor : anchors_) {
-      if (edge[anchor]) continue;
-      edge[anchor] = 1;
+      if (dir[anchor] & kOnChain) continue;
       const bool along_x = dir[anchor] == kAlongX;
-      const size_t backward =
-          Walk(anchor, along_x ? -1 : 0, along_x ? 0 : -1, mag, dir, edge, backward_.data());
-      const size_t forward =
-          Walk(anchor, along_x ? +1 : 0, along_x ? 0 : +1, mag, dir, edge, forward_.data());
+      dir[anchor] |= kOnChain;
+      const size_t backward = Walk(anchor, along_x ? -1 : 0, along_x ? 0 : -1, mag, dir, backward_.data());
+      const size_t forward = Walk(anchor, along_x ? +1 : 0, along_x ? 0 : +1, mag, dir, forward_.data());
       const bool short_chain = backward + forward + 1 < static_cast<size_t>(min_pixels_);
       if (short_chain && (!short_pieces || backward + forward + 1 < kShortWindow)) continue;
       chain_.assign(std::make_reverse_iterator(backward_.begin() + backward), backward_.rend());
@@ -171,52 +170,26 @@ class FastDetector {
   }
 
  private:
-  // |gx| + |gy| and the edge direction of every pixel; border pixels stay dead (direction 0), so
-  // that walks never need a bounds check. Branch-free, so that the compiler vectorises it.
-  void ComputeMagnitude() {
-    for (int y = 0; y < rows_; ++y) {
-      const int16_t* dx = gx_.ptr<int16_t>(y);
-      const int16_t* dy = gy_.ptr<int16_t>(y);
-      int16_t* mag = magnitude_.ptr<int16_t>(y);
-      uint8_t* dir = direction_.ptr<uint8_t>(y);
-      const int16_t low = static_cast<int16_t>(y == 0 || y == rows_ - 1 ? INT16_MAX : low_);
-      for (int x = 0; x < cols_; ++x) {
-        const int16_t ax = static_cast<int16_t>(std::abs(dx[x])), ay = static_cast<int16_t>(std::abs(dy[x]));
-        const int16_t m = static_cast<int16_t>(ax + ay);
-        mag[x] = m;
-        dir[x] = static_cast<uint8_t>(m >= low ? (ay > ax ? kAlongX : kAlongY) : 0);
-      }
-      dir[0] = dir[cols_ - 1] = 0;
-    }
-  }
-
   // Pixels above the high threshold that are maxima across the edge (strict on one side, so a
   // plateau of two equal pixels gives one anchor), in raster order. A branch-free pass marks each
   // row's anchors; the marks are then collected eight at a time, skipping empty words.
   void FindAnchors() {
     anchors_.clear();
-    row_marks_.assign(cols_ + 8, 0);
+    // The bounds in locals: the mark stores may alias any member, so a loop bound read from cols_
+    // would be reloaded after every store, and that alone blocked vectorisation.
+    const int rows = rows_, cols = cols_;
+    row_marks_.assign(cols + 8, 0);
     uint8_t* marks = row_marks_.data();
     const int16_t high = static_cast<int16_t>(high_);
-    for (int y = 1; y + 1 < rows_; ++y) {
-      const int16_t* mag = magnitude_.ptr<int16_t>(y);
-      const int16_t* up = magnitude_.ptr<int16_t>(y - 1);
-      const int16_t* down = magnitude_.ptr<int16_t>(y + 1);
-      const uint8_t* dir = direction_.ptr<uint8_t>(y);
-      for (int x = 1; x + 1 < cols_; ++x) {
-        // All four neighbours are loaded unconditionally: a conditional load blocks vectorisation.
-        const int16_t m = mag[x], above = up[x], below = down[x], left = mag[x - 1], right = mag[x + 1];
-        const bool across_y = dir[x] == kAlongX;
-        const int16_t before = across_y ? above : left;
-        const int16_t after = across_y ? below : right;
-        marks[x] = static_cast<uint8_t>((m >= high) & (dir[x] != 0) & (m > before) & (m >= after));
-      }
+    for (int y = 1; y + 1 < rows; ++y) {
+      AnchorRow(magnitude_.ptr<int16_t>(y - 1), magnitude_.ptr<int16_t>(y), magnitude_.ptr<int16_t>(y + 1),
+                direction_.ptr<uint8_t>(y), cols, high, marks);
       static_assert(__BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__, "marks are read as little-endian words");
       // Each mark is a byte of 0 or 1, so a word's set bits are its anchors, lowest x first (the
       // bytes of a little-endian word): taking them by count-trailing-zeros spares the byte loop's
       // mispredicted branches. Marks from cols_ - 1 on stay 0 (never written after the assign).
-      const int row = y * cols_;
-      for (int x = 1; x + 1 < cols_; x += 8) {
+      const int row = y * cols;
+      for (int x = 1; x + 1 < cols; x += 8) {
         uint64_t word;
         std::memcpy(&word, marks + x, sizeof(word));
         for (; word != 0; word &= word - 1) anchors_.push_back(row + x + __builtin_ctzll(word) / 8);
@@ -224,14 +197,32 @@ class FastDetector {
     }
   }
 
+  // FindAnchors' marks of one row (not of the border rows): 1 where the magnitude reaches `high`
+  // and is a maximum across the edge. Branch-free, with restrict parameters (see SobelMagnitude), so
+  // that the compiler vectorises it. Here a pixel reaching `high` is alive (its direction is not 0):
+  // SobelMagnitude sets a direction wherever the magnitude reaches the low threshold <= high,
+  // except on the border rows and columns, which this loop does not visit.
+  static void AnchorRow(const int16_t* __restrict up, const int16_t* __restrict mag,
+                        const int16_t* __restrict down, const uint8_t* __restrict dir, int cols, int16_t high,
+                        uint8_t* __restrict marks) {
+    for (int x = 1; x + 1 < cols; ++x) {
+      // All four neighbours are loaded unconditionally: a conditional load blocks vectorisation.
+      const int16_t m = mag[x], above = up[x], below = down[x], left = mag[x - 1], right = mag[x + 1];
+      // across_y ? above : left, and the same for after, as masks (SSE2 has no blend).
+      const int16_t across_y = static_cast<int16_t>(-(dir[x] == kAlongX));
+      const int16_t before = static_cast<int16_t>((above & across_y) | (left & ~across_y));
+      const int16_t after = static_cast<int16_t>((below & across_y) | (right & ~across_y));
+      marks[x] = static_cast<uint8_t>((m >= high) & (m > before) & (m >= after));
+    }
+  }
+
   // ED's routing: from `index`, step to the strongest of the three pixels ahead in the travel
   // direction (dx, dy) (one of them zero) while it is alive and on no chain; the travel axis follows
   // each pixel's edge direction. Writes the pixels visited to out, which has room for every pixel
   // of the image (a walk visits each at most once), and returns their number. A plain array
-  // rather than push_back: the edge map's byte stores may alias a vector's pointers, which were
-  // then reloaded at every step.
-  size_t Walk(int index, int dx, int dy, const int16_t* mag, const uint8_t* dir, uint8_t* edge,
-              int* out) const {
+  // rather than push_back: the direction map's byte stores (kOnChain) may alias a vector's
+  // pointers, which were then reloaded at every step.
+  size_t Walk(int index, int dx, int dy, const int16_t* mag, uint8_t* dir, int* out) const {
     const int stride = cols_;
     size_t count = 0;
     while (true) {
@@ -240,12 +231,14 @@ class FastDetector {
       int next = middle, offset = 0;
       if (mag[middle - side] > mag[next]) next = middle - side, offset = -1;
       if (mag[middle + side] > mag[next]) next = middle + side, offset = +1;
-      if (dir[next] == 0 || edge[next]) return count;
-      edge[next] = 1;
+      // Alive and on no chain: kAlongX or kAlongY without kOnChain (0 is dead).
+      const uint8_t direction = dir[next];
+      if (direction != kAlongX && direction != kAlongY) return count;
+      dir[next] = direction | kOnChain;
       out[count++] = next;
       const int move_x = dx != 0 ? dx : offset;
       const int move_y = dy != 0 ? dy : offset;
-      if (dir[next] == kAlongX) {
+      if (direction == kAlongX) {
         dx = move_x != 0 ? move_x : (mag[next + 1] >= mag[next - 1] ? 1 : -1);
         dy = 0;
       } else {
@@ -260,7 +253,7 @@ class FastDetector {
   // across the edge, when the pixel is their maximum (Devernay's localisation).
   Eigen::Vector2d SubpixelPoint(int index) const {
     const int16_t* mag = magnitude_.ptr<int16_t>();
-    const bool along_x = direction_.ptr<uint8_t>()[index] == kAlongX;
+    const bool along_x = (direction_.ptr<uint8_t>()[index] & ~kOnChain) == kAlongX;
     const int step = along_x ? cols_ : 1;
     const double delta = ParabolaPeakOffset(mag[index - step], mag[index], mag[index + step]).value_or(0.0);
     const int y = index / cols_, x = index % cols_;
@@ -670,8 +663,19 @@ class FastDetector {
     // 1.5 false segments per image without this rule, 0.98 with it, 0.88 with the rule off).
     if (contact && strong < samples) return;
     const double log10_tests = short_side ? log10_short_side_tests_ : contact ? log10_contact_tests_ : log10_tests_;
-    if (Log10Nfa(samples, aligned, kAlignedProbability, log10_tests) > options_.fast.log10_nfa_max) return;
+    // Log10Nfa(samples, aligned, kAlignedProbability, log10_tests), its tail looked up.
+    if (log10_tests + BinomialTail(samples, aligned) > options_.fast.log10_nfa_max) return;
     segments->push_back(segment);
+  }
+
+  // Log10BinomialTail(n, k, kAlignedProbability), computed once per (n, k) and thread.
+  double BinomialTail(int n, int k) const {
+    if (binomial_tails_.size() <= static_cast<size_t>(n)) binomial_tails_.resize(n + 1);
+    std::vector<double>& row = binomial_tails_[n];
+    if (row.empty()) row.assign(n + 1, std::numeric_limits<double>::quiet_NaN());
+    double& tail = row[k];
+    if (std::isnan(tail)) tail = Log10BinomialTail(n, k, kAlignedProbability);
+    return tail;
   }
 
   const SegmentDetectorOptions& options_;
@@ -688,7 +692,6 @@ class FastDetector {
   cv::Mat& gy_;
   cv::Mat& magnitude_;
   cv::Mat& direction_;
-  cv::Mat& edge_;
   std::vector<int>& anchors_;
   std::vector<uint8_t>& row_marks_;
   std::vector<int>& backward_;
@@ -703,6 +706,7 @@ class FastDetector {
   std::vector<int>& cell_begin_;
   std::vector<int>& cell_fill_;
   std::vector<int>& cell_ends_;
+  std::vector<std::vector<double>>& binomial_tails_;
 };
 
 }  // namespace
