@@ -71,8 +71,10 @@ struct BundleAdjustmentOptions {
   // freedom and 4 residuals (one per end-point, two views): it fits both views exactly on any
   // poses (the intersection of its two back-projected planes), so its least cost is 0 whatever the
   // poses and it cannot move their minimum; out of the joint solve it only costs time
-  // (docs/bundle_adjustment.md, "Two-view lines apart"). Off: every line in the joint solves.
-  bool two_view_lines_apart = false;
+  // (docs/bundle_adjustment.md, "Two-view lines apart"). On since session 7 (Strecha's back end
+  // -52 % instructions, figures unchanged within solver tolerance). Off: every line in the joint
+  // solves.
+  bool two_view_lines_apart = true;
   double outlier_threshold_px = 3.0;  // px, an observation's error (norm of its 2 residuals)
   int outlier_rounds = 1;             // remove-outliers-and-solve-again rounds after the joint solve
   // Rounds after the last joint solve: the landmarks that solve itself made unobservable (a line
