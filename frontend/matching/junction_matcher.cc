@@ -15,6 +15,9 @@ namespace sfm {
 
 namespace {
 
+// Rounds of the one-common-segment fixed point after the first partial pass (MatchJunctions).
+constexpr int kOneCommonRounds = 4;
+
 // depth_range (may be null): a pair it rejects is unmatched, for rule (38) and for sigma's
 // topology support alike.
 std::vector<JunctionMatch> Match(const Junctions& a, const TopologyGraph& graph_a, const Junctions& b,
@@ -88,17 +91,21 @@ bool SharedSegmentSupported(int i, int segment_a, int j, int segment_b, const Ju
   return false;
 }
 
+// supporting: the matches whose junctions may support a one-common-segment pair (SharedSegmentSupported):
+// `full` and, in the later rounds of MatchJunctions' fixed point, the partial matches of the round
+// before.
 std::vector<JunctionMatch> MatchPartial(const Junctions& a, const TopologyGraph& graph_a, const Junctions& b,
                                         const TopologyGraph& graph_b, const JunctionSimilarity& similarity,
                                         const std::vector<JunctionMatch>& full,
+                                        const std::vector<JunctionMatch>& supporting,
                                         const MatchingOptions& options, const LocalDepthRange* depth_range) {
   std::vector<char> matched_a(a.size(), 0), matched_b(b.size(), 0);
-  std::vector<int> match_of_a(a.size(), -1);
-  for (size_t m = 0; m < full.size(); ++m) {
-    matched_a[full[m].index_a] = 1;
-    matched_b[full[m].index_b] = 1;
-    match_of_a[full[m].index_a] = static_cast<int>(m);
+  for (const JunctionMatch& match : full) {
+    matched_a[match.index_a] = 1;
+    matched_b[match.index_b] = 1;
   }
+  std::vector<int> match_of_a(a.size(), -1);
+  for (size_t m = 0; m < supporting.size(); ++m) match_of_a[supporting[m].index_a] = static_cast<int>(m);
   std::vector<JunctionMatch> candidates;
   std::vector<int> partners;
   for (int i = 0; i < static_cast<int>(a.size()); ++i) {
@@ -126,8 +133,8 @@ std::vector<JunctionMatch> MatchPartial(const Junctions& a, const TopologyGraph&
           // Two L's with no admissible shift: perhaps two corners of one vertex sharing a segment.
           const PairSimilarity one = similarity.OneCommonRho(i, j);
           if (passes_depth(one) &&
-              SharedSegmentSupported(i, 1 - one.missing_a, j, 1 - one.missing_b, a, graph_a, b, graph_b, full,
-                                     match_of_a)) {
+              SharedSegmentSupported(i, 1 - one.missing_a, j, 1 - one.missing_b, a, graph_a, b, graph_b,
+                                     supporting, match_of_a)) {
             candidates.push_back({i, j, one.rho, one.shift, one.missing_a, one.missing_b});
           }
         }
@@ -216,8 +223,22 @@ std::vector<JunctionMatch> MatchJunctions(const Junctions& a, const TopologyGrap
   if (!options.match_partial) return matches;
   // Only here: in the refined band (about 1.8 px) a partial pair has few rivals; in the odometry's
   // band the weaker, k/(k+1)-scaled support would compete with many wrong full-count partners.
-  const std::vector<JunctionMatch> partial =
-      MatchPartial(a, graph_a, b, graph_b, similarity, matches, guided, depth_range ? &*depth_range : nullptr);
+  const LocalDepthRange* range = depth_range ? &*depth_range : nullptr;
+  std::vector<JunctionMatch> partial = MatchPartial(a, graph_a, b, graph_b, similarity, matches, matches, guided, range);
+  // One common segment: a pair's support may also be a partial match (a chain of corners along one
+  // edge); again with the full and partial matches of the round before as neighbours, until the
+  // partial matches stop changing (a few rounds; capped, as a selection by (38) need not be monotone).
+  for (int round = 0; options.match_one_common && round < kOneCommonRounds; ++round) {
+    std::vector<JunctionMatch> supporting = matches;
+    supporting.insert(supporting.end(), partial.begin(), partial.end());
+    std::vector<JunctionMatch> next = MatchPartial(a, graph_a, b, graph_b, similarity, matches, supporting, guided, range);
+    const bool same = next.size() == partial.size() &&
+                      std::equal(next.begin(), next.end(), partial.begin(), [](const JunctionMatch& x, const JunctionMatch& y) {
+                        return x.index_a == y.index_a && x.index_b == y.index_b;
+                      });
+    partial = std::move(next);
+    if (same) break;
+  }
   report.partial_matches = static_cast<int>(partial.size());
   matches.insert(matches.end(), partial.begin(), partial.end());
   std::stable_sort(matches.begin(), matches.end(),
