@@ -15,6 +15,9 @@ namespace sfm {
 
 namespace {
 
+// Rounds of the one-common-segment fixed point after the first partial pass (MatchJunctions).
+constexpr int kOneCommonRounds = 4;
+
 // depth_range (may be null): a pair it rejects is unmatched, for rule (38) and for sigma's
 // topology support alike.
 std::vector<JunctionMatch> Match(const Junctions& a, const TopologyGraph& graph_a, const Junctions& b,
@@ -56,15 +59,53 @@ std::vector<JunctionMatch> Match(const Junctions& a, const TopologyGraph& graph_
 // in the full pass, a pair it rejects is no candidate, partial or competitor (an occlusion T read
 // as a Y or an L against a real L elsewhere on the epipolar line is a partner at another depth than
 // the verified matches around it). Returns the partial matches.
-std::vector<JunctionMatch> MatchPartial(const Junctions& a, const Junctions& b,
-                                        const JunctionSimilarity& similarity,
+// True when segment segment_a of junction i (image 1) has a topology edge to a junction that
+// `full` matches (match_of_a: index into full, or -1), and segment segment_b of junction j
+// (image 2) an edge to that junction's partner, arriving through the segment the match pairs with
+// the far end of the edge in image 1: the one common segment is seen as one edge in both frames.
+bool SharedSegmentSupported(int i, int segment_a, int j, int segment_b, const Junctions& a,
+                            const TopologyGraph& graph_a, const Junctions& b, const TopologyGraph& graph_b,
+                            const std::vector<JunctionMatch>& full, const std::vector<int>& match_of_a) {
+  for (const int edge_a : graph_a.edges_of_junction[i]) {
+    const TopologyEdge& ea = graph_a.edges[edge_a];
+    if (ea.junction_a == ea.junction_b) continue;
+    const bool a_first = ea.junction_a == i;
+    if ((a_first ? ea.segment_a : ea.segment_b) != segment_a) continue;
+    const int far_a = a_first ? ea.junction_b : ea.junction_a;
+    if (match_of_a[far_a] < 0) continue;
+    const JunctionMatch& far = full[match_of_a[far_a]];
+    const int far_segment_b = PartnerSegment(far, a_first ? ea.segment_b : ea.segment_a, a[far_a].NumSegments(),
+                                             b[far.index_b].NumSegments());
+    if (far_segment_b < 0) continue;
+    for (const int edge_b : graph_b.edges_of_junction[j]) {
+      const TopologyEdge& eb = graph_b.edges[edge_b];
+      if (eb.junction_a == eb.junction_b) continue;
+      const bool b_first = eb.junction_a == j;
+      if ((b_first ? eb.segment_a : eb.segment_b) == segment_b &&
+          (b_first ? eb.junction_b : eb.junction_a) == far.index_b &&
+          (b_first ? eb.segment_b : eb.segment_a) == far_segment_b) {
+        return true;
+      }
+    }
+  }
+  return false;
+}
+
+// supporting: the matches whose junctions may support a one-common-segment pair (SharedSegmentSupported):
+// `full` and, in the later rounds of MatchJunctions' fixed point, the partial matches of the round
+// before.
+std::vector<JunctionMatch> MatchPartial(const Junctions& a, const TopologyGraph& graph_a, const Junctions& b,
+                                        const TopologyGraph& graph_b, const JunctionSimilarity& similarity,
                                         const std::vector<JunctionMatch>& full,
+                                        const std::vector<JunctionMatch>& supporting,
                                         const MatchingOptions& options, const LocalDepthRange* depth_range) {
   std::vector<char> matched_a(a.size(), 0), matched_b(b.size(), 0);
   for (const JunctionMatch& match : full) {
     matched_a[match.index_a] = 1;
     matched_b[match.index_b] = 1;
   }
+  std::vector<int> match_of_a(a.size(), -1);
+  for (size_t m = 0; m < supporting.size(); ++m) match_of_a[supporting[m].index_a] = static_cast<int>(m);
   std::vector<JunctionMatch> candidates;
   std::vector<int> partners;
   for (int i = 0; i < static_cast<int>(a.size()); ++i) {
@@ -86,7 +127,17 @@ std::vector<JunctionMatch> MatchPartial(const Junctions& a, const Junctions& b,
       if (n_a == n_b) {
         const PairSimilarity rho = similarity.Rho(i, j);
         // missing_a = missing_b = -1 and the flag below: a competitor only.
-        if (passes_depth(rho)) candidates.push_back({i, j, rho.rho, -1, -1, -1});
+        if (passes_depth(rho)) {
+          candidates.push_back({i, j, rho.rho, -1, -1, -1});
+        } else if (options.match_one_common && !rho.Matched() && n_a == 2) {
+          // Two L's with no admissible shift: perhaps two corners of one vertex sharing a segment.
+          const PairSimilarity one = similarity.OneCommonRho(i, j);
+          if (passes_depth(one) &&
+              SharedSegmentSupported(i, 1 - one.missing_a, j, 1 - one.missing_b, a, graph_a, b, graph_b,
+                                     supporting, match_of_a)) {
+            candidates.push_back({i, j, one.rho, one.shift, one.missing_a, one.missing_b});
+          }
+        }
       } else if (std::abs(n_a - n_b) == 1) {
         const PairSimilarity rho = similarity.PartialRho(i, j);
         if (passes_depth(rho)) candidates.push_back({i, j, rho.rho, rho.shift, rho.missing_a, rho.missing_b});
@@ -172,8 +223,22 @@ std::vector<JunctionMatch> MatchJunctions(const Junctions& a, const TopologyGrap
   if (!options.match_partial) return matches;
   // Only here: in the refined band (about 1.8 px) a partial pair has few rivals; in the odometry's
   // band the weaker, k/(k+1)-scaled support would compete with many wrong full-count partners.
-  const std::vector<JunctionMatch> partial =
-      MatchPartial(a, b, similarity, matches, guided, depth_range ? &*depth_range : nullptr);
+  const LocalDepthRange* range = depth_range ? &*depth_range : nullptr;
+  std::vector<JunctionMatch> partial = MatchPartial(a, graph_a, b, graph_b, similarity, matches, matches, guided, range);
+  // One common segment: a pair's support may also be a partial match (a chain of corners along one
+  // edge); again with the full and partial matches of the round before as neighbours, until the
+  // partial matches stop changing (a few rounds; capped, as a selection by (38) need not be monotone).
+  for (int round = 0; options.match_one_common && round < kOneCommonRounds; ++round) {
+    std::vector<JunctionMatch> supporting = matches;
+    supporting.insert(supporting.end(), partial.begin(), partial.end());
+    std::vector<JunctionMatch> next = MatchPartial(a, graph_a, b, graph_b, similarity, matches, supporting, guided, range);
+    const bool same = next.size() == partial.size() &&
+                      std::equal(next.begin(), next.end(), partial.begin(), [](const JunctionMatch& x, const JunctionMatch& y) {
+                        return x.index_a == y.index_a && x.index_b == y.index_b;
+                      });
+    partial = std::move(next);
+    if (same) break;
+  }
   report.partial_matches = static_cast<int>(partial.size());
   matches.insert(matches.end(), partial.begin(), partial.end());
   std::stable_sort(matches.begin(), matches.end(),

@@ -392,4 +392,38 @@ PairSimilarity JunctionSimilarity::PartialRho(int index_a, int index_b) const {
   return result;
 }
 
+PairSimilarity JunctionSimilarity::OneCommonRho(int index_a, int index_b) const {
+  PairSimilarity result;
+  if (side_a_.count[index_a] != 2 || side_b_.count[index_b] != 2) return result;
+  Bands bands;
+  double d = 0, d_prime = 0;
+  if (!LocationsAgree(index_a, index_b, &bands, &d, &d_prime)) return result;
+  const int first_a = side_a_.first[index_a];
+  const int first_b = side_b_.first[index_b];
+  double best = 0;
+  for (int sa = 0; sa < 2; ++sa) {
+    for (int sb = 0; sb < 2; ++sb) {
+      // (37) on the shared pair: one segment seen in both frames turns by less than 90 degrees.
+      const Eigen::Vector2d& da = side_a_.directions[first_a + sa];
+      const Eigen::Vector2d& db = side_b_.directions[first_b + sb];
+      if (!(da.dot(db) > 0)) continue;
+      const std::optional<double> support = SegmentPairSupport(first_a + sa, first_b + sb, bands);
+      if (!support) continue;
+      // The mean over the union's three segments, the two unshared ones' terms 0.
+      const double m = *support / 3;
+      if (result.shift < 0 || m > best) {
+        best = m;
+        result.shift = 0;
+        result.missing_a = 1 - sa;
+        result.missing_b = 1 - sb;
+      }
+    }
+  }
+  if (result.shift < 0) return result;
+  const double rho1 = has_geometry_ && options_.use_pose_band ? Rho1(d / bands.in_image1, d_prime / bands.in_image2, 1.0, options_.rho1_kind)
+                                : Rho1(d, d_prime, options_.max_epipolar_distance_px, options_.rho1_kind);
+  result.rho = 0.5 * (rho1 + best);
+  return result;
+}
+
 }  // namespace sfm

@@ -60,6 +60,16 @@ class JunctionSimilarity {
   // Unmatched (shift -1) for other segment counts or when no segment may be left out.
   PairSimilarity PartialRho(int index_a, int index_b) const;
 
+  // Two L's sharing one segment (MatchingOptions::match_one_common; not in the paper): two corners
+  // of one 3-edge vertex, segments (1, 2) detected in one frame and (2, 3) in the other. Over every
+  // pairing of one segment of a with one of b, (37) and (17) for that pair, and M = H H' / 3, the
+  // mean over the three segments of the union with the two unshared ones' terms 0 (as PartialRho
+  // counts a missing segment). rho = 0.5 (rho1 + max M). missing_a / missing_b: the unshared segment
+  // of each, shift 0. Unmatched for other segment counts, outside the band or cheirality test, or
+  // when no pairing passes (37) and (17). Alone this is weak evidence (one segment, no turn): the
+  // matcher also asks for topology support through the shared segment (junction_matcher.cc).
+  PairSimilarity OneCommonRho(int index_a, int index_b) const;
+
   // The junctions of b that Rho(index_a, .) does not reject by its first, cheap tests (same segment
   // count, p'0 within R or the largest band of index_a from the epipolar line of p0), appended to
   // `out` in increasing index. Every other pair has Rho unmatched: the candidate scan of (38) needs

@@ -98,6 +98,14 @@ struct MatchingOptions {
   // (a T without its stem is a line, not an L). Kept: without it VGG precision 97.7 -> 97.4 % for
   // +0.2 point of generated recall.
   bool partial_rule_same_lines = true;
+  // One-common-segment matches in the partial pass (not in the paper; docs/matching.md, "One
+  // common segment"): two L's left unmatched that share one segment (two corners of one 3-edge
+  // vertex, edges 1-2 in one frame and 2-3 in the other; JunctionSimilarity::OneCommonRho) are a
+  // candidate only with topology support: a topology edge from the shared segment to a junction the
+  // guided pass matched, and in the other image the partner's shared segment's edge to that
+  // junction's partner, through the segment that match pairs. Off by default (measured in
+  // docs/matching_results.md, "Session 7, part 2").
+  bool match_one_common = false;
 
   Status Check() const {
     auto bad = [](const std::string& what) { return Status::Error("MatchingOptions: " + what); };

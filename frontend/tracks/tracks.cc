@@ -58,9 +58,14 @@ void CheckMatch(const std::vector<Junctions>& frames, const FrameMatch& m) {
   const int n_b = b[m.match.index_b].NumSegments();
   if (!m.match.Partial()) {
     CHECK_EQ(n_a, n_b) << "full match between junctions with different segment counts";
+  } else if (m.match.missing_a >= 0 && m.match.missing_b >= 0) {
+    // One common segment (MatchingOptions::match_one_common): two L's, one unshared segment each.
+    CHECK(n_a == 2 && n_b == 2) << "match with two missing segments between junctions of " << n_a << " and "
+                                << n_b << " segments";
+    CHECK(m.match.missing_a < 2 && m.match.missing_b < 2 && m.match.shift == 0) << "bad one-common-segment match";
+    return;
   } else {
     // Partial: exactly one side names its left-out segment, and that side has one segment more.
-    CHECK((m.match.missing_a >= 0) != (m.match.missing_b >= 0)) << "partial match with two missing segments";
     const int n_larger = m.match.missing_a >= 0 ? n_a : n_b;
     const int missing = m.match.missing_a >= 0 ? m.match.missing_a : m.match.missing_b;
     CHECK_EQ(n_larger, (m.match.missing_a >= 0 ? n_b : n_a) + 1)

@@ -26,6 +26,9 @@ DEFINE_bool(match_partial, kDefaults.match_partial,
 DEFINE_bool(
     match_partial_rule_a, kDefaults.partial_rule_not_line_half,
     "With --match_partial: rule (a), the left-out segment may not be half of a line through the junction.");
+DEFINE_bool(match_one_common, kDefaults.match_one_common,
+            "With --match_partial: also match two leftover L's sharing one segment (two corners of one "
+            "vertex) when a matched neighbour through that segment supports it (docs/matching.md).");
 
 namespace sfm {
 
@@ -36,6 +39,7 @@ void MatchingRefineFromFlags(MatchingOptions* matching) {
   matching->refine_constrain_to_prior_gate = FLAGS_match_refine_constrain;
   matching->match_partial = FLAGS_match_partial;
   matching->partial_rule_not_line_half = FLAGS_match_partial_rule_a;
+  matching->match_one_common = FLAGS_match_one_common;
 }
 
 }  // namespace sfm

@@ -514,5 +514,75 @@ TEST(JunctionMatcherTest, PartialMatchRefusesAnLThatFitsTwoYsEqually) {
   }
 }
 
+// One common segment (MatchingOptions::match_one_common; docs/matching.md, "One common segment"):
+// the scene of PartialMatchPairsAnLWithItsY, but the 3D Y is seen as two different corners, arms
+// 0-1 in image 1 and 1-2 in image 2 (two L's sharing arm 1's segment), joined through arm 1 in both
+// topology graphs to the first rectangle corner (its arm-0 segment). Off (the default) the L's stay
+// unmatched; on, they match each other, arm 1's segments paired and the unshared segments missing,
+// and the 60 full matches are unchanged; without the topology edge they stay unmatched even with the
+// option (the support rule). Protects the corridor's recall gain of docs/matching_results.md,
+// "Session 7, part 2"; exact counts, no tolerance.
+TEST(JunctionMatcherTest, OneCommonSegmentMatchesTwoCornersOfAVertexWithSupport) {
+  std::mt19937 rng(31);
+  PartialScene partial = MakePartialScene(&rng);
+  Scene& scene = partial.scene;
+  const ProjectedJunction& y_b = scene.projected_b[60];
+  const int y = partial.y;
+  Junction& l_b = scene.b[y];
+  l_b.segments.clear();
+  std::vector<int> arms_of_l_b;
+  for (int s = 0; s < 3; ++s) {
+    if (y_b.arm_of_segment[s] == 0) continue;
+    l_b.segments.push_back(y_b.junction.segments[s]);
+    arms_of_l_b.push_back(y_b.arm_of_segment[s]);
+  }
+  const int shared_a = static_cast<int>(std::find(partial.arms_of_l.begin(), partial.arms_of_l.end(), 1) -
+                                        partial.arms_of_l.begin());
+  const int shared_b = static_cast<int>(std::find(arms_of_l_b.begin(), arms_of_l_b.end(), 1) - arms_of_l_b.begin());
+  ASSERT_TRUE(shared_a < 2 && shared_b < 2);
+  const Scene unsupported = scene;
+  // The topology edges through the shared segment, to corner 0 (arm 0) in both images.
+  const int corner_b = scene.b_of_a[0];
+  scene.graph_a.edges.push_back({60, shared_a, 0, SegmentOfArm(scene.projected_a[0], 0)});
+  scene.graph_a.edges_of_junction[60].push_back(static_cast<int>(scene.graph_a.edges.size()) - 1);
+  scene.graph_a.edges_of_junction[0].push_back(static_cast<int>(scene.graph_a.edges.size()) - 1);
+  scene.graph_b.edges.push_back({y, shared_b, corner_b, SegmentOfArm(scene.projected_b[0], 0)});
+  scene.graph_b.edges_of_junction[y].push_back(static_cast<int>(scene.graph_b.edges.size()) - 1);
+  scene.graph_b.edges_of_junction[corner_b].push_back(static_cast<int>(scene.graph_b.edges.size()) - 1);
+
+  const PairGeometry odometry = OdometryGeometry(scene.views);
+  MatchingOptions off;
+  ASSERT_FALSE(off.match_one_common);
+  MatchingOptions on;
+  on.match_one_common = true;
+  MatchingDiagnostics diagnostics;
+  const std::vector<JunctionMatch> before =
+      MatchJunctions(scene.a, scene.graph_a, scene.b, scene.graph_b, odometry, off, &diagnostics);
+  ASSERT_TRUE(diagnostics.refinement.Refined());
+  for (const JunctionMatch& m : before) EXPECT_NE(m.index_a, 60) << "no full match of two different corners";
+  const std::vector<JunctionMatch> after =
+      MatchJunctions(scene.a, scene.graph_a, scene.b, scene.graph_b, odometry, on, &diagnostics);
+  ASSERT_EQ(after.size(), before.size() + 1);
+  int found = 0;
+  for (const JunctionMatch& m : after) {
+    if (m.index_a != 60) {
+      EXPECT_EQ(m.index_b, scene.b_of_a[m.index_a]);
+      continue;
+    }
+    ++found;
+    EXPECT_EQ(m.index_b, y);
+    EXPECT_EQ(m.missing_a, 1 - shared_a);
+    EXPECT_EQ(m.missing_b, 1 - shared_b);
+    EXPECT_EQ(PartnerSegment(m, shared_a, 2, 2), shared_b);
+    EXPECT_EQ(PartnerSegment(m, 1 - shared_a, 2, 2), -1);
+    // rho = 0.5 (rho1 + H H' / 3) <= 0.5 (1 + 1/3).
+    EXPECT_LE(m.similarity, 0.5 * (1 + 1.0 / 3) + 1e-9);
+  }
+  EXPECT_EQ(found, 1);
+  const std::vector<JunctionMatch> no_edge = MatchJunctions(unsupported.a, unsupported.graph_a, unsupported.b,
+                                                            unsupported.graph_b, odometry, on, &diagnostics);
+  for (const JunctionMatch& m : no_edge) EXPECT_NE(m.index_a, 60) << "matched without topology support";
+}
+
 }  // namespace
 }  // namespace sfm
