@@ -85,10 +85,11 @@ DEFINE_string(miss_dir, "",
               "If set, write there misses.csv (one row per long edge of each missed detectable vertex whose "
               "segments are missing: length, contrast, the closest detection) and a crop of each such vertex "
               "(8x enlarged, true long edges orange), for finding why edges get no segment.");
-DEFINE_bool(truth_in_image, true,
-            "Generated: true vertices count only --radius px inside the undistorted image, and a true edge's "
-            "length only inside it (with barrel distortion the stored image sees beyond it); false: as before "
-            "session 7 (only the stored image's border applies).");
+DEFINE_bool(
+    truth_in_image, true,
+    "Generated: true vertices count only --radius px inside the undistorted image, and a true edge's "
+    "length only inside it (with barrel distortion the stored image sees beyond it); false: as before "
+    "session 7 (only the stored image's border applies).");
 DEFINE_double(radius, 3.0, "A true junction is found when a detected one lies within this, px.");
 DEFINE_double(min_edge_px, kTruthDefaults.min_edge_px,
               "Generated: a vertex is detectable when at least two visible edges at least this long (px) meet there.");
@@ -652,7 +653,8 @@ Status MeasureSequence(const std::string& directory, const std::string& clean_di
   }
   const Camera& camera = sequence.calibration.camera;
   UndistortInterpolation interpolation;
-  if (std::string error; !UndistortInterpolationFromFlags(&interpolation, &error)) return Status::Error(error);
+  if (std::string error; !UndistortInterpolationFromFlags(&interpolation, &error))
+    return Status::Error(error);
   const ImageUndistorter undistorter(camera, interpolation);
   const cv::Mat valid = ValidMask(camera, FLAGS_radius, FLAGS_truth_in_image);
   TrueJunctionOptions truth_options;
@@ -1137,13 +1139,15 @@ int main(int argc, char** argv) {
   std::vector<GeneratedStats> pooled(methods.size());
   // Recall by distance from the principal point, and the reasons of the misses there.
   std::ostringstream rings;
-  rings << "\n### Recall by distance from the principal point\n\n"
-        << "Detectable vertices by their distance r from (cx, cy) in the undistorted image: found / count "
-        << "(recall), then the misses as crowded / edges missing / ends far / not joined. \"stretch\": "
-        << "d r_undistorted / d r_stored at the ring's middle (360 px for the last), 1 without distortion.\n\n"
-        << "| sequence | segments |";
+  rings
+      << "\n### Recall by distance from the principal point\n\n"
+      << "Detectable vertices by their distance r from (cx, cy) in the undistorted image: found / count "
+      << "(recall), then the misses as crowded / edges missing / ends far / not joined. \"stretch\": "
+      << "d r_undistorted / d r_stored at the ring's middle (360 px for the last), 1 without distortion.\n\n"
+      << "| sequence | segments |";
   for (int k = 0; k < kNumRings; ++k) {
-    rings << " r " << kRingEdges[k] << (k + 1 < kNumRings ? "-" + Fixed(kRingEdges[k + 1], 0) : "+") << " px |";
+    rings << " r " << kRingEdges[k] << (k + 1 < kNumRings ? "-" + Fixed(kRingEdges[k + 1], 0) : "+")
+          << " px |";
   }
   rings << "\n|---|---|";
   for (int k = 0; k < kNumRings; ++k) rings << "---|";
@@ -1161,8 +1165,8 @@ int main(int argc, char** argv) {
       rings << "| " << name << " | " << methods[m].name << " |";
       for (int k = 0; k < kNumRings; ++k) {
         rings << " " << s.ring_found[k] << " / " << s.ring_detectable[k] << " ("
-              << Percent(s.ring_found[k], s.ring_detectable[k]) << "), miss " << s.ring_misses[k][kCrowded] << "/"
-              << s.ring_misses[k][kEdgesMissing] << "/" << s.ring_misses[k][kEndsFar] << "/"
+              << Percent(s.ring_found[k], s.ring_detectable[k]) << "), miss " << s.ring_misses[k][kCrowded]
+              << "/" << s.ring_misses[k][kEdgesMissing] << "/" << s.ring_misses[k][kEndsFar] << "/"
               << s.ring_misses[k][kNotJoined] << ", stretch " << Fixed(s.ring_stretch[k], 2) << " |";
       }
       rings << "\n";

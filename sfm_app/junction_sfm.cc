@@ -63,9 +63,10 @@ DEFINE_bool(ba_single_pose_block, kDefaults.bundle_adjustment_options.single_pos
 DEFINE_bool(ba_inner_iterations_throughout, kDefaults.bundle_adjustment_options.inner_iterations_throughout,
             "Bundle adjustment: keep Ceres's inner iterations on through every step of a solve (false: Ceres "
             "turns them off once they gain little, the solver before session 6; slower on corridors).");
-DEFINE_bool(ba_two_view_lines_apart, kDefaults.bundle_adjustment_options.two_view_lines_apart,
-            "Bundle adjustment: leave the lines seen in exactly two views (not on the floor prior) out of the joint "
-            "solves and solve each alone on their poses (they fit any poses exactly; same minimum, smaller solves).");
+DEFINE_bool(
+    ba_two_view_lines_apart, kDefaults.bundle_adjustment_options.two_view_lines_apart,
+    "Bundle adjustment: leave the lines seen in exactly two views (not on the floor prior) out of the joint "
+    "solves and solve each alone on their poses (they fit any poses exactly; same minimum, smaller solves).");
 DEFINE_double(ba_loss_scale, kDefaults.bundle_adjustment_options.robust_loss_scale_px,
               "Bundle adjustment: scale (px) of the robust loss on image residuals.");
 DEFINE_string(floor_prior, FloorPriorName(kDefaults.bundle_adjustment_options.floor_prior),
@@ -145,11 +146,13 @@ DEFINE_bool(wireframe_far_end_shares_vertex, kDefaults.triangulation.wireframe.f
             "Wireframe selection, --wireframe_far_end_at_point_px: the edge ends at the point's own vertex "
             "(false: at a vertex of its own at the point's position).");
 DEFINE_bool(wireframe_line_variance_factor, kDefaults.triangulation.wireframe.line_variance_factor,
-            "Wireframe selection: a line's vertex sigmas scaled by sqrt(its chi2 / dof over the lines' typical one) when "
+            "Wireframe selection: a line's vertex sigmas scaled by sqrt(its chi2 / dof over the lines' "
+            "typical one) when "
             "above 1 (docs/tracks_and_triangulation.md, \"A line's own variance factor\").");
-DEFINE_bool(wireframe_point_variance_factor, kDefaults.triangulation.wireframe.point_variance_factor,
-            "Wireframe selection: a point's sigma scaled by sqrt(its chi2 / dof over the points' typical one) when "
-            "above 1 (docs/tracks_and_triangulation.md, \"A line's own variance factor\").");
+DEFINE_bool(
+    wireframe_point_variance_factor, kDefaults.triangulation.wireframe.point_variance_factor,
+    "Wireframe selection: a point's sigma scaled by sqrt(its chi2 / dof over the points' typical one) when "
+    "above 1 (docs/tracks_and_triangulation.md, \"A line's own variance factor\").");
 
 namespace {
 

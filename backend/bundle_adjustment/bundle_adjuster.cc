@@ -700,7 +700,8 @@ class BundleAdjuster {
     }
     for (size_t i = 0; i < landmarks_->lines.size(); ++i) {
       const bool two_view = landmarks_->lines[i].observations.size() == 2;
-      (options_.two_view_lines_apart && two_view && !on_floor[i] ? apart : joint)->push_back(static_cast<int>(i));
+      (options_.two_view_lines_apart && two_view && !on_floor[i] ? apart : joint)
+          ->push_back(static_cast<int>(i));
     }
   }
 
@@ -816,8 +817,8 @@ class BundleAdjuster {
       }
       for (size_t k = 0; with_lines && k < floor_.lines.size(); ++k) {
         problem.AddResidualBlock(
-            FloorLineCost::Create(floor_anchors_[k][0], floor_anchors_[k][1], options_.floor_sigma_m), &floor_loss,
-            line_block(joint_slot[floor_.lines[k]]));
+            FloorLineCost::Create(floor_anchors_[k][0], floor_anchors_[k][1], options_.floor_sigma_m),
+            &floor_loss, line_block(joint_slot[floor_.lines[k]]));
       }
       if (base_on_floor_) {
         // The first pose is held constant; its prior would be a constant.

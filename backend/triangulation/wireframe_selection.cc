@@ -395,10 +395,11 @@ Landmarks SelectWireframeLandmarks(const Eigen::Matrix3d& K, const std::vector<P
     // The line's own variance factor (line_variance_factor): its residuals' chi2 / dof relative to
     // the lines' typical one, when above 1, scales its covariance (both vertices' sigmas by the
     // square root).
-    const double factor = options.line_variance_factor ? OwnSigmaFactor(chi_square, dof, line_unit_variance) : 1.0;
+    const double factor =
+        options.line_variance_factor ? OwnSigmaFactor(chi_square, dof, line_unit_variance) : 1.0;
     const double end0_sigma =
-        kept.point_landmark < 0 ? factor * LinePositionSigma(K, views, kept.end0, kept.direction, sigma_px, drift,
-                                                             options.line_sigma_subtracts_plane_noise)
+        kept.point_landmark < 0 ? factor * LinePositionSigma(K, views, kept.end0, kept.direction, sigma_px,
+                                                             drift, options.line_sigma_subtracts_plane_noise)
                                 : -1;
     if (kept.point_landmark < 0 && !determined(end0_sigma, SmallestDepth(cameras, kept.end0))) {
       ++counts.lines_uncertain_end0;

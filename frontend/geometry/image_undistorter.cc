@@ -7,18 +7,25 @@
 namespace sfm {
 
 bool ParseUndistortInterpolation(const std::string& name, UndistortInterpolation* interpolation) {
-  if (name == "linear") *interpolation = UndistortInterpolation::kLinear;
-  else if (name == "cubic") *interpolation = UndistortInterpolation::kCubic;
-  else if (name == "lanczos4") *interpolation = UndistortInterpolation::kLanczos4;
-  else return false;
+  if (name == "linear")
+    *interpolation = UndistortInterpolation::kLinear;
+  else if (name == "cubic")
+    *interpolation = UndistortInterpolation::kCubic;
+  else if (name == "lanczos4")
+    *interpolation = UndistortInterpolation::kLanczos4;
+  else
+    return false;
   return true;
 }
 
 const char* UndistortInterpolationName(UndistortInterpolation interpolation) {
   switch (interpolation) {
-    case UndistortInterpolation::kCubic: return "cubic";
-    case UndistortInterpolation::kLanczos4: return "lanczos4";
-    default: return "linear";
+    case UndistortInterpolation::kCubic:
+      return "cubic";
+    case UndistortInterpolation::kLanczos4:
+      return "lanczos4";
+    default:
+      return "linear";
   }
 }
 

@@ -2,9 +2,8 @@
 // and K). The remap tables are built once per camera, not once per frame.
 #pragma once
 
-#include <string>
-
 #include <opencv2/core.hpp>
+#include <string>
 
 #include "frontend/geometry/camera.h"
 
@@ -38,7 +37,7 @@ class ImageUndistorter {
 
  private:
   int width_, height_;
-  int interpolation_;  // cv::INTER_*
+  int interpolation_;      // cv::INTER_*
   cv::Mat map_x_, map_y_;  // empty when there is no distortion
 };
 

@@ -440,7 +440,6 @@ void MergeCoincidingJunctions(const std::vector<Group>& candidates, double max_g
   std::sort(chosen->begin(), chosen->end());
 }
 
-
 // JunctionDetectorOptions::corner_beyond_taken_end and corner_beyond_taken_end_free
 // (docs/junctions.md, step 3). Where two true vertices lie a few pixels apart on one line (a segment
 // A ends at the vertex W where a third edge X leaves it, and A's line goes on for a short stub, of
@@ -522,8 +521,10 @@ void CornersBeyondTakenEnds(const std::vector<Group>& candidates, const PairGrap
     if (junction.nodes.size() != 2) continue;
     int b = -1, interior = 0;
     for (int node : junction.nodes) {
-      if (ContactOf(node) == Contact::kThrough) ++interior;
-      else b = node;
+      if (ContactOf(node) == Contact::kThrough)
+        ++interior;
+      else
+        b = node;
     }
     if (interior != 1 || b < 0) continue;  // a T: one end-point, one interior
     const int best = try_end(b, k, end_term(b, junction.Location()).second);

@@ -74,8 +74,8 @@ bool SharedSegmentSupported(int i, int segment_a, int j, int segment_b, const Ju
     const int far_a = a_first ? ea.junction_b : ea.junction_a;
     if (match_of_a[far_a] < 0) continue;
     const JunctionMatch& far = full[match_of_a[far_a]];
-    const int far_segment_b = PartnerSegment(far, a_first ? ea.segment_b : ea.segment_a, a[far_a].NumSegments(),
-                                             b[far.index_b].NumSegments());
+    const int far_segment_b = PartnerSegment(far, a_first ? ea.segment_b : ea.segment_a,
+                                             a[far_a].NumSegments(), b[far.index_b].NumSegments());
     if (far_segment_b < 0) continue;
     for (const int edge_b : graph_b.edges_of_junction[j]) {
       const TopologyEdge& eb = graph_b.edges[edge_b];
@@ -132,9 +132,8 @@ std::vector<JunctionMatch> MatchPartial(const Junctions& a, const TopologyGraph&
         } else if (options.match_one_common && !rho.Matched() && n_a == 2) {
           // Two L's with no admissible shift: perhaps two corners of one vertex sharing a segment.
           const PairSimilarity one = similarity.OneCommonRho(i, j);
-          if (passes_depth(one) &&
-              SharedSegmentSupported(i, 1 - one.missing_a, j, 1 - one.missing_b, a, graph_a, b, graph_b,
-                                     supporting, match_of_a)) {
+          if (passes_depth(one) && SharedSegmentSupported(i, 1 - one.missing_a, j, 1 - one.missing_b, a,
+                                                          graph_a, b, graph_b, supporting, match_of_a)) {
             candidates.push_back({i, j, one.rho, one.shift, one.missing_a, one.missing_b});
           }
         }
@@ -224,18 +223,21 @@ std::vector<JunctionMatch> MatchJunctions(const Junctions& a, const TopologyGrap
   // Only here: in the refined band (about 1.8 px) a partial pair has few rivals; in the odometry's
   // band the weaker, k/(k+1)-scaled support would compete with many wrong full-count partners.
   const LocalDepthRange* range = depth_range ? &*depth_range : nullptr;
-  std::vector<JunctionMatch> partial = MatchPartial(a, graph_a, b, graph_b, similarity, matches, matches, guided, range);
+  std::vector<JunctionMatch> partial =
+      MatchPartial(a, graph_a, b, graph_b, similarity, matches, matches, guided, range);
   // One common segment: a pair's support may also be a partial match (a chain of corners along one
   // edge); again with the full and partial matches of the round before as neighbours, until the
   // partial matches stop changing (a few rounds; capped, as a selection by (38) need not be monotone).
   for (int round = 0; options.match_one_common && round < kOneCommonRounds; ++round) {
     std::vector<JunctionMatch> supporting = matches;
     supporting.insert(supporting.end(), partial.begin(), partial.end());
-    std::vector<JunctionMatch> next = MatchPartial(a, graph_a, b, graph_b, similarity, matches, supporting, guided, range);
-    const bool same = next.size() == partial.size() &&
-                      std::equal(next.begin(), next.end(), partial.begin(), [](const JunctionMatch& x, const JunctionMatch& y) {
-                        return x.index_a == y.index_a && x.index_b == y.index_b;
-                      });
+    std::vector<JunctionMatch> next =
+        MatchPartial(a, graph_a, b, graph_b, similarity, matches, supporting, guided, range);
+    const bool same =
+        next.size() == partial.size() && std::equal(next.begin(), next.end(), partial.begin(),
+                                                    [](const JunctionMatch& x, const JunctionMatch& y) {
+                                                      return x.index_a == y.index_a && x.index_b == y.index_b;
+                                                    });
     partial = std::move(next);
     if (same) break;
   }

@@ -420,8 +420,9 @@ PairSimilarity JunctionSimilarity::OneCommonRho(int index_a, int index_b) const 
     }
   }
   if (result.shift < 0) return result;
-  const double rho1 = has_geometry_ && options_.use_pose_band ? Rho1(d / bands.in_image1, d_prime / bands.in_image2, 1.0, options_.rho1_kind)
-                                : Rho1(d, d_prime, options_.max_epipolar_distance_px, options_.rho1_kind);
+  const double rho1 = has_geometry_ && options_.use_pose_band
+                          ? Rho1(d / bands.in_image1, d_prime / bands.in_image2, 1.0, options_.rho1_kind)
+                          : Rho1(d, d_prime, options_.max_epipolar_distance_px, options_.rho1_kind);
   result.rho = 0.5 * (rho1 + best);
   return result;
 }

@@ -81,8 +81,8 @@ PieceEnds ProjectedEnds(const LinePiece& piece, const FittedLine& line) {
 // each piece's end-points as projected on its own line: a single raw edge point scatters by a few
 // tenths of a pixel on a noisy edge, the line through all of them much less.
 bool TryJoin(const LinePiece& a, const FittedLine& line_a, const PieceEnds& ends_a, const LinePiece& b,
-             const FittedLine& line_b, const PieceEnds& ends_b, double max_gap, double tolerance, LinePiece* joined,
-             FittedLine* joined_line) {
+             const FittedLine& line_b, const PieceEnds& ends_b, double max_gap, double tolerance,
+             LinePiece* joined, FittedLine* joined_line) {
   const std::array<Eigen::Vector2d, 4> ends = {ends_a[0], ends_a[1], ends_b[0], ends_b[1]};
   // The smallest of the four distances, by one square root (it is monotonic, so the result is the
   // same as the smallest of four square roots).

@@ -1,16 +1,16 @@
 #include "frontend/segments/fast_segments.h"
 
+#include <glog/logging.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <iterator>
 #include <limits>
+#include <opencv2/imgproc.hpp>
 #include <utility>
 #include <vector>
-
-#include <glog/logging.h>
-#include <opencv2/imgproc.hpp>
 
 #include "frontend/segments/branch_segments.h"
 #include "frontend/segments/collinear_merge.h"

@@ -1,9 +1,9 @@
 #include "frontend/segments/sobel_gradient.h"
 
+#include <glog/logging.h>
+
 #include <algorithm>
 #include <cstdlib>
-
-#include <glog/logging.h>
 
 namespace sfm {
 namespace {
@@ -19,8 +19,8 @@ void SobelRow(const uint8_t* __restrict up, const uint8_t* __restrict mid, const
   for (int x = 1; x + 1 < cols; ++x) {
     const int16_t gx = static_cast<int16_t>((up[x + 1] - up[x - 1]) + 2 * (mid[x + 1] - mid[x - 1]) +
                                             (down[x + 1] - down[x - 1]));
-    const int16_t gy = static_cast<int16_t>((down[x - 1] - up[x - 1]) + 2 * (down[x] - up[x]) +
-                                            (down[x + 1] - up[x + 1]));
+    const int16_t gy =
+        static_cast<int16_t>((down[x - 1] - up[x - 1]) + 2 * (down[x] - up[x]) + (down[x + 1] - up[x + 1]));
     dx[x] = gx;
     dy[x] = gy;
     const int16_t ax = static_cast<int16_t>(std::abs(gx)), ay = static_cast<int16_t>(std::abs(gy));
@@ -29,7 +29,7 @@ void SobelRow(const uint8_t* __restrict up, const uint8_t* __restrict mid, const
     // m >= low ? (ay > ax ? kAlongX : kAlongY) : 0, as masks: SSE2 has no blend, and the selects
     // took more instructions than the rest of the loop.
     const int16_t along = static_cast<int16_t>(kAlongY - (ay > ax));  // kAlongX when ay > ax
-    const int16_t alive = static_cast<int16_t>(-(m >= low));         // all bits set when m >= low
+    const int16_t alive = static_cast<int16_t>(-(m >= low));          // all bits set when m >= low
     dir[x] = static_cast<uint8_t>(along & alive);
   }
   static_assert(kAlongY - 1 == kAlongX, "the direction's arithmetic above");
@@ -58,8 +58,9 @@ void SobelMagnitude(const cv::Mat& image, int low, cv::Mat* gx, cv::Mat* gy, cv:
   direction->create(rows, cols, CV_8U);
   const int16_t inner_low = static_cast<int16_t>(std::clamp(low, 0, static_cast<int>(INT16_MAX)));
   for (int y = 0; y < rows; ++y) {
-    SobelRow(image.ptr<uint8_t>(std::max(y - 1, 0)), image.ptr<uint8_t>(y), image.ptr<uint8_t>(std::min(y + 1, rows - 1)),
-             cols, y == 0 || y == rows - 1 ? INT16_MAX : inner_low, gx->ptr<int16_t>(y), gy->ptr<int16_t>(y),
+    SobelRow(image.ptr<uint8_t>(std::max(y - 1, 0)), image.ptr<uint8_t>(y),
+             image.ptr<uint8_t>(std::min(y + 1, rows - 1)), cols,
+             y == 0 || y == rows - 1 ? INT16_MAX : inner_low, gx->ptr<int16_t>(y), gy->ptr<int16_t>(y),
              magnitude->ptr<int16_t>(y), direction->ptr<uint8_t>(y));
   }
 }

@@ -62,7 +62,8 @@ void CheckMatch(const std::vector<Junctions>& frames, const FrameMatch& m) {
     // One common segment (MatchingOptions::match_one_common): two L's, one unshared segment each.
     CHECK(n_a == 2 && n_b == 2) << "match with two missing segments between junctions of " << n_a << " and "
                                 << n_b << " segments";
-    CHECK(m.match.missing_a < 2 && m.match.missing_b < 2 && m.match.shift == 0) << "bad one-common-segment match";
+    CHECK(m.match.missing_a < 2 && m.match.missing_b < 2 && m.match.shift == 0)
+        << "bad one-common-segment match";
     return;
   } else {
     // Partial: exactly one side names its left-out segment, and that side has one segment more.

@@ -1,8 +1,9 @@
 #include "sfm_app/flags/detector_flags.h"
 
-DEFINE_string(undistort_interpolation, sfm::UndistortInterpolationName(sfm::kDetectionInterpolation),
-              "Resampling of each frame to the undistorted image when the camera has lens distortion: 'linear', "
-              "'cubic' or 'lanczos4' (docs/junction_results.md, \"Session 7: lens distortion\").");
+DEFINE_string(
+    undistort_interpolation, sfm::UndistortInterpolationName(sfm::kDetectionInterpolation),
+    "Resampling of each frame to the undistorted image when the camera has lens distortion: 'linear', "
+    "'cubic' or 'lanczos4' (docs/junction_results.md, \"Session 7: lens distortion\").");
 
 namespace sfm {
 

@@ -1111,7 +1111,6 @@ TEST(FloorPriorTest, ReselectionAroundTheFloorIgnoresAStraySlabBelow) {
   EXPECT_NE(elsewhere.why.find("within"), std::string::npos) << elsewhere.why;
 }
 
-
 // ---- Two-view lines apart (docs/bundle_adjustment.md, "Two-view lines apart") ----
 
 struct TwoViewRun {
@@ -1140,9 +1139,11 @@ TwoViewRun RunTwoViewLoop(bool apart, FloorPriorMode floor_prior) {
   options.two_view_lines_apart = apart;
   options.floor_prior = floor_prior;
   TwoViewRun run;
-  const Status status = BundleAdjust(calibration, odometry, options, &observed.landmarks, &run.refined, &run.summary);
+  const Status status =
+      BundleAdjust(calibration, odometry, options, &observed.landmarks, &run.refined, &run.summary);
   EXPECT_TRUE(status.ok()) << status.message();
-  for (const LineLandmark& line : observed.landmarks.lines) run.two_view_lines += line.observations.size() == 2;
+  for (const LineLandmark& line : observed.landmarks.lines)
+    run.two_view_lines += line.observations.size() == 2;
   for (int line : run.summary.floor_line_indices) {
     run.floor_two_view_lines += observed.landmarks.lines[line].observations.size() == 2;
   }
@@ -1177,7 +1178,8 @@ TEST(TwoViewLinesTest, SolvedApartTheyLeaveThePosesWhereTheJointSolveHasThem) {
         "difference %.2e m; odometry scale %.8f / %.8f; iterations %d / %d; cost %.6f / %.6f\n",
         floor_prior == FloorPriorMode::kOff ? "off" : "auto", apart.two_view_lines, apart.summary.lines,
         apart.floor_two_view_lines, largest_m, joint.summary.odometry_scale, apart.summary.odometry_scale,
-        joint.summary.iterations, apart.summary.iterations, joint.summary.final_cost, apart.summary.final_cost);
+        joint.summary.iterations, apart.summary.iterations, joint.summary.final_cost,
+        apart.summary.final_cost);
     EXPECT_GE(apart.two_view_lines, 5);
     if (floor_prior == FloorPriorMode::kAuto) {
       EXPECT_TRUE(apart.summary.floor_prior_used) << apart.summary.floor_prior_report;

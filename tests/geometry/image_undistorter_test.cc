@@ -1,11 +1,11 @@
 // ImageUndistorter's interpolation: how much each resampling blurs a sharp edge.
 #include "frontend/geometry/image_undistorter.h"
 
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <cstdio>
 #include <string>
-
-#include <gtest/gtest.h>
 
 namespace sfm {
 namespace {
@@ -44,7 +44,8 @@ cv::Mat StoredImage(const Camera& camera, double edge_x) {
 double PeakGradientShare(const cv::Mat& undistorted, double edge_x) {
   const int x0 = static_cast<int>(std::floor(edge_x));
   double ideal = 0;
-  for (int x = x0 - 3; x <= x0 + 4; ++x) ideal = std::max(ideal, (Step(x + 1, edge_x) - Step(x - 1, edge_x)) / 2);
+  for (int x = x0 - 3; x <= x0 + 4; ++x)
+    ideal = std::max(ideal, (Step(x + 1, edge_x) - Step(x - 1, edge_x)) / 2);
   double sum = 0;
   int rows = 0;
   for (int y = 200; y < 280; ++y, ++rows) {
@@ -83,11 +84,14 @@ TEST(ImageUndistorterTest, CubicKeepsEdgesSharperThanBilinear) {
   const Camera camera = BenchmarkLens();
   for (const double edge_x : {380.6, 560.3}) {
     const cv::Mat stored = StoredImage(camera, edge_x);
-    const double linear = PeakGradientShare(ImageUndistorter(camera, UndistortInterpolation::kLinear).Apply(stored), edge_x);
-    const double cubic = PeakGradientShare(ImageUndistorter(camera, UndistortInterpolation::kCubic).Apply(stored), edge_x);
-    const double lanczos = PeakGradientShare(ImageUndistorter(camera, UndistortInterpolation::kLanczos4).Apply(stored), edge_x);
-    std::printf("edge at x = %.1f: peak gradient share linear %.3f, cubic %.3f, lanczos4 %.3f\n", edge_x, linear,
-                cubic, lanczos);
+    const double linear =
+        PeakGradientShare(ImageUndistorter(camera, UndistortInterpolation::kLinear).Apply(stored), edge_x);
+    const double cubic =
+        PeakGradientShare(ImageUndistorter(camera, UndistortInterpolation::kCubic).Apply(stored), edge_x);
+    const double lanczos =
+        PeakGradientShare(ImageUndistorter(camera, UndistortInterpolation::kLanczos4).Apply(stored), edge_x);
+    std::printf("edge at x = %.1f: peak gradient share linear %.3f, cubic %.3f, lanczos4 %.3f\n", edge_x,
+                linear, cubic, lanczos);
     EXPECT_GE(cubic, 0.93) << edge_x;
     EXPECT_GE(cubic - linear, 0.04) << edge_x;
   }

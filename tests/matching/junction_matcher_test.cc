@@ -538,7 +538,8 @@ TEST(JunctionMatcherTest, OneCommonSegmentMatchesTwoCornersOfAVertexWithSupport)
   }
   const int shared_a = static_cast<int>(std::find(partial.arms_of_l.begin(), partial.arms_of_l.end(), 1) -
                                         partial.arms_of_l.begin());
-  const int shared_b = static_cast<int>(std::find(arms_of_l_b.begin(), arms_of_l_b.end(), 1) - arms_of_l_b.begin());
+  const int shared_b =
+      static_cast<int>(std::find(arms_of_l_b.begin(), arms_of_l_b.end(), 1) - arms_of_l_b.begin());
   ASSERT_TRUE(shared_a < 2 && shared_b < 2);
   const Scene unsupported = scene;
   // The topology edges through the shared segment, to corner 0 (arm 0) in both images.

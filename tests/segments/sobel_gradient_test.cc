@@ -1,8 +1,8 @@
 #include "frontend/segments/sobel_gradient.h"
 
-#include <cstdlib>
-
 #include <gtest/gtest.h>
+
+#include <cstdlib>
 #include <opencv2/imgproc.hpp>
 
 namespace sfm {
@@ -15,7 +15,8 @@ namespace {
 TEST(SobelMagnitudeTest, EqualsSpatialGradientAndDefinitionsExactly) {
   cv::RNG rng(7);
   const int low = 20;
-  for (const cv::Size size : {cv::Size(3, 3), cv::Size(4, 7), cv::Size(17, 5), cv::Size(64, 48), cv::Size(131, 97)}) {
+  for (const cv::Size size :
+       {cv::Size(3, 3), cv::Size(4, 7), cv::Size(17, 5), cv::Size(64, 48), cv::Size(131, 97)}) {
     for (int trial = 0; trial < 3; ++trial) {
       cv::Mat image(size, CV_8UC1);
       rng.fill(image, cv::RNG::UNIFORM, 0, 256);

@@ -494,7 +494,8 @@ TEST_F(WireframeSelectionTest, ALineNoisierThanTheOthersGetsALargerSigma) {
     shift_far_ends(&landmarks.lines.back(), 0.1);
   }
   const Eigen::Vector3d corner(0.5, 0.3, 3);
-  const Eigen::Vector3d end1 = corner + Eigen::Vector3d(std::cos(40 * M_PI / 180), 0.0, std::sin(40 * M_PI / 180));
+  const Eigen::Vector3d end1 =
+      corner + Eigen::Vector3d(std::cos(40 * M_PI / 180), 0.0, std::sin(40 * M_PI / 180));
   landmarks.points.push_back(Point(corner));
   const LineLandmark exact = Line(corner, end1, 8);
   landmarks.lines.push_back(exact);
@@ -518,7 +519,8 @@ TEST_F(WireframeSelectionTest, ALineNoisierThanTheOthersGetsALargerSigma) {
   for (const LineObservation& observation : landmarks.lines[8].observations) {
     views.push_back({cameras_[observation.frame], observation.p0, observation.p1, observation.frame});
   }
-  const double sigma = LinePositionSigma(K_, views, end1, exact.direction, 0.3, WireframePoseDrift(options, cameras_), true);
+  const double sigma =
+      LinePositionSigma(K_, views, end1, exact.direction, 0.3, WireframePoseDrift(options, cameras_), true);
   EXPECT_NEAR(sigma / MaxVertexSigma(options, 450, end1.z()), 0.81, 0.03);
 
   WireframeSelectionReport report;
@@ -561,10 +563,12 @@ TEST_F(WireframeSelectionTest, APointNoisierThanTheOthersGetsALargerSigma) {
   shift_pixels(&landmarks.points.back(), 0.3);
   WireframeOptions options;
   const std::vector<int> frames = {0, 1, 2, 3, 4};
-  const double sigma = PointPositionSigma(K_, cameras_, frames, far, 0.3, WireframePoseDrift(options, cameras_));
+  const double sigma =
+      PointPositionSigma(K_, cameras_, frames, far, 0.3, WireframePoseDrift(options, cameras_));
   EXPECT_NEAR(sigma / MaxVertexSigma(options, 450, 31), 0.82, 0.03);
   std::vector<Eigen::Vector2d> pixels;
-  for (const PointObservation& observation : landmarks.points[8].observations) pixels.push_back(observation.pixel);
+  for (const PointObservation& observation : landmarks.points[8].observations)
+    pixels.push_back(observation.pixel);
   int dof = 0;
   EXPECT_NEAR(PointChiSquare(K_, cameras_, pixels, far, 0.3, &dof), 5.0, 0.01);
   ASSERT_EQ(dof, 7);
