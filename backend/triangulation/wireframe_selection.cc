@@ -130,40 +130,19 @@ double UpperMedian(std::vector<double> values) {
   return *middle;
 }
 
-// The variance of unit weight of a set of landmarks from their residuals' chi2 / m(dof), m(k) the
-// median of a chi-square variable with k degrees of freedom: the median of the ratios, so that
-// landmarks whose residuals follow the noise model give 1 whatever their number of views, robust to
-// the wrong tracks and groupings among them. 1 when there is none, or when the median is 0
-// (noise-free observations).
-double UnitVariance(std::vector<double> ratios) {
-  const double median = ratios.empty() ? 0.0 : UpperMedian(std::move(ratios));
-  return median > 0 ? median : 1.0;
-}
+// A landmark's residuals at sigma_px on world_T_camera: rule 1's consistency test, and the
+// variance factors' chi2 / dof. Computed once per landmark, before the selection, since the
+// variances of unit weight need every landmark's.
+struct ResidualTest {
+  double chi_square = 0;
+  int dof = 0;
+};
 
-// WireframeOptions::line_variance_factor: the lines' variance of unit weight, their residuals'
-// chi2 at sigma_px (LineChiSquare on world_T_camera) over m(dof).
-double LineUnitVariance(const Eigen::Matrix3d& K, const std::vector<Pose3>& world_T_camera,
-                        const Landmarks& landmarks, double sigma_px) {
-  std::vector<double> ratios;
-  for (const LineLandmark& line : landmarks.lines) {
-    std::vector<LineSegmentView> views;
-    for (const LineObservation& observation : line.observations) {
-      CHECK(observation.frame >= 0 && observation.frame < static_cast<int>(world_T_camera.size()))
-          << "frame " << observation.frame;
-      views.push_back({world_T_camera[observation.frame], observation.p0, observation.p1, observation.frame});
-    }
-    int dof = 0;
-    const double chi_square = LineChiSquare(K, views, line.point, line.direction, sigma_px, &dof);
-    if (dof >= 1 && std::isfinite(chi_square)) ratios.push_back(chi_square / ChiSquareQuantile(0.5, dof));
-  }
-  return UnitVariance(std::move(ratios));
-}
-
-// WireframeOptions::point_variance_factor: the same for the points (PointChiSquare).
-double PointUnitVariance(const Eigen::Matrix3d& K, const std::vector<Pose3>& world_T_camera,
-                         const Landmarks& landmarks, double sigma_px) {
-  std::vector<double> ratios;
-  for (const PointLandmark& point : landmarks.points) {
+std::vector<ResidualTest> PointResidualTests(const Eigen::Matrix3d& K, const std::vector<Pose3>& world_T_camera,
+                                             const Landmarks& landmarks, double sigma_px) {
+  std::vector<ResidualTest> tests(landmarks.points.size());
+  for (size_t i = 0; i < landmarks.points.size(); ++i) {
+    const PointLandmark& point = landmarks.points[i];
     std::vector<Pose3> cameras;
     std::vector<Eigen::Vector2d> pixels;
     for (const PointObservation& observation : point.observations) {
@@ -172,11 +151,41 @@ double PointUnitVariance(const Eigen::Matrix3d& K, const std::vector<Pose3>& wor
       cameras.push_back(world_T_camera[observation.frame]);
       pixels.push_back(observation.pixel);
     }
-    int dof = 0;
-    const double chi_square = PointChiSquare(K, cameras, pixels, point.position, sigma_px, &dof);
-    if (dof >= 1 && std::isfinite(chi_square)) ratios.push_back(chi_square / ChiSquareQuantile(0.5, dof));
+    tests[i].chi_square = PointChiSquare(K, cameras, pixels, point.position, sigma_px, &tests[i].dof);
   }
-  return UnitVariance(std::move(ratios));
+  return tests;
+}
+
+std::vector<ResidualTest> LineResidualTests(const Eigen::Matrix3d& K, const std::vector<Pose3>& world_T_camera,
+                                            const Landmarks& landmarks, double sigma_px) {
+  std::vector<ResidualTest> tests(landmarks.lines.size());
+  for (size_t i = 0; i < landmarks.lines.size(); ++i) {
+    const LineLandmark& line = landmarks.lines[i];
+    std::vector<LineSegmentView> views;
+    for (const LineObservation& observation : line.observations) {
+      CHECK(observation.frame >= 0 && observation.frame < static_cast<int>(world_T_camera.size()))
+          << "frame " << observation.frame;
+      views.push_back({world_T_camera[observation.frame], observation.p0, observation.p1, observation.frame});
+    }
+    tests[i].chi_square = LineChiSquare(K, views, line.point, line.direction, sigma_px, &tests[i].dof);
+  }
+  return tests;
+}
+
+// The variance of unit weight of a set of landmarks (WireframeOptions::line_variance_factor,
+// point_variance_factor) from their residuals' chi2 / m(dof), m(k) the median of a chi-square
+// variable with k degrees of freedom: the median of the ratios, so that landmarks whose residuals
+// follow the noise model give 1 whatever their number of views, robust to the wrong tracks and
+// groupings among them. 1 when there is none, or when the median is 0 (noise-free observations).
+double UnitVariance(const std::vector<ResidualTest>& tests) {
+  std::vector<double> ratios;
+  for (const ResidualTest& test : tests) {
+    if (test.dof >= 1 && std::isfinite(test.chi_square)) {
+      ratios.push_back(test.chi_square / ChiSquareQuantile(0.5, test.dof));
+    }
+  }
+  const double median = ratios.empty() ? 0.0 : UpperMedian(std::move(ratios));
+  return median > 0 ? median : 1.0;
 }
 
 // A landmark's own a-posteriori variance factor relative to its kind's variance of unit weight, as
@@ -306,10 +315,10 @@ Landmarks SelectWireframeLandmarks(const Eigen::Matrix3d& K, const std::vector<P
     return depth > 0 && sigma <= MaxVertexSigma(bound_options, fx, depth);
   };
   WireframeSelectionReport counts;
-  const double line_unit_variance =
-      options.line_variance_factor ? LineUnitVariance(K, world_T_camera, landmarks, sigma_px) : 1.0;
-  const double point_unit_variance =
-      options.point_variance_factor ? PointUnitVariance(K, world_T_camera, landmarks, sigma_px) : 1.0;
+  const std::vector<ResidualTest> point_tests = PointResidualTests(K, world_T_camera, landmarks, sigma_px);
+  const std::vector<ResidualTest> line_tests = LineResidualTests(K, world_T_camera, landmarks, sigma_px);
+  const double point_unit_variance = options.point_variance_factor ? UnitVariance(point_tests) : 1.0;
+  const double line_unit_variance = options.line_variance_factor ? UnitVariance(line_tests) : 1.0;
   Landmarks selected;
   std::vector<int> new_index(landmarks.points.size(), -1);
   // The drawn vertices' sigmas, for the accuracy asked (tolerance_m): kept points', and kept lines'
@@ -318,15 +327,12 @@ Landmarks SelectWireframeLandmarks(const Eigen::Matrix3d& K, const std::vector<P
   for (size_t i = 0; i < landmarks.points.size(); ++i) {
     const PointLandmark& point = landmarks.points[i];
     std::vector<Pose3> cameras;
-    std::vector<Eigen::Vector2d> pixels;
     std::vector<int> frames;
     for (const PointObservation& observation : point.observations) {
       cameras.push_back(camera(observation.frame));
       frames.push_back(observation.frame);
-      pixels.push_back(observation.pixel);
     }
-    int dof = 0;
-    const double chi_square = PointChiSquare(K, cameras, pixels, point.position, sigma_px, &dof);
+    const auto [chi_square, dof] = point_tests[i];
     if (dof < 1) {  // one view left (bundle adjustment removed the others): nothing to test
       ++counts.points_untestable;
       continue;
@@ -353,7 +359,8 @@ Landmarks SelectWireframeLandmarks(const Eigen::Matrix3d& K, const std::vector<P
     new_index[i] = static_cast<int>(selected.points.size());
     selected.points.push_back(point);
   }
-  for (const LineLandmark& line : landmarks.lines) {
+  for (size_t l = 0; l < landmarks.lines.size(); ++l) {
+    const LineLandmark& line = landmarks.lines[l];
     std::vector<LineSegmentView> views;
     std::vector<LineView> line_views;
     std::vector<Pose3> cameras;
@@ -362,8 +369,7 @@ Landmarks SelectWireframeLandmarks(const Eigen::Matrix3d& K, const std::vector<P
       line_views.push_back({camera(observation.frame), observation.p0, observation.p1});
       cameras.push_back(camera(observation.frame));
     }
-    int dof = 0;
-    const double chi_square = LineChiSquare(K, views, line.point, line.direction, sigma_px, &dof);
+    const auto [chi_square, dof] = line_tests[l];
     // Two views of a line always meet in one (their planes intersect): a track that pairs two
     // different edges passes an empty test. Only tested tracks are drawn: a two-view line only
     // when its junction point was kept, i.e. the junction correspondence passed the point's test
