@@ -138,7 +138,8 @@ struct ResidualTest {
   int dof = 0;
 };
 
-std::vector<ResidualTest> PointResidualTests(const Eigen::Matrix3d& K, const std::vector<Pose3>& world_T_camera,
+std::vector<ResidualTest> PointResidualTests(const Eigen::Matrix3d& K,
+                                             const std::vector<Pose3>& world_T_camera,
                                              const Landmarks& landmarks, double sigma_px) {
   std::vector<ResidualTest> tests(landmarks.points.size());
   for (size_t i = 0; i < landmarks.points.size(); ++i) {
@@ -156,7 +157,8 @@ std::vector<ResidualTest> PointResidualTests(const Eigen::Matrix3d& K, const std
   return tests;
 }
 
-std::vector<ResidualTest> LineResidualTests(const Eigen::Matrix3d& K, const std::vector<Pose3>& world_T_camera,
+std::vector<ResidualTest> LineResidualTests(const Eigen::Matrix3d& K,
+                                            const std::vector<Pose3>& world_T_camera,
                                             const Landmarks& landmarks, double sigma_px) {
   std::vector<ResidualTest> tests(landmarks.lines.size());
   for (size_t i = 0; i < landmarks.lines.size(); ++i) {
