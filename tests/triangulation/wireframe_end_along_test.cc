@@ -123,6 +123,8 @@ TEST(LineEndAlongSigmaTest, TheSelectionDropsAnOwnEndSeenEndOn) {
   landmarks.lines.push_back(line_of({0.5, 0.4, 5}, Eigen::Vector3d(0.5, 0.4, 5) + 1.0 * u));  // end-on
   landmarks.lines.push_back(line_of({0.5, 0.4, 5}, {0.5, -0.6, 5}));                          // a post
   WireframeOptions options;
+  EXPECT_EQ(options.line_end_along_sigma, 1);  // the default since session 8
+  options.line_end_along_sigma = 0;
   WireframeSelectionReport report;
   Landmarks kept = SelectWireframeLandmarks(K, cameras, landmarks, options, &report);
   EXPECT_EQ(kept.lines.size(), 2u);
