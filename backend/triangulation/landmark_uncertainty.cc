@@ -268,7 +268,7 @@ double LineEndAlongSigma(const Eigen::Matrix3d& K, const std::vector<LineSegment
                          const Eigen::Vector3d& x, const Eigen::Vector3d& direction, double sigma_px,
                          double across_sigma) {
   const Eigen::Vector3d u = direction.normalized();
-  double speed_squared = 0;  // sum_i a_i^2
+  double speed_squared = 0;                            // sum_i a_i^2
   Eigen::Vector3d weighted = Eigen::Vector3d::Zero();  // sum_i a_i J_i^T t_i
   for (const LineSegmentView& view : views) {
     const Pose3 camera_T_world = view.world_T_camera.Inverse();
@@ -284,7 +284,8 @@ double LineEndAlongSigma(const Eigen::Matrix3d& K, const std::vector<LineSegment
   if (!(speed_squared > 0) || !std::isfinite(across_sigma)) return kInfinity;
   const Eigen::Vector3d gain = weighted / speed_squared;
   const Eigen::Vector3d gain_across = gain - gain.dot(u) * u;  // g.u = 1: x's own slide along the line
-  return std::sqrt(sigma_px * sigma_px / speed_squared + across_sigma * across_sigma * gain_across.squaredNorm());
+  return std::sqrt(sigma_px * sigma_px / speed_squared +
+                   across_sigma * across_sigma * gain_across.squaredNorm());
 }
 
 double PointChiSquare(const Eigen::Matrix3d& K, const std::vector<Pose3>& world_T_camera,

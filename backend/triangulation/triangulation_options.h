@@ -198,7 +198,9 @@ struct WireframeOptions {
     if (!(pixel_sigma_px > 0 && std::isfinite(pixel_sigma_px))) return bad("pixel_sigma_px must be finite and > 0");
     if (!(consistency_level > 0 && consistency_level < 1)) return bad("consistency_level must be in (0, 1)");
     if (!(tolerance_m >= 0 && std::isfinite(tolerance_m))) return bad("tolerance_m must be finite and >= 0");
-    if (line_end_along_sigma < 0 || line_end_along_sigma > 2) return bad("line_end_along_sigma must be 0, 1 or 2");
+    if (line_end_along_sigma < 0 || line_end_along_sigma > 2) {
+      return bad("line_end_along_sigma must be 0, 1 or 2");
+    }
     if (!(tolerance_share > 0 && tolerance_share < 1)) return bad("tolerance_share must be in (0, 1)");
     if (!(far_end_at_point_px >= 0 && std::isfinite(far_end_at_point_px))) {
       return bad("far_end_at_point_px must be finite and >= 0");

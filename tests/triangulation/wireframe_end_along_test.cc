@@ -24,7 +24,8 @@ using testing::TestK;
 std::vector<Pose3> WeavingCameras(double weave = 0.15) {
   std::vector<Pose3> cameras;
   for (int k = 0; k < 6; ++k) {
-    cameras.push_back(Pose3(Eigen::Matrix3d::Identity(), Eigen::Vector3d(k % 2 == 0 ? -weave : weave, 0, 0.2 * k)));
+    cameras.push_back(
+        Pose3(Eigen::Matrix3d::Identity(), Eigen::Vector3d(k % 2 == 0 ? -weave : weave, 0, 0.2 * k)));
   }
   return cameras;
 }
@@ -56,7 +57,8 @@ TEST(LineEndAlongSigmaTest, AnEndSeenNearlyEndOnSlidesAlongItsLine) {
   const double across = 0.01, sigma_px = 0.3;
   std::vector<LineSegmentView> views;
   for (size_t k = 0; k < cameras.size(); ++k) {
-    views.push_back({cameras[k], Project(K, cameras[k], x), Project(K, cameras[k], x + u), static_cast<int>(k)});
+    views.push_back(
+        {cameras[k], Project(K, cameras[k], x), Project(K, cameras[k], x + u), static_cast<int>(k)});
   }
   const double predicted = LineEndAlongSigma(K, views, x, u, sigma_px, across);
 
@@ -93,7 +95,8 @@ TEST(LineEndAlongSigmaTest, AnEndSeenAcrossStaysWithinItsAcrossSigma) {
   const Eigen::Vector3d x(0.6, 0.4, 4);
   std::vector<LineSegmentView> views;
   for (size_t k = 0; k < cameras.size(); ++k) {
-    views.push_back({cameras[k], Project(K, cameras[k], x), Project(K, cameras[k], x + u), static_cast<int>(k)});
+    views.push_back(
+        {cameras[k], Project(K, cameras[k], x), Project(K, cameras[k], x + u), static_cast<int>(k)});
   }
   EXPECT_LT(LineEndAlongSigma(K, views, x, u, 0.3, 0.01), 0.01);
 }
