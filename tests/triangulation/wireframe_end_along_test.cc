@@ -138,5 +138,48 @@ TEST(LineEndAlongSigmaTest, TheSelectionDropsAnOwnEndSeenEndOn) {
   EXPECT_LT((kept.lines[0].end1 - Eigen::Vector3d(0.5, -0.6, 5)).norm(), 1e-9);
 }
 
+// Value 2 holds the far end to the same rule: the same end-on line drawn from a kept corner (so
+// only its far end, 6 m ahead, is tested): across sigma 0.023 m, along 0.258 m, bound 0.180 m (at
+// 5 m of depth). Drawn with values 0 and 1, not with 2. Fails if value 2 leaves end1 alone.
+TEST(LineEndAlongSigmaTest, ValueTwoTestsTheFarEndToo) {
+  const Eigen::Matrix3d K = TestK();
+  const std::vector<Pose3> cameras = WeavingCameras(0.05);
+  const Eigen::Vector3d corner(0.5, 0.4, 5);
+  const Eigen::Vector3d u = Eigen::Vector3d(std::sin(3 * M_PI / 180), 0, std::cos(3 * M_PI / 180));
+  const Eigen::Vector3d end1 = corner + 1.0 * u;
+  Landmarks landmarks;
+  PointLandmark point;
+  point.position = corner;
+  LineLandmark line;
+  line.point = line.end0 = corner;
+  line.end1 = end1;
+  line.direction = u;
+  line.point_landmark = 0;
+  std::vector<LineSegmentView> views;
+  for (int f = 0; f < static_cast<int>(cameras.size()); ++f) {
+    point.observations.push_back({f, 0, Project(K, cameras[f], corner)});
+    line.observations.push_back({f, 0, 0, Project(K, cameras[f], corner), Project(K, cameras[f], end1)});
+    views.push_back({cameras[f], Project(K, cameras[f], corner), Project(K, cameras[f], end1), f});
+  }
+  landmarks.points.push_back(point);
+  landmarks.lines.push_back(line);
+  WireframeOptions options;
+  const double across = LinePositionSigma(K, views, end1, u, 0.3, WireframePoseDrift(options, cameras), true);
+  const double bound = MaxVertexSigma(options, 450, end1.z() - 1.0);
+  EXPECT_NEAR(across, 0.023, 0.001);  // well within the bound
+  EXPECT_NEAR(bound, 0.180, 0.001);
+  EXPECT_NEAR(LineEndAlongSigma(K, views, end1, u, 0.3, across), 0.258, 0.002);  // beyond it
+  WireframeSelectionReport report;
+  for (int value : {0, 1}) {
+    options.line_end_along_sigma = value;
+    EXPECT_EQ(SelectWireframeLandmarks(K, cameras, landmarks, options, &report).lines.size(), 1u);
+  }
+  options.line_end_along_sigma = 2;
+  const Landmarks kept = SelectWireframeLandmarks(K, cameras, landmarks, options, &report);
+  EXPECT_EQ(kept.lines.size(), 0u);
+  EXPECT_EQ(kept.points.size(), 1u);
+  EXPECT_EQ(report.lines_uncertain_end1, 1);
+}
+
 }  // namespace
 }  // namespace sfm
