@@ -145,6 +145,10 @@ DEFINE_double(wireframe_far_end_along_px, kDefaults.triangulation.wireframe.far_
 DEFINE_bool(wireframe_far_end_shares_vertex, kDefaults.triangulation.wireframe.far_end_shares_vertex,
             "Wireframe selection, --wireframe_far_end_at_point_px: the edge ends at the point's own vertex "
             "(false: at a vertex of its own at the point's position).");
+DEFINE_int32(wireframe_line_end_along_sigma, kDefaults.triangulation.wireframe.line_end_along_sigma,
+             "Wireframe selection, rule 2: a back-projected line end's sigma includes its position along "
+             "the line (0: off; 1: a line's own end0; 2: end0 and end1; docs/tracks_and_triangulation.md, "
+             "\"A line end's position along the line\").");
 DEFINE_bool(wireframe_line_variance_factor, kDefaults.triangulation.wireframe.line_variance_factor,
             "Wireframe selection: a line's vertex sigmas scaled by sqrt(its chi2 / dof over the lines' "
             "typical one) when "
@@ -202,6 +206,7 @@ bool OptionsFromFlags(sfm::PipelineOptions* options, std::string* error) {
   options->triangulation.wireframe.far_end_along_px = FLAGS_wireframe_far_end_along_px;
   options->triangulation.wireframe.far_end_shares_vertex = FLAGS_wireframe_far_end_shares_vertex;
   options->triangulation.wireframe.line_variance_factor = FLAGS_wireframe_line_variance_factor;
+  options->triangulation.wireframe.line_end_along_sigma = FLAGS_wireframe_line_end_along_sigma;
   options->triangulation.wireframe.point_variance_factor = FLAGS_wireframe_point_variance_factor;
   options->bundle_adjustment_options.floor_base_prior = FLAGS_floor_base_prior;
   options->bundle_adjustment_options.floor_rescale_start = FLAGS_floor_rescale_start;

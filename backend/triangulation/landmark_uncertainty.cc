@@ -264,6 +264,30 @@ double LinePositionSigma(const Eigen::Matrix3d& K, const std::vector<LineSegment
   return WorstSigma<2>(covariance);
 }
 
+double LineEndAlongSigma(const Eigen::Matrix3d& K, const std::vector<LineSegmentView>& views,
+                         const Eigen::Vector3d& x, const Eigen::Vector3d& direction, double sigma_px,
+                         double across_sigma) {
+  const Eigen::Vector3d u = direction.normalized();
+  double speed_squared = 0;                            // sum_i a_i^2
+  Eigen::Vector3d weighted = Eigen::Vector3d::Zero();  // sum_i a_i J_i^T t_i
+  for (const LineSegmentView& view : views) {
+    const Pose3 camera_T_world = view.world_T_camera.Inverse();
+    const Eigen::Vector3d p = camera_T_world * x;
+    if (!(p.z() > 0)) return kInfinity;
+    const Eigen::Matrix<double, 2, 3> J = PixelJacobian(K, camera_T_world.RotationMatrix(), p);
+    const Eigen::Vector2d image_step = J * u;  // pixels per metre along the line
+    const double speed = image_step.norm();
+    if (!(speed > 0)) continue;  // seen exactly end-on: this view places nothing along the line
+    speed_squared += speed * speed;
+    weighted += speed * J.transpose() * (image_step / speed);
+  }
+  if (!(speed_squared > 0) || !std::isfinite(across_sigma)) return kInfinity;
+  const Eigen::Vector3d gain = weighted / speed_squared;
+  const Eigen::Vector3d gain_across = gain - gain.dot(u) * u;  // g.u = 1: x's own slide along the line
+  return std::sqrt(sigma_px * sigma_px / speed_squared +
+                   across_sigma * across_sigma * gain_across.squaredNorm());
+}
+
 double PointChiSquare(const Eigen::Matrix3d& K, const std::vector<Pose3>& world_T_camera,
                       const std::vector<Eigen::Vector2d>& pixels, const Eigen::Vector3d& point,
                       double sigma_px, int* degrees_of_freedom) {

@@ -118,6 +118,21 @@ double LinePositionSigma(const Eigen::Matrix3d& K, const std::vector<LineSegment
 // squares as the pixel noise (weights 1 / var_i), and the views' poses are correlated by `drift`
 // (views[i].frame).
 
+// Standard deviation, metres, *along* the line of a line end found by back-projection: the point x
+// of the 3D line (direction u) where the views' measured pixels (a junction location or a far
+// end-point) fall, i.e. s in x + s u fitted in least squares to each view's pixel along its image
+// line. View i sees x move along the line at a_i = |J_i u| pixels per metre (J_i the projection's
+// Jacobian), so the pixel noise gives var_s = sigma_px^2 / sum a_i^2; and a shift dx of the whole
+// line across itself (by `across_sigma`, the line's LinePositionSigma at x, in its worst
+// direction) moves the fitted s by g^T dx, g = sum_i a_i J_i^T t_i / sum_i a_i^2 (t_i the image
+// line's unit direction) restricted to the plane normal to u: |g| ~ 1 / sin(ray-line angle), the
+// reason a line seen nearly end-on places its back-projected ends badly. The line error is one
+// for all views, so it is not averaged down. sqrt(var_s + across_sigma^2 |g|^2); +infinity when x
+// is not in front of every view or no view sees x move along the line.
+double LineEndAlongSigma(const Eigen::Matrix3d& K, const std::vector<LineSegmentView>& views,
+                         const Eigen::Vector3d& x, const Eigen::Vector3d& direction, double sigma_px,
+                         double across_sigma);
+
 // The chi-square statistic of a point's residuals, sum_i |pixel_i - project_i(point)|^2 / sigma_px^2
 // (2 per view), and its degrees of freedom 2n - 3. +infinity when the point is behind a camera.
 double PointChiSquare(const Eigen::Matrix3d& K, const std::vector<Pose3>& world_T_camera,

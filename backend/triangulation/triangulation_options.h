@@ -180,6 +180,17 @@ struct WireframeOptions {
   // chi-square(dof) over the points). On by default since session 7; measured after
   // line_variance_factor, on the same development sequences (docs/backend_results.md, session 7).
   bool point_variance_factor = true;
+  // Rule 2 with a line end's position *along* the line (session 8). A back-projected end (end0 of a
+  // line without a kept junction point: its junction locations; end1: its far end-points) is where
+  // the viewing rays meet the 3D line, so it slides along the line by the line's own error across
+  // itself divided by the sine of the ray-line angle, and by the pixel noise over the image speed
+  // of a point moving along the line (LineEndAlongSigma). The rule-2 sigma of such an end becomes
+  // the larger of its across and along sigmas (the worst direction, as for points). 0: off (across
+  // only, as before session 8); 1 (default since session 8): the own end0 only, where session 8
+  // measured the failure (66-75 % of the own end0s seen within 10 degrees of end-on were beyond 5
+  // cm on the held-out turns corridors); 2: end0 and end1. docs/tracks_and_triangulation.md, "A
+  // line end's position along the line"; docs/backend_results.md, session 8.
+  int line_end_along_sigma = 1;
 
   Status Check() const {
     auto bad = [](const std::string& what) { return Status::Error("WireframeOptions: " + what); };
@@ -187,6 +198,9 @@ struct WireframeOptions {
     if (!(pixel_sigma_px > 0 && std::isfinite(pixel_sigma_px))) return bad("pixel_sigma_px must be finite and > 0");
     if (!(consistency_level > 0 && consistency_level < 1)) return bad("consistency_level must be in (0, 1)");
     if (!(tolerance_m >= 0 && std::isfinite(tolerance_m))) return bad("tolerance_m must be finite and >= 0");
+    if (line_end_along_sigma < 0 || line_end_along_sigma > 2) {
+      return bad("line_end_along_sigma must be 0, 1 or 2");
+    }
     if (!(tolerance_share > 0 && tolerance_share < 1)) return bad("tolerance_share must be in (0, 1)");
     if (!(far_end_at_point_px >= 0 && std::isfinite(far_end_at_point_px))) {
       return bad("far_end_at_point_px must be finite and >= 0");

@@ -405,16 +405,21 @@ Landmarks SelectWireframeLandmarks(const Eigen::Matrix3d& K, const std::vector<P
     // square root).
     const double factor =
         options.line_variance_factor ? OwnSigmaFactor(chi_square, dof, line_unit_variance) : 1.0;
+    // line_end_along_sigma: a back-projected end's rule-2 sigma is the worse of across and along
+    // the line (LineEndAlongSigma), the along part from the same across sigma and pixel noise.
+    auto end_sigma = [&](const Eigen::Vector3d& end, bool along) {
+      const double across = factor * LinePositionSigma(K, views, end, kept.direction, sigma_px, drift,
+                                                       options.line_sigma_subtracts_plane_noise);
+      if (!along) return across;
+      return std::max(across, LineEndAlongSigma(K, views, end, kept.direction, factor * sigma_px, across));
+    };
     const double end0_sigma =
-        kept.point_landmark < 0 ? factor * LinePositionSigma(K, views, kept.end0, kept.direction, sigma_px,
-                                                             drift, options.line_sigma_subtracts_plane_noise)
-                                : -1;
+        kept.point_landmark < 0 ? end_sigma(kept.end0, options.line_end_along_sigma >= 1) : -1;
     if (kept.point_landmark < 0 && !determined(end0_sigma, SmallestDepth(cameras, kept.end0))) {
       ++counts.lines_uncertain_end0;
       continue;
     }
-    const double end1_sigma = factor * LinePositionSigma(K, views, kept.end1, kept.direction, sigma_px, drift,
-                                                         options.line_sigma_subtracts_plane_noise);
+    const double end1_sigma = end_sigma(kept.end1, options.line_end_along_sigma >= 2);
     if (!determined(end1_sigma, SmallestDepth(cameras, kept.end1))) {
       ++counts.lines_uncertain_end1;
       continue;

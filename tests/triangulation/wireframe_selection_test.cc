@@ -615,6 +615,11 @@ TEST(WireframeOptionsTest, BadOptionsAreRejected) {
   options = WireframeOptions();
   options.far_end_along_px = 0;
   EXPECT_FALSE(options.Check().ok());
+  options = WireframeOptions();
+  options.line_end_along_sigma = 3;
+  EXPECT_FALSE(options.Check().ok());
+  options.line_end_along_sigma = -1;
+  EXPECT_FALSE(options.Check().ok());
 }
 
 }  // namespace
