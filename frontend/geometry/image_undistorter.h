@@ -17,7 +17,7 @@ enum class UndistortInterpolation { kLinear, kCubic, kLanczos4 };
 // close corners: cubic finds 0.7-1.1 points more junctions on generated sequences with a lens. It
 // stays linear by default: end to end its mean effect over noise draws is nil, but on the project's
 // fixed draws it turns the VGG back-end ATE ratio 0.980 -> 1.018 (a readout of the last 0.1 % of
-// scale) and held-out turns-dist's wireframe 0.908 -> 0.888 (a loss of 0.010 +- 0.004 over draws):
+// scale) and held-out turns-dist's wireframe 0.908 -> 0.888 (-0.006 +- 0.004 over 19 noise draws):
 // docs/junction_results.md, "Session 8: resampling".
 constexpr UndistortInterpolation kDetectionInterpolation = UndistortInterpolation::kLinear;
 
