@@ -25,6 +25,9 @@ DEFINE_bool(overwrite, false,
             "Replace a sequence already in --output (its sequence.yaml, images.txt, odometry.txt, "
             "groundtruth.txt, images/ and truth/; other files are kept).");
 DEFINE_uint64(seed, kDefaults.seed, "Master seed: scene, odometry noise and image noise all derive from it.");
+DEFINE_uint64(image_noise_seed, kDefaults.image_noise_seed,
+              "If not 0, the image noise alone draws from this seed: the same sequence under a fresh "
+              "noise draw (0: from --seed).");
 DEFINE_int32(png_compression, kDefaults.png_compression, "PNG zlib level 0..9 (file size only; pixels are the same).");
 DEFINE_bool(truth, kDefaults.write_truth, "Write the ground truth directory truth/.");
 // Scene.
@@ -90,6 +93,7 @@ bool OptionsFromFlags(sfm::GeneratorOptions* options, std::string* problem) {
     return false;
   }
   options->seed = FLAGS_seed;
+  options->image_noise_seed = FLAGS_image_noise_seed;
   options->png_compression = FLAGS_png_compression;
   options->write_truth = FLAGS_truth;
   options->frame_rate = FLAGS_frame_rate;

@@ -14,10 +14,11 @@ enum class UndistortInterpolation { kLinear, kCubic, kLanczos4 };
 
 // The resampling of frames before detection (PipelineOptions, the apps' --undistort_interpolation).
 // Bilinear blurs every edge (keeps about 0.89 of a step's peak gradient, cubic 0.99) and merges
-// close corners: cubic finds 1.1 points more junctions on generated sequences with a lens. It stays
-// linear by default because the end-to-end figures move both ways with it (the VGG back-end ATE
-// ratio 0.980 -> 1.017, two held-out lens sequences' ATE doubled, six others better):
-// docs/junction_results.md, "Session 7: lens distortion".
+// close corners: cubic finds 0.7-1.1 points more junctions on generated sequences with a lens. It
+// stays linear by default: end to end its mean effect over noise draws is nil, but on the project's
+// fixed draws it turns the VGG back-end ATE ratio 0.980 -> 1.018 (a readout of the last 0.1 % of
+// scale) and held-out turns-dist's wireframe 0.908 -> 0.888 (-0.006 +- 0.004 over 19 noise draws):
+// docs/junction_results.md, "Session 8: resampling".
 constexpr UndistortInterpolation kDetectionInterpolation = UndistortInterpolation::kLinear;
 
 // "linear", "cubic" or "lanczos4"; false for any other name.

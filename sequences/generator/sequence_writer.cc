@@ -118,13 +118,14 @@ Status GenerateSequence(const GeneratorOptions& options, const std::string& dire
   // shorten; it gives files ~12% smaller than zlib's default strategy, and faster.
   const std::vector<int> png_parameters = {cv::IMWRITE_PNG_COMPRESSION, options.png_compression,
                                            cv::IMWRITE_PNG_STRATEGY, cv::IMWRITE_PNG_STRATEGY_HUFFMAN_ONLY};
+  const std::uint64_t noise_seed = options.image_noise_seed != 0 ? options.image_noise_seed : options.seed;
   for (size_t i = 0; i < world_T_base.size(); ++i) {
     const int index = static_cast<int>(i);
     const double timestamp = index / options.frame_rate;
     const Pose3 world_T_camera = world_T_base[i] * calibration.base_T_camera;
     auto render_start = std::chrono::steady_clock::now();
     const cv::Mat image =
-        renderer.Render(world_T_camera, MixSeed(options.seed, kFrameNoiseStream + i), &canvas);
+        renderer.Render(world_T_camera, MixSeed(noise_seed, kFrameNoiseStream + i), &canvas);
     r.render_seconds += Seconds(render_start);
     char name[32];
     std::snprintf(name, sizeof(name), "images/%06d.png", index);
