@@ -106,6 +106,12 @@ struct MatchingOptions {
   // junction's partner, through the segment that match pairs. Off by default (measured in
   // docs/matching_results.md, "Session 7, part 2").
   bool match_one_common = false;
+  // Rule (38)'s margin between rivals on one arm (not in the paper; docs/matching.md, "Rivals on
+  // one arm"): two candidates for one junction whose other junctions hold one detected line segment
+  // pointing the same way and pair it with the same segment of the shared partner (a corner beyond
+  // a taken end-point and the junction holding that end) do not count against each other; the
+  // larger must still beat every other rival by tau2.
+  bool match_rivals_on_one_arm = false;
 
   Status Check() const {
     auto bad = [](const std::string& what) { return Status::Error("MatchingOptions: " + what); };
