@@ -587,3 +587,80 @@ TEST(JunctionMatcherTest, OneCommonSegmentMatchesTwoCornersOfAVertexWithSupport)
 
 }  // namespace
 }  // namespace sfm
+
+namespace sfm {
+namespace {
+
+// Rivals on one arm (MatchingOptions::match_rivals_on_one_arm; docs/matching.md, "Rivals on one
+// arm"): the scene of PartialMatchPairsAnLWithItsY with a second L in image 1, 1 px behind the L
+// on the line of its segment 0 (the same detected line segment, pointing the same way; segment 1
+// moved with it, another detected segment): a corner beyond a taken end-point next to the
+// junction holding that end. Both fit the Y partially within tau2 of each other, so by (38) alone
+// neither is matched; with the option the larger of the two is matched to the Y, and the 60 full
+// matches are unchanged; when the second L's segment 0 is another detected segment (no shared
+// arm) neither is matched even with the option. Protects the corridor's recall gain of
+// docs/matching_results.md, "Session 8"; exact outcomes, no tolerance.
+TEST(JunctionMatcherTest, RivalsOnOneArmDoNotBlockEachOther) {
+  std::mt19937 rng(31);
+  PartialScene partial = MakePartialScene(&rng);
+  Scene& scene = partial.scene;
+  const PairGeometry odometry = OdometryGeometry(scene.views);
+  Junction& l = scene.a[partial.l];
+  // The arm closer to the epipolar line of the Y (another corner on that arm's line lies in the Y's
+  // band as well, the case of the rule).
+  const Eigen::Vector3d line = odometry.Fundamental().transpose() * scene.b[partial.y].location.homogeneous();
+  const Eigen::Vector2d along_line(-line.y(), line.x());
+  const int arm = std::abs(l.SegmentDirection(0).dot(along_line.normalized())) >=
+                          std::abs(l.SegmentDirection(1).dot(along_line.normalized()))
+                      ? 0
+                      : 1;
+  l.segments[arm].line_segment = 100;
+  l.segments[1 - arm].line_segment = 101;
+  Junction behind = l;
+  const Eigen::Vector2d step = -1.0 * l.SegmentDirection(arm);
+  behind.id = static_cast<int>(scene.a.size());
+  behind.location += step;
+  behind.segments[1 - arm].end += step;
+  behind.segments[1 - arm].line_segment = 102;
+  const int v = static_cast<int>(scene.a.size());
+  Scene other_segment = scene;
+  scene.a.push_back(behind);
+  scene.graph_a.edges_of_junction.emplace_back();
+  behind.segments[arm].line_segment = 103;
+  other_segment.a.push_back(behind);
+  other_segment.graph_a.edges_of_junction.emplace_back();
+
+  MatchingOptions off;
+  ASSERT_FALSE(off.match_rivals_on_one_arm);
+  MatchingOptions on;
+  on.match_rivals_on_one_arm = true;
+  MatchingDiagnostics diagnostics;
+  auto matched_to_y = [&](const std::vector<JunctionMatch>& matches) {
+    std::vector<int> to_y;
+    for (const JunctionMatch& m : matches) {
+      if (m.index_b == partial.y) to_y.push_back(m.index_a);
+    }
+    return to_y;
+  };
+  const std::vector<JunctionMatch> before =
+      MatchJunctions(scene.a, scene.graph_a, scene.b, scene.graph_b, odometry, off, &diagnostics);
+  ASSERT_TRUE(diagnostics.refinement.Refined());
+  EXPECT_TRUE(matched_to_y(before).empty()) << "a tie of the two L's: (38) matches neither";
+  const std::vector<JunctionMatch> after =
+      MatchJunctions(scene.a, scene.graph_a, scene.b, scene.graph_b, odometry, on, &diagnostics);
+  ASSERT_EQ(after.size(), before.size() + 1);
+  const std::vector<int> to_y = matched_to_y(after);
+  ASSERT_EQ(to_y.size(), 1u);
+  EXPECT_TRUE(to_y[0] == partial.l || to_y[0] == v);
+  for (const JunctionMatch& m : after) {
+    if (m.index_b != partial.y) {
+      EXPECT_EQ(m.index_b, scene.b_of_a[m.index_a]);
+    }
+  }
+  const std::vector<JunctionMatch> not_one_arm = MatchJunctions(
+      other_segment.a, other_segment.graph_a, other_segment.b, other_segment.graph_b, odometry, on, &diagnostics);
+  EXPECT_TRUE(matched_to_y(not_one_arm).empty()) << "rivals on different segments still block each other";
+}
+
+}  // namespace
+}  // namespace sfm
