@@ -28,6 +28,10 @@ struct Scene {
   std::vector<int> b_of_a;  // index in b of the partner of a[i]
 };
 
+// line_segment ids above those ProjectJunction hands out (a count over the process), for junctions a
+// test builds on detected segments of their own.
+constexpr int kOwnSegments = 1 << 30;
+
 TopologyGraph EmptyGraph(int num_junctions) {
   TopologyGraph graph;
   graph.edges_of_junction.resize(num_junctions);
@@ -172,7 +176,12 @@ TEST(JunctionMatcherTest, TwoNearIdenticalCandidatesGiveNoMatch) {
   const Eigen::Vector3d line = views.F() * a[0].location.homogeneous();
   const Eigen::Vector2d along = Eigen::Vector2d(-line.y(), line.x()).normalized();
   copy.location += along;
-  for (JunctionSegment& segment : copy.segments) segment.end += along;
+  // Another junction, on detected segments of its own (holding the same ones the same way, the
+  // two would be rivals on one arm: MatchingOptions::match_rivals_on_one_arm).
+  for (JunctionSegment& segment : copy.segments) {
+    segment.end += along;
+    segment.line_segment += kOwnSegments;
+  }
   const Junctions b = {single[0], copy};
   MatchingOptions options;
   options.endpoint_model = EndpointModel{1.0, 0.2};
@@ -495,6 +504,9 @@ TEST(JunctionMatcherTest, PartialMatchRefusesAnLThatFitsTwoYsEqually) {
   const int moved = SegmentOfArm(y_b, 2);
   const double length = (decoy.segments[moved].end - decoy.location).norm();
   decoy.segments[moved].end = decoy.location - length * sum.normalized();
+  // Another junction, on detected segments of its own (sharing the Y's, it would be the Y's rival on
+  // one arm: MatchingOptions::match_rivals_on_one_arm).
+  for (JunctionSegment& segment : decoy.segments) segment.line_segment += kOwnSegments;
   std::sort(decoy.segments.begin(), decoy.segments.end(), [&](const JunctionSegment& x, const JunctionSegment& y) {
     return std::atan2(x.end.y() - decoy.location.y(), x.end.x() - decoy.location.x()) <
            std::atan2(y.end.y() - decoy.location.y(), y.end.x() - decoy.location.x());
@@ -614,26 +626,26 @@ TEST(JunctionMatcherTest, RivalsOnOneArmDoNotBlockEachOther) {
                           std::abs(l.SegmentDirection(1).dot(along_line.normalized()))
                       ? 0
                       : 1;
-  l.segments[arm].line_segment = 100;
-  l.segments[1 - arm].line_segment = 101;
+  l.segments[arm].line_segment = kOwnSegments;
+  l.segments[1 - arm].line_segment = kOwnSegments + 1;
   Junction behind = l;
   const Eigen::Vector2d step = -1.0 * l.SegmentDirection(arm);
   behind.id = static_cast<int>(scene.a.size());
   behind.location += step;
   behind.segments[1 - arm].end += step;
-  behind.segments[1 - arm].line_segment = 102;
+  behind.segments[1 - arm].line_segment = kOwnSegments + 2;
   const int v = static_cast<int>(scene.a.size());
   Scene other_segment = scene;
   scene.a.push_back(behind);
   scene.graph_a.edges_of_junction.emplace_back();
-  behind.segments[arm].line_segment = 103;
+  behind.segments[arm].line_segment = kOwnSegments + 3;
   other_segment.a.push_back(behind);
   other_segment.graph_a.edges_of_junction.emplace_back();
 
   MatchingOptions off;
-  ASSERT_FALSE(off.match_rivals_on_one_arm);
+  off.match_rivals_on_one_arm = false;
   MatchingOptions on;
-  on.match_rivals_on_one_arm = true;
+  ASSERT_TRUE(on.match_rivals_on_one_arm) << "on by default";
   MatchingDiagnostics diagnostics;
   auto matched_to_y = [&](const std::vector<JunctionMatch>& matches) {
     std::vector<int> to_y;
