@@ -34,7 +34,8 @@ int PairedSegmentOfA(const JunctionMatch& match, int segment_b, int num_a, int n
 // candidates pair that arm with the same segment of the partner (partner_of_p / partner_of_q map a
 // segment of p / q to the partner's segment, -1 for none).
 template <typename PartnerOfP, typename PartnerOfQ>
-bool OneArm(const Junction& p, const Junction& q, const PartnerOfP& partner_of_p, const PartnerOfQ& partner_of_q) {
+bool OneArm(const Junction& p, const Junction& q, const PartnerOfP& partner_of_p,
+            const PartnerOfQ& partner_of_q) {
   for (int sp = 0; sp < p.NumSegments(); ++sp) {
     if (p.segments[sp].line_segment < 0) continue;
     for (int sq = 0; sq < q.NumSegments(); ++sq) {
@@ -199,8 +200,8 @@ std::vector<JunctionMatch> MatchPartial(const Junctions& a, const TopologyGraph&
   }
   std::vector<JunctionMatch> partial;
   for (const JunctionMatch& match :
-       SelectMatches(candidates, static_cast<int>(a.size()), static_cast<int>(b.size()), options.tau1, options.tau2,
-                     options.match_rivals_on_one_arm ? RivalsOnOneArm(a, b) : AlliedRivals())) {
+       SelectMatches(candidates, static_cast<int>(a.size()), static_cast<int>(b.size()), options.tau1,
+                     options.tau2, options.match_rivals_on_one_arm ? RivalsOnOneArm(a, b) : AlliedRivals())) {
     if (match.Partial()) partial.push_back(match);
   }
   return partial;

@@ -1,9 +1,9 @@
 #include "frontend/matching/matching_rule.h"
 
+#include <glog/logging.h>
+
 #include <algorithm>
 #include <limits>
-
-#include <glog/logging.h>
 
 namespace sfm {
 namespace {

@@ -38,6 +38,7 @@ int PartnerSegment(const JunctionMatch& match, int segment_a, int num_a, int num
 // still has to beat every other candidate by more than tau2.
 using AlliedRivals = std::function<bool(const JunctionMatch&, const JunctionMatch&)>;
 std::vector<JunctionMatch> SelectMatches(const std::vector<JunctionMatch>& candidates, int num_a, int num_b,
-                                         double tau1, double tau2, const AlliedRivals& allied = AlliedRivals());
+                                         double tau1, double tau2,
+                                         const AlliedRivals& allied = AlliedRivals());
 
 }  // namespace sfm

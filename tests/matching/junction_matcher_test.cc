@@ -669,8 +669,9 @@ TEST(JunctionMatcherTest, RivalsOnOneArmDoNotBlockEachOther) {
       EXPECT_EQ(m.index_b, scene.b_of_a[m.index_a]);
     }
   }
-  const std::vector<JunctionMatch> not_one_arm = MatchJunctions(
-      other_segment.a, other_segment.graph_a, other_segment.b, other_segment.graph_b, odometry, on, &diagnostics);
+  const std::vector<JunctionMatch> not_one_arm =
+      MatchJunctions(other_segment.a, other_segment.graph_a, other_segment.b, other_segment.graph_b, odometry,
+                     on, &diagnostics);
   EXPECT_TRUE(matched_to_y(not_one_arm).empty()) << "rivals on different segments still block each other";
 }
 
