@@ -92,7 +92,8 @@ std::vector<Method> Methods() {
   methods.push_back(
       {"ours: fast (Sobel + chaining)", [fast](const cv::Mat& grey) { return DetectLineSegments(grey, fast); }});
   // The speed goal is for segments and junctions together, in the same run as cv::Canny.
-  const JunctionDetectorOptions junction_options;
+  JunctionDetectorOptions junction_options;
+  JunctionChoiceFromFlags(&junction_options);  // the same junction options as junction_sfm's flags
   methods.push_back({"ours: fast segments + junctions",
                      [fast, junction_options](const cv::Mat& grey) {
                        LineSegments segments = DetectLineSegments(grey, fast);

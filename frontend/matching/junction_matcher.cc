@@ -18,6 +18,60 @@ namespace {
 // Rounds of the one-common-segment fixed point after the first partial pass (MatchJunctions).
 constexpr int kOneCommonRounds = 4;
 
+// The segment of `match`'s image-1 junction (num_a segments) paired with segment segment_b of its
+// image-2 junction, or -1.
+int PairedSegmentOfA(const JunctionMatch& match, int segment_b, int num_a, int num_b) {
+  for (int s = 0; s < num_a; ++s) {
+    if (PartnerSegment(match, s, num_a, num_b) == segment_b) return s;
+  }
+  return -1;
+}
+
+// MatchingOptions::match_rivals_on_one_arm: junctions p and q of one image (rivals for one partner)
+// are two readings of one arm's end when they hold one detected line segment pointing the same
+// way from both (one lies on the other's arm, or on its line beyond the end: a corner beyond a
+// taken end-point and the junction holding that end, docs/junctions.md step 3), and both
+// candidates pair that arm with the same segment of the partner (partner_of_p / partner_of_q map a
+// segment of p / q to the partner's segment, -1 for none).
+template <typename PartnerOfP, typename PartnerOfQ>
+bool OneArm(const Junction& p, const Junction& q, const PartnerOfP& partner_of_p,
+            const PartnerOfQ& partner_of_q) {
+  for (int sp = 0; sp < p.NumSegments(); ++sp) {
+    if (p.segments[sp].line_segment < 0) continue;
+    for (int sq = 0; sq < q.NumSegments(); ++sq) {
+      if (q.segments[sq].line_segment != p.segments[sp].line_segment) continue;
+      if (p.SegmentDirection(sp).dot(q.SegmentDirection(sq)) <= 0) continue;
+      const int partner = partner_of_p(sp);
+      if (partner >= 0 && partner == partner_of_q(sq)) return true;
+    }
+  }
+  return false;
+}
+
+AlliedRivals RivalsOnOneArm(const Junctions& a, const Junctions& b) {
+  return [&a, &b](const JunctionMatch& x, const JunctionMatch& y) {
+    // shift -1: an equal-count competitor of the partial pass, with no pairing; it stays a rival.
+    if (x.shift < 0 || y.shift < 0) return false;
+    if (x.index_b == y.index_b && x.index_a != y.index_a) {
+      const Junction& p = a[x.index_a];
+      const Junction& q = a[y.index_a];
+      const int n_b = b[x.index_b].NumSegments();
+      return OneArm(
+          p, q, [&](int s) { return PartnerSegment(x, s, p.NumSegments(), n_b); },
+          [&](int s) { return PartnerSegment(y, s, q.NumSegments(), n_b); });
+    }
+    if (x.index_a == y.index_a && x.index_b != y.index_b) {
+      const Junction& p = b[x.index_b];
+      const Junction& q = b[y.index_b];
+      const int n_a = a[x.index_a].NumSegments();
+      return OneArm(
+          p, q, [&](int s) { return PairedSegmentOfA(x, s, n_a, p.NumSegments()); },
+          [&](int s) { return PairedSegmentOfA(y, s, n_a, q.NumSegments()); });
+    }
+    return false;
+  };
+}
+
 // depth_range (may be null): a pair it rejects is unmatched, for rule (38) and for sigma's
 // topology support alike.
 std::vector<JunctionMatch> Match(const Junctions& a, const TopologyGraph& graph_a, const Junctions& b,
@@ -47,7 +101,8 @@ std::vector<JunctionMatch> Match(const Junctions& a, const TopologyGraph& graph_
     }
   }
   // Step 2: the mutual test of (38).
-  return SelectMatches(candidates, num_a, num_b, options.tau1, options.tau2);
+  return SelectMatches(candidates, num_a, num_b, options.tau1, options.tau2,
+                       options.match_rivals_on_one_arm ? RivalsOnOneArm(a, b) : AlliedRivals());
 }
 
 // Partial correspondence among the junctions `full` left unmatched (docs/matching.md, "Partial
@@ -145,7 +200,8 @@ std::vector<JunctionMatch> MatchPartial(const Junctions& a, const TopologyGraph&
   }
   std::vector<JunctionMatch> partial;
   for (const JunctionMatch& match :
-       SelectMatches(candidates, static_cast<int>(a.size()), static_cast<int>(b.size()), options.tau1, options.tau2)) {
+       SelectMatches(candidates, static_cast<int>(a.size()), static_cast<int>(b.size()), options.tau1,
+                     options.tau2, options.match_rivals_on_one_arm ? RivalsOnOneArm(a, b) : AlliedRivals())) {
     if (match.Partial()) partial.push_back(match);
   }
   return partial;

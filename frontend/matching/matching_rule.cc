@@ -1,8 +1,9 @@
 #include "frontend/matching/matching_rule.h"
 
-#include <limits>
-
 #include <glog/logging.h>
+
+#include <algorithm>
+#include <limits>
 
 namespace sfm {
 namespace {
@@ -42,7 +43,7 @@ int PartnerSegment(const JunctionMatch& match, int segment_a, int num_a, int num
 }
 
 std::vector<JunctionMatch> SelectMatches(const std::vector<JunctionMatch>& candidates, int num_a, int num_b,
-                                         double tau1, double tau2) {
+                                         double tau1, double tau2, const AlliedRivals& allied) {
   std::vector<Ranking> rank_a(num_a);
   std::vector<Ranking> rank_b(num_b);
   for (int c = 0; c < static_cast<int>(candidates.size()); ++c) {
@@ -51,6 +52,25 @@ std::vector<JunctionMatch> SelectMatches(const std::vector<JunctionMatch>& candi
     if (!(candidate.similarity > tau1)) continue;
     rank_a[candidate.index_a].Add(candidate.similarity, c);
     rank_b[candidate.index_b].Add(candidate.similarity, c);
+  }
+  if (allied) {
+    // The margin of each junction's best candidate against its rivals that are not allied with it.
+    std::vector<double> second_a(num_a, -std::numeric_limits<double>::infinity());
+    std::vector<double> second_b(num_b, -std::numeric_limits<double>::infinity());
+    for (int c = 0; c < static_cast<int>(candidates.size()); ++c) {
+      const JunctionMatch& candidate = candidates[c];
+      if (!(candidate.similarity > tau1)) continue;
+      const int best_a = rank_a[candidate.index_a].best_candidate;
+      if (best_a != c && !allied(candidates[best_a], candidate)) {
+        second_a[candidate.index_a] = std::max(second_a[candidate.index_a], candidate.similarity);
+      }
+      const int best_b = rank_b[candidate.index_b].best_candidate;
+      if (best_b != c && !allied(candidates[best_b], candidate)) {
+        second_b[candidate.index_b] = std::max(second_b[candidate.index_b], candidate.similarity);
+      }
+    }
+    for (int i = 0; i < num_a; ++i) rank_a[i].second = second_a[i];
+    for (int j = 0; j < num_b; ++j) rank_b[j].second = second_b[j];
   }
   std::vector<JunctionMatch> matches;
   for (int c = 0; c < static_cast<int>(candidates.size()); ++c) {

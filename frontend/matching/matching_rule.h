@@ -1,6 +1,7 @@
 // The matching rule (38) of paper section 4.4, applied both ways.
 #pragma once
 
+#include <functional>
 #include <vector>
 
 namespace sfm {
@@ -30,7 +31,14 @@ int PartnerSegment(const JunctionMatch& match, int segment_a, int num_a, int num
 // Eq. (38) both ways. Candidates are those with similarity > tau1; a candidate (J, J') is kept when
 // it has the largest similarity among J's candidates and beats each other one by more than tau2,
 // and the same among J''s candidates. At most one candidate per pair; O(candidates).
+//
+// allied (may be empty): called with two candidates that share one junction (both index_a or both
+// index_b); true when the other two junctions are two readings of one arm's end (MatchingOptions::
+// match_rivals_on_one_arm), which then do not count against each other in the margin: the larger
+// still has to beat every other candidate by more than tau2.
+using AlliedRivals = std::function<bool(const JunctionMatch&, const JunctionMatch&)>;
 std::vector<JunctionMatch> SelectMatches(const std::vector<JunctionMatch>& candidates, int num_a, int num_b,
-                                         double tau1, double tau2);
+                                         double tau1, double tau2,
+                                         const AlliedRivals& allied = AlliedRivals());
 
 }  // namespace sfm

@@ -29,6 +29,9 @@ DEFINE_bool(
 DEFINE_bool(match_one_common, kDefaults.match_one_common,
             "With --match_partial: also match two leftover L's sharing one segment (two corners of one "
             "vertex) when a matched neighbour through that segment supports it (docs/matching.md).");
+DEFINE_bool(match_rivals_on_one_arm, kDefaults.match_rivals_on_one_arm,
+            "Rule (38)'s margin ignores a rival that holds the same detected segment, pointing the same "
+            "way, paired with the same segment of the shared partner (docs/matching.md).");
 
 namespace sfm {
 
@@ -40,6 +43,7 @@ void MatchingRefineFromFlags(MatchingOptions* matching) {
   matching->match_partial = FLAGS_match_partial;
   matching->partial_rule_not_line_half = FLAGS_match_partial_rule_a;
   matching->match_one_common = FLAGS_match_one_common;
+  matching->match_rivals_on_one_arm = FLAGS_match_rivals_on_one_arm;
 }
 
 }  // namespace sfm

@@ -53,3 +53,27 @@ TEST(MatchingRuleTest, Tau1RemovesCandidatesBeforeTheComparison) {
 
 }  // namespace
 }  // namespace sfm
+
+namespace sfm {
+namespace {
+
+// SelectMatches' allied rivals (MatchingOptions::match_rivals_on_one_arm): junctions 0 and 1 of
+// image 1 both want junction 0 of image 2 (0.54 and 0.53). Without allies (38) refuses both (margin
+// 0.01 <= tau2 = 0.1); allied, the larger is kept; a third, unallied rival at 0.50 still blocks it.
+// Exact outcomes.
+TEST(MatchingRuleTest, AlliedRivalsDoNotCountInTheMargin) {
+  const std::vector<JunctionMatch> two = {{0, 0, 0.54}, {1, 0, 0.53}};
+  const AlliedRivals allied = [](const JunctionMatch& x, const JunctionMatch& y) {
+    return x.index_b == y.index_b && x.index_a + y.index_a == 1;
+  };
+  EXPECT_TRUE(SelectMatches(two, 3, 1, 0.0, 0.1).empty());
+  const std::vector<JunctionMatch> kept = SelectMatches(two, 3, 1, 0.0, 0.1, allied);
+  ASSERT_EQ(kept.size(), 1u);
+  EXPECT_EQ(kept[0].index_a, 0);
+  std::vector<JunctionMatch> three = two;
+  three.push_back({2, 0, 0.50});
+  EXPECT_TRUE(SelectMatches(three, 3, 1, 0.0, 0.1, allied).empty());
+}
+
+}  // namespace
+}  // namespace sfm
