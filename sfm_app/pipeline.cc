@@ -4,7 +4,10 @@
 
 #include <algorithm>
 #include <chrono>
+#include <filesystem>
 #include <memory>
+#include <string>
+#include <utility>
 #include <opencv2/core.hpp>
 #include <vector>
 
@@ -60,26 +63,42 @@ void DetectJunctionsOfAllFrames(const Sequence& sequence, const std::vector<cv::
   progress->Finish();
 }
 
-// Paper sections 3-4 on every consecutive pair and every pair two apart (so a junction missed in
-// one frame does not break its track), F from the calibration and the odometry, the search band
-// from the odometry noise model.
-void MatchFramePairs(const Sequence& sequence, const PipelineOptions& options, Progress* progress,
-                     PipelineResult* result) {
+// F and its uncertainty for every pair to match (every consecutive pair and every pair two apart,
+// so a junction missed in one frame does not break its track), from the calibration, the two
+// odometry poses and the noise model of sequence.yaml. Part of the input's validation: finite but
+// absurd odometry (a coordinate of 1e160) overflows here, and the matcher must not see it.
+Status OdometryPairGeometries(const Sequence& sequence, const std::string& sequence_dir,
+                              std::vector<std::pair<int, int>>* pairs, std::vector<PairGeometry>* geometries) {
   const Calibration& calibration = sequence.calibration;
-  const std::vector<std::pair<int, int>> pairs = FramePairsToMatch(static_cast<int>(sequence.frames.size()));
-  for (size_t p = 0; p < pairs.size(); ++p) {
-    progress->Update("matching", "pair", static_cast<int>(p) + 1, static_cast<int>(pairs.size()));
-    const auto [a, b] = pairs[p];
-    // F and its uncertainty from the two odometry poses and the noise model of sequence.yaml.
-    const PairGeometry geometry = PairGeometryFromOdometry(
+  *pairs = FramePairsToMatch(static_cast<int>(sequence.frames.size()));
+  geometries->clear();
+  geometries->reserve(pairs->size());
+  for (const auto& [a, b] : *pairs) {
+    PairGeometry geometry = PairGeometryFromOdometry(
         calibration.camera.K(), calibration.base_T_camera, sequence.frames[a].world_T_base_odometry,
         sequence.frames[b].world_T_base_odometry, calibration.odometry_noise.translation_sigma,
         calibration.odometry_noise.rotation_sigma, b - a);
+    if (!(geometry.camera2_T_camera1.translation.allFinite() && geometry.covariance.allFinite())) {
+      return Status::Error((std::filesystem::path(sequence_dir) / "odometry.txt").string() +
+                           ": the poses of frames " + std::to_string(a) + " and " + std::to_string(b) +
+                           " give no finite relative motion (coordinates too large?)");
+    }
+    geometries->push_back(geometry);
+  }
+  return Status::Ok();
+}
+
+// Paper sections 3-4 on the pairs of OdometryPairGeometries, with their geometry.
+void MatchFramePairs(const std::vector<std::pair<int, int>>& pairs, const std::vector<PairGeometry>& geometries,
+                     const PipelineOptions& options, Progress* progress, PipelineResult* result) {
+  for (size_t p = 0; p < pairs.size(); ++p) {
+    progress->Update("matching", "pair", static_cast<int>(p) + 1, static_cast<int>(pairs.size()));
+    const auto [a, b] = pairs[p];
     FramePairMatches matches;
     matches.frame_a = a;
     matches.frame_b = b;
     matches.matches = MatchJunctions(result->junctions[a], result->graphs[a], result->junctions[b],
-                                     result->graphs[b], geometry, options.matching);
+                                     result->graphs[b], geometries[p], options.matching);
     result->pairs.push_back(std::move(matches));
   }
   progress->Finish();
@@ -444,6 +463,9 @@ Status RunPipeline(const PipelineOptions& options, PipelineResult* result_out) {
   Progress progress(options.show_progress);
   std::vector<cv::Mat> images;
   SFM_RETURN_IF_ERROR(LoadImages(sequence, &progress, &images));
+  std::vector<std::pair<int, int>> pairs;
+  std::vector<PairGeometry> pair_geometries;
+  SFM_RETURN_IF_ERROR(OdometryPairGeometries(sequence, options.sequence_dir, &pairs, &pair_geometries));
   SFM_RETURN_IF_ERROR(EnsureWritableDirectory(options.output_dir));
 
   PipelineResult result;
@@ -455,7 +477,7 @@ Status RunPipeline(const PipelineOptions& options, PipelineResult* result_out) {
   DetectJunctionsOfAllFrames(sequence, images, options, &progress, &result);
   result.times.frontend = SecondsSince(stage_start);
   stage_start = Clock::now();
-  MatchFramePairs(sequence, options, &progress, &result);
+  MatchFramePairs(pairs, pair_geometries, options, &progress, &result);
   result.times.matching = SecondsSince(stage_start);
   stage_start = Clock::now();
   Reconstruct(sequence, options, &result);

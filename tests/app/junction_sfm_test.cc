@@ -156,6 +156,13 @@ TEST_F(JunctionSfmBadInput, OdometryWithNaN) {
   ExpectOneLineError({"odometry.txt:2"});
 }
 
+// Finite but absurd odometry overflows the pair geometry (its covariance squares the
+// coordinates); before session 8 this aborted in the matcher's CHECK with exit 134.
+TEST_F(JunctionSfmBadInput, OdometryTooLargeForAFiniteRelativeMotion) {
+  WriteText(sequence_ / "odometry.txt", "0.0 0 0 0 0 0 0 1\n0.1 1e160 0 0 0 0 0 1\n0.2 0.4 0 0 0 0 0 1\n");
+  ExpectOneLineError({"odometry.txt", "finite relative motion"});
+}
+
 TEST_F(JunctionSfmBadInput, TimestampsOutOfOrder) {
   WriteText(sequence_ / "images.txt",
             "0.0 images/000000.png\n0.2 images/000002.png\n0.1 images/000001.png\n");
