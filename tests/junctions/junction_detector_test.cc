@@ -357,6 +357,8 @@ TEST(JunctionDetectorTest, CornerBeyondATakenEndReplacesTheT) {
     return found;
   };
   JunctionDetectorOptions options;
+  options.corner_beyond_taken_end = false;  // both rules are on by default since session 8
+  options.corner_beyond_taken_end_free = false;
   const auto without = sorted_locations(DetectJunctions(segments_with_gap(4), options));
   ASSERT_EQ(without.size(), 2u);
   EXPECT_NEAR(without[0].first, -4, 1e-6);  // the T on x
@@ -393,6 +395,8 @@ TEST(JunctionDetectorTest, CornerBeyondATakenEndServesAFreeEndPoint) {
   const LineSegments segments = {Segment(0, -40, 0, -1), Segment(-30, -30, -0.707107, -0.707107),
                                  Segment(40, 4, 1, 4)};
   JunctionDetectorOptions options;
+  options.corner_beyond_taken_end = false;  // both rules are on by default since session 8
+  options.corner_beyond_taken_end_free = false;
   ASSERT_EQ(DetectJunctions(segments, options).size(), 1u);
   options.corner_beyond_taken_end = true;
   ASSERT_EQ(DetectJunctions(segments, options).size(), 1u);
