@@ -41,6 +41,15 @@ enum class UndistortView {
   kFullView,
 };
 
+// The view of detection (PipelineOptions::undistort_full_view, the apps' --undistort_full_view).
+// Full view by default: over 26 lens sequences (13 at k1 = -0.25, 8 at -0.35, 3 at -0.12, 2
+// pincushion; noise draws included) it finds 12 % more junctions per frame and turns the mean ATE
+// ratio 0.085 -> 0.079, rotation ratio 0.142 -> 0.130 and wireframe share 0.950 -> 0.957, lifting
+// the one goal miss (0.883 -> 0.900); but on corridor turns at k1 = -0.25 the ATE ratio is worse in
+// 6 of 7 (0.066 -> 0.089, held-out turns-dist 0.054 -> 0.113), and frontend time rises about
+// 1.5 ms per 640 x 480 frame (docs/junction_results.md, "Session 8: full field of view").
+constexpr UndistortView kDetectionView = UndistortView::kFullView;
+
 class ImageUndistorter {
  public:
   explicit ImageUndistorter(const Camera& camera,

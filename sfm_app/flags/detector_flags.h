@@ -33,7 +33,7 @@ bool SegmentMethodFromFlags(SegmentDetectorOptions* options, std::string* error)
 // kDetectionInterpolation, linear). False, with a one-line message in *error, for another
 // name.
 bool UndistortInterpolationFromFlags(UndistortInterpolation* interpolation, std::string* error);
-// Same group: --undistort_full_view (default false).
+// Same group: --undistort_full_view (default kDetectionView, the full view).
 UndistortView UndistortViewFromFlags();
 
 // Group sfm_flags_segment_branches: --branches_at_free_ends, --branches_to_far_corners,
