@@ -42,12 +42,12 @@ enum class UndistortView {
 };
 
 // The view of detection (PipelineOptions::undistort_full_view, the apps' --undistort_full_view).
-// Full view by default: over 26 lens sequences (13 at k1 = -0.25, 8 at -0.35, 3 at -0.12, 2
-// pincushion; noise draws included) it finds 12 % more junctions per frame and turns the mean ATE
-// ratio 0.085 -> 0.079, rotation ratio 0.142 -> 0.130 and wireframe share 0.950 -> 0.957, lifting
-// the one goal miss (0.883 -> 0.900); but on corridor turns at k1 = -0.25 the ATE ratio is worse in
-// 6 of 7 (0.066 -> 0.089, held-out turns-dist 0.054 -> 0.113), and frontend time rises about
-// 1.5 ms per 640 x 480 frame (docs/junction_results.md, "Session 8: full field of view").
+// Full view by default: over 33 lens sequence x noise-draw pairs (barrel k1 = -0.12 .. -0.35 and
+// pincushion) it finds 10 % more junctions per frame, turns the rotation ratio 0.146 -> 0.130
+// (26 of 33 better) and the wireframe share 0.949 -> 0.956 (23 of 33), lifts the one goal miss
+// (0.883 -> 0.900) and leaves the ATE ratio as it was on average (0.086 -> 0.084), though worse on
+// corridor turns (0.068 -> 0.085) and on held-out room-dist's draws (0.107 -> 0.128). About
+// 1.5 ms per 640 x 480 frame more (docs/junction_results.md, "Session 8: full field of view").
 constexpr UndistortView kDetectionView = UndistortView::kFullView;
 
 class ImageUndistorter {
