@@ -68,6 +68,7 @@ ImageUndistorter::ImageUndistorter(const Camera& camera, UndistortInterpolation 
                                             camera.distortion[3], camera.distortion[4]);
   cv::Matx33d canvas_matrix = camera_matrix;
   if (view == UndistortView::kFullView) {
+    full_view_ = true;
     // 3 px beyond the field of view: the reach of the detector's smoothing and Sobel support, so
     // that the canvas's own border is never next to a seen pixel.
     FullViewCanvas(camera, 3, &offset_, &canvas_size_);

@@ -65,12 +65,16 @@ class ImageUndistorter {
   // kSameSize and for cameras without distortion.
   Eigen::Vector2d CanvasOffset() const { return offset_; }
   cv::Size CanvasSize() const { return canvas_size_; }
+  // True for kFullView on a camera with distortion (the canvas may still be the image's size: a
+  // pincushion lens sees less than K's image).
+  bool FullView() const { return full_view_; }
   const Camera& camera() const { return camera_; }
 
  private:
   Camera camera_;
   int interpolation_;      // cv::INTER_*
   int border_mode_;        // cv::BORDER_*
+  bool full_view_ = false;
   Eigen::Vector2d offset_ = Eigen::Vector2d::Zero();
   cv::Size canvas_size_;
   cv::Mat map_x_, map_y_;  // empty when there is no distortion

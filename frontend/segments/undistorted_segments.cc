@@ -57,11 +57,8 @@ void ClipSegmentsToStoredView(const Camera& camera, double margin, double min_le
 LineSegments DetectUndistortedSegments(const ImageUndistorter& undistorter, const cv::Mat& stored_image,
                                        const SegmentDetectorOptions& options) {
   LineSegments segments = DetectLineSegments(undistorter.Apply(stored_image), options);
+  if (!undistorter.FullView()) return segments;
   const Eigen::Vector2d offset = undistorter.CanvasOffset();
-  if (undistorter.CanvasSize() == cv::Size(undistorter.camera().width, undistorter.camera().height) &&
-      offset.isZero()) {
-    return segments;
-  }
   for (LineSegment& segment : segments) {
     segment.p0 -= offset;
     segment.p1 -= offset;

@@ -15,7 +15,8 @@ namespace sfm {
 // DetectLineSegments on undistorter.Apply(stored_image). With a full-view canvas the segments are
 // moved back to K's pixel frame (x - left, y - top; they may then lie outside [0, width) x
 // [0, height)) and clipped to the part the stored image sees (ClipSegmentsToStoredView with
-// options.border_margin). Without a canvas: exactly DetectLineSegments of the undistorted image.
+// options.border_margin; also when a pincushion lens's canvas is the image itself). Without a full
+// view (or without distortion): exactly DetectLineSegments of the undistorted image.
 LineSegments DetectUndistortedSegments(const ImageUndistorter& undistorter, const cv::Mat& stored_image,
                                        const SegmentDetectorOptions& options);
 

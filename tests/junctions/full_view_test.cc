@@ -123,6 +123,33 @@ TEST(FullViewTest, SegmentsComeBackInKFrameAndStopAtTheSeenBorder) {
   }
 }
 
+// A pincushion lens (held-out room-dist's k1 = 0.15, k2 = -0.05) sees less than K's image, so its
+// canvas is the image itself; the segments are still clipped to the seen region: a vertical edge at
+// x = 60 (seen about 48 px inside the stored image's side on the middle row; the stored image's
+// top and bottom cut it short of K's image border) comes back cut within 0.05 px of the 2 px line
+// inside the stored image's border (unclipped, the repeated border pixels carry it on).
+TEST(FullViewTest, PincushionSegmentsStopAtTheSeenBorder) {
+  Camera camera = BenchmarkLens();
+  camera.distortion = {0.15, -0.05, 0, 0, 0};
+  const cv::Mat stored = StoredImage(camera, [](const Eigen::Vector2d& p) { return p.x() > 60; });
+  const ImageUndistorter undistorter(camera, UndistortInterpolation::kLinear, UndistortView::kFullView);
+  EXPECT_EQ(undistorter.CanvasSize(), cv::Size(640, 480));
+  const SegmentDetectorOptions options;
+  const LineSegments segments = DetectUndistortedSegments(undistorter, stored, options);
+  const LineSegment* longest = nullptr;
+  for (const LineSegment& s : segments) {
+    if (!longest || s.Length() > longest->Length()) longest = &s;
+  }
+  ASSERT_NE(longest, nullptr);
+  EXPECT_NEAR(longest->p0.x(), 60, 0.2);
+  EXPECT_NEAR(longest->p1.x(), 60, 0.2);
+  for (const Eigen::Vector2d& end : {longest->p0, longest->p1}) {
+    const Eigen::Vector2d d = camera.DistortPixel(end);
+    const double to_border = std::min({d.x(), d.y(), camera.width - 1 - d.x(), camera.height - 1 - d.y()});
+    EXPECT_NEAR(to_border, options.border_margin, 0.05) << end.transpose();
+  }
+}
+
 // A uniform stored image has no edge: the canvas beyond the seen region repeats the border pixels,
 // so the canvas itself has no segments (a black fill would put a 150-level step all round the seen
 // region, and segments along it), and neither has the clipped result.
