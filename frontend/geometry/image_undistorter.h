@@ -43,11 +43,11 @@ enum class UndistortView {
 
 // The view of detection (PipelineOptions::undistort_full_view, the apps' --undistort_full_view).
 // Full view by default: over 33 lens sequence x noise-draw pairs (barrel k1 = -0.12 .. -0.35 and
-// pincushion) it finds 10 % more junctions per frame, turns the rotation ratio 0.146 -> 0.130
-// (26 of 33 better) and the wireframe share 0.949 -> 0.956 (23 of 33), lifts the one goal miss
-// (0.883 -> 0.900) and leaves the ATE ratio as it was on average (0.086 -> 0.084), though worse on
-// corridor turns (0.068 -> 0.085) and on held-out room-dist's draws (0.107 -> 0.128). About
-// 1.5 ms per 640 x 480 frame more (docs/junction_results.md, "Session 8: full field of view").
+// pincushion) it finds 8 % more junctions per frame, turns the rotation ratio 0.146 -> 0.129
+// (26 of 33 better) and the wireframe share 0.949 -> 0.958 (26 of 33), lifts the one goal miss
+// (0.883 -> 0.900) and leaves the ATE ratio as it was on average (0.086 -> 0.086), though worse on
+// corridor turns (0.068 -> 0.085) and on held-out room-dist's draws (0.107 -> 0.132). About
+// 1.3 ms per 640 x 480 frame more (docs/junction_results.md, "Session 8: full field of view").
 constexpr UndistortView kDetectionView = UndistortView::kFullView;
 
 class ImageUndistorter {
