@@ -34,6 +34,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "frontend/geometry/image_undistorter.h"
+#include "frontend/segments/undistorted_segments.h"
 #include "frontend/junctions/junction_detector.h"
 #include "frontend/junctions/pair_probability.h"
 #include "frontend/segments/endpoint_fit.h"
@@ -392,10 +393,14 @@ std::vector<Eigen::Vector2d> Locations(const Junctions& junctions) {
 // `margin` px inside the undistorted image itself (without distortion the same condition; with
 // barrel distortion the undistorted frame's border maps well inside the stored image, so without
 // it vertices on the undistorted image's edge would count, which the detector cannot see).
-cv::Mat ValidMask(const Camera& camera, double margin, bool in_image) {
-  cv::Mat mask(camera.height, camera.width, CV_8U, cv::Scalar(255));
-  for (int y = 0; y < camera.height; ++y) {
-    for (int x = 0; x < camera.width; ++x) {
+// The mask covers `size` pixels from K's pixel -offset (the image itself, or with
+// --undistort_full_view and --truth_in_image=false the full-view canvas: the wider reading).
+cv::Mat ValidMask(const Camera& camera, double margin, bool in_image, const Eigen::Vector2d& offset,
+                  const cv::Size& size) {
+  cv::Mat mask(size.height, size.width, CV_8U, cv::Scalar(255));
+  for (int my = 0; my < size.height; ++my) {
+    for (int mx = 0; mx < size.width; ++mx) {
+      const double x = mx - offset.x(), y = my - offset.y();
       const Eigen::Vector2d d = camera.DistortPixel(Eigen::Vector2d(x, y));
       bool inside = d.x() >= margin && d.y() >= margin && d.x() <= camera.width - 1 - margin &&
                     d.y() <= camera.height - 1 - margin;
@@ -403,7 +408,7 @@ cv::Mat ValidMask(const Camera& camera, double margin, bool in_image) {
         inside = inside && x >= margin && y >= margin && x <= camera.width - 1 - margin &&
                  y <= camera.height - 1 - margin;
       }
-      mask.at<uchar>(y, x) = inside ? 255 : 0;
+      mask.at<uchar>(my, mx) = inside ? 255 : 0;
     }
   }
   return mask;
@@ -656,7 +661,18 @@ Status MeasureSequence(const std::string& directory, const std::string& clean_di
   if (std::string error; !UndistortInterpolationFromFlags(&interpolation, &error))
     return Status::Error(error);
   const ImageUndistorter undistorter(camera, interpolation);
-  const cv::Mat valid = ValidMask(camera, FLAGS_radius, FLAGS_truth_in_image);
+  // Detection's view (--undistort_full_view): junctions in K's pixels, possibly outside the image.
+  // The truth keeps its definition (--truth_in_image, the valid part of the undistorted image)
+  // unless --truth_in_image=false, which with the full view counts the whole field of view.
+  const UndistortView view = UndistortViewFromFlags();
+  const ImageUndistorter detection_undistorter(camera, interpolation, view);
+  Eigen::Vector2d valid_offset = Eigen::Vector2d::Zero();
+  cv::Size valid_size(camera.width, camera.height);
+  if (view == UndistortView::kFullView && !FLAGS_truth_in_image && camera.HasDistortion()) {
+    FullViewCanvas(camera, 0, &valid_offset, &valid_size);
+  }
+  const cv::Mat valid = ValidMask(camera, FLAGS_radius, FLAGS_truth_in_image, valid_offset, valid_size);
+  auto in_valid = [&](const Eigen::Vector2d& p) { return InMask(valid, p + valid_offset); };
   TrueJunctionOptions truth_options;
   truth_options.min_edge_px = FLAGS_min_edge_px;
   if (FLAGS_truth_in_image) {
@@ -696,13 +712,13 @@ Status MeasureSequence(const std::string& directory, const std::string& clean_di
       contrast_options.min_contrast = FLAGS_min_contrast_sigmas * FLAGS_noise_sigma;
     }
     FrameTrueJunctions true_junctions = TrueJunctionsOfFrame(truth.wireframe, truth.frames[f], contrast_options);
-    auto outside = [&](const TrueVertexJunction& v) { return !InMask(valid, v.location); };
+    auto outside = [&](const TrueVertexJunction& v) { return !in_valid(v.location); };
     true_junctions.vertices.erase(
         std::remove_if(true_junctions.vertices.begin(), true_junctions.vertices.end(), outside),
         true_junctions.vertices.end());
     std::vector<Eigen::Vector2d> occlusions;
     for (const Eigen::Vector2d& p : true_junctions.occlusions) {
-      if (InMask(valid, p)) occlusions.push_back(p);
+      if (in_valid(p)) occlusions.push_back(p);
     }
     const std::vector<TrueSegment> true_segments = TrueSegmentsOfFrame(truth.wireframe, truth.frames[f], truth_options);
     std::vector<Eigen::Vector2d> detectable, visible, any_truth;
@@ -745,7 +761,7 @@ Status MeasureSequence(const std::string& directory, const std::string& clean_di
       TrueJunctionOptions high_options = contrast_options;
       high_options.min_contrast = FLAGS_edge_contrast_high;
       for (const TrueVertexJunction& v : TrueJunctionsOfFrame(truth.wireframe, truth.frames[f], high_options).vertices) {
-        if (v.contrast_detectable && InMask(valid, v.location)) variant_points[4].push_back(v.location);
+        if (v.contrast_detectable && in_valid(v.location)) variant_points[4].push_back(v.location);
       }
     }
 
@@ -754,7 +770,7 @@ Status MeasureSequence(const std::string& directory, const std::string& clean_di
       ++s.frames;
       s.has_contrast = s.has_contrast || !contrast.empty();
       auto start = Clock::now();
-      const LineSegments segments = DetectLineSegments(grey, methods[m].options);
+      const LineSegments segments = DetectUndistortedSegments(detection_undistorter, image, methods[m].options);
       s.segment_ms += Ms(start);
       // The junction step alone is short (under a millisecond); with --junction_repeats its time is
       // the fastest of that many runs on the same segments, which a loaded machine disturbs least.
@@ -839,10 +855,10 @@ Status MeasureSequence(const std::string& directory, const std::string& clean_di
       s.detected += static_cast<int>(junctions.size());
       for (const Junction& j : junctions) {
         ++s.detected_by_type[static_cast<int>(j.type)];
-        if (InMask(valid, j.location)) ++s.detected_valid;
+        if (in_valid(j.location)) ++s.detected_valid;
       }
       for (const PointMatch& match : MatchPoints(any_truth, detected, FLAGS_radius)) {
-        if (!InMask(valid, detected[match.detected])) continue;
+        if (!in_valid(detected[match.detected])) continue;
         ++s.detected_correct;
         ++s.detected_correct_by_type[static_cast<int>(junctions[match.detected].type)];
       }

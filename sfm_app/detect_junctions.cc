@@ -13,6 +13,7 @@
 // checked before anything is written; each file is written atomically.
 #include <cstdio>
 #include <filesystem>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -22,6 +23,7 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "frontend/geometry/image_undistorter.h"
+#include "frontend/segments/undistorted_segments.h"
 #include "frontend/junctions/junction_detector.h"
 #include "frontend/junctions/junctions_json.h"
 #include "frontend/segments/segment_detector.h"
@@ -94,6 +96,10 @@ int main(int argc, char** argv) {
   if (!std::filesystem::is_regular_file(FLAGS_image, error)) return Fail(1, FLAGS_image + ": no such file");
   cv::Mat grey = cv::imread(FLAGS_image, cv::IMREAD_GRAYSCALE);
   if (grey.empty()) return Fail(1, FLAGS_image + ": cannot decode as an image");
+  // With --camera and --undistort_full_view, detection runs on the full-view canvas and the
+  // junctions come back in K's pixels (possibly outside the image; the overlay clips them).
+  std::unique_ptr<sfm::ImageUndistorter> undistorter;
+  cv::Mat stored;
   if (!FLAGS_camera.empty()) {
     sfm::Calibration calibration;
     const sfm::Status read = sfm::ReadCalibration(FLAGS_camera, &calibration);
@@ -104,7 +110,9 @@ int main(int argc, char** argv) {
                          " but " + FLAGS_camera + " calibrates " + std::to_string(camera.width) + "x" +
                          std::to_string(camera.height));
     }
-    grey = sfm::ImageUndistorter(camera, interpolation).Apply(grey);
+    undistorter = std::make_unique<sfm::ImageUndistorter>(camera, interpolation, sfm::UndistortViewFromFlags());
+    stored = grey;
+    grey = sfm::ImageUndistorter(camera, interpolation).Apply(grey);  // the overlay's background
   }
   for (const std::string* output : {&FLAGS_json, &FLAGS_overlay}) {
     if (output->empty()) continue;
@@ -114,7 +122,8 @@ int main(int argc, char** argv) {
   }
 
   // Detection.
-  const sfm::LineSegments segments = sfm::DetectLineSegments(grey, segment_options);
+  const sfm::LineSegments segments = undistorter ? sfm::DetectUndistortedSegments(*undistorter, stored, segment_options)
+                                                 : sfm::DetectLineSegments(grey, segment_options);
   const sfm::Junctions junctions = sfm::DetectJunctions(segments, junction_options);
 
   // Output.

@@ -166,6 +166,7 @@ bool OptionsFromFlags(sfm::PipelineOptions* options, std::string* error) {
   options->output_dir = FLAGS_output;
   options->show_progress = FLAGS_progress;
   if (!sfm::UndistortInterpolationFromFlags(&options->undistort_interpolation, error)) return false;
+  options->undistort_full_view = sfm::UndistortViewFromFlags() == sfm::UndistortView::kFullView;
   if (!sfm::SegmentMethodFromFlags(&options->segments, error)) return false;
   sfm::SegmentBranchesFromFlags(&options->segments.fast);
   sfm::JunctionChoiceFromFlags(&options->junctions);

@@ -28,6 +28,7 @@
 
 #include "frontend/geometry/epipolar.h"
 #include "frontend/geometry/image_undistorter.h"
+#include "frontend/segments/undistorted_segments.h"
 #include "frontend/junctions/junction_detector.h"
 #include "frontend/junctions/topology.h"
 #include "frontend/matching/junction_matcher.h"
@@ -163,10 +164,11 @@ int main(int argc, char** argv) {
 
   // Detection and matching.
   const auto start = std::chrono::steady_clock::now();
-  const sfm::ImageUndistorter undistorter(calibration.camera, interpolation);
-  const cv::Mat grey_a = undistorter.Apply(image_a), grey_b = undistorter.Apply(image_b);
-  const sfm::LineSegments segments_a = sfm::DetectLineSegments(grey_a, segment_options);
-  const sfm::LineSegments segments_b = sfm::DetectLineSegments(grey_b, segment_options);
+  // Detection on the view --undistort_full_view asks for (junctions in K's pixels either way); the
+  // match picture shows the undistorted images of the stored size.
+  const sfm::ImageUndistorter detector_view(calibration.camera, interpolation, sfm::UndistortViewFromFlags());
+  const sfm::LineSegments segments_a = sfm::DetectUndistortedSegments(detector_view, image_a, segment_options);
+  const sfm::LineSegments segments_b = sfm::DetectUndistortedSegments(detector_view, image_b, segment_options);
   const sfm::Junctions junctions_a = sfm::DetectJunctions(segments_a, junction_options);
   const sfm::Junctions junctions_b = sfm::DetectJunctions(segments_b, junction_options);
   const sfm::TopologyGraph graph_a = sfm::BuildTopologyGraph(junctions_a);
@@ -185,6 +187,8 @@ int main(int argc, char** argv) {
     }
   }
   if (!FLAGS_image.empty()) {
+    const sfm::ImageUndistorter undistorter(calibration.camera, interpolation);
+    const cv::Mat grey_a = undistorter.Apply(image_a), grey_b = undistorter.Apply(image_b);
     const cv::Mat picture =
         sfm::DrawMatchOverlay(grey_a, junctions_a, grey_b, junctions_b, matches, FLAGS_image_scale);
     std::vector<uchar> png;

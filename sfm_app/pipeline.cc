@@ -20,6 +20,7 @@
 #include "frontend/junctions/topology.h"
 #include "frontend/matching/junction_matcher.h"
 #include "frontend/matching/pair_geometry.h"
+#include "frontend/segments/undistorted_segments.h"
 #include "frontend/sequence/sequence.h"
 #include "frontend/tracks/tracks.h"
 #include "frontend/util/atomic_file.h"
@@ -47,16 +48,34 @@ Status LoadImages(const Sequence& sequence, Progress* progress, std::vector<cv::
   return Status::Ok();
 }
 
+// The box of K's pixel frame where junctions are detected: the image, or with
+// options.undistort_full_view the full-view canvas (ImageUndistorter), for the track extension.
+Eigen::Vector2d SeenMin(const Camera& camera, const PipelineOptions& options) {
+  if (!options.undistort_full_view || !camera.HasDistortion()) return Eigen::Vector2d(0, 0);
+  Eigen::Vector2d offset;
+  cv::Size size;
+  FullViewCanvas(camera, 0, &offset, &size);
+  return -offset;
+}
+Eigen::Vector2d SeenMax(const Camera& camera, const PipelineOptions& options) {
+  if (!options.undistort_full_view || !camera.HasDistortion()) return Eigen::Vector2d(camera.width - 1, camera.height - 1);
+  Eigen::Vector2d offset;
+  cv::Size size;
+  FullViewCanvas(camera, 0, &offset, &size);
+  return Eigen::Vector2d(size.width - 1, size.height - 1) - offset;
+}
+
 // Paper section 2: junctions and topology graph of every frame, in undistorted pixels.
 void DetectJunctionsOfAllFrames(const Sequence& sequence, const std::vector<cv::Mat>& images,
                                 const PipelineOptions& options, Progress* progress, PipelineResult* result) {
-  const ImageUndistorter undistorter(sequence.calibration.camera, options.undistort_interpolation);
+  const ImageUndistorter undistorter(sequence.calibration.camera, options.undistort_interpolation,
+                                     options.undistort_full_view ? UndistortView::kFullView : UndistortView::kSameSize);
   const int n = static_cast<int>(images.size());
   result->junctions.resize(n);
   result->graphs.resize(n);
   for (int i = 0; i < n; ++i) {
     progress->Update("junction detection", "frame", i + 1, n);
-    const LineSegments segments = DetectLineSegments(undistorter.Apply(images[i]), options.segments);
+    const LineSegments segments = DetectUndistortedSegments(undistorter, images[i], options.segments);
     result->junctions[i] = DetectJunctions(segments, options.junctions);
     result->graphs[i] = BuildTopologyGraph(result->junctions[i]);
   }
@@ -213,7 +232,7 @@ Status Refine(const Sequence& sequence, const PipelineOptions& options, Pipeline
       const Clock::time_point start = Clock::now();
       const Calibration& calibration = sequence.calibration;
       TrackExtensionReport report;
-      ExtendTracks(calibration.camera.K(), calibration.camera.width, calibration.camera.height,
+      ExtendTracks(calibration.camera.K(), SeenMin(calibration.camera, options), SeenMax(calibration.camera, options),
                    CamerasFromBases(world_T_base, calibration.base_T_camera), result->junctions,
                    options.track_extension, &result->tracks, landmarks, &report);
       RecordTrackExtension(report, start, result);
@@ -314,7 +333,7 @@ Status ExtendTracksOnRefinedPoses(const Sequence& sequence, const PipelineOption
   const Clock::time_point start = Clock::now();
   const Calibration& calibration = sequence.calibration;
   TrackExtensionReport report;
-  ExtendTracks(calibration.camera.K(), calibration.camera.width, calibration.camera.height,
+  ExtendTracks(calibration.camera.K(), SeenMin(calibration.camera, options), SeenMax(calibration.camera, options),
                result->world_T_camera_refined, result->junctions, options.track_extension, &result->tracks,
                &result->landmarks, &report);
   // The changed landmarks as a map of their own (every changed line's point is changed too, or

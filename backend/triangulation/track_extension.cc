@@ -69,10 +69,11 @@ std::optional<std::vector<int>> AssignSegments(const Junction& junction, const D
 
 class Extender {
  public:
-  Extender(const Eigen::Matrix3d& K, int width, int height, const std::vector<Pose3>& poses,
-           const std::vector<Junctions>& junctions, const TrackExtensionOptions& options,
-           std::vector<JunctionTrack>* tracks, Landmarks* landmarks, TrackExtensionReport* report)
-      : K_(K), width_(width), height_(height), poses_(poses), junctions_(junctions), options_(options),
+  Extender(const Eigen::Matrix3d& K, const Eigen::Vector2d& seen_min, const Eigen::Vector2d& seen_max,
+           const std::vector<Pose3>& poses, const std::vector<Junctions>& junctions,
+           const TrackExtensionOptions& options, std::vector<JunctionTrack>* tracks, Landmarks* landmarks,
+           TrackExtensionReport* report)
+      : K_(K), seen_min_(seen_min), seen_max_(seen_max), poses_(poses), junctions_(junctions), options_(options),
         tracks_(*tracks), landmarks_(*landmarks), report_(*report) {}
 
   void Run() {
@@ -185,7 +186,8 @@ class Extender {
     const double max_angle = options_.max_angle_deg * kPi / 180;
     const Projection proj = Project(K_, poses_[f], X);
     if (proj.depth < options_.min_depth_m) return Search::kOutside;
-    if (proj.pixel.x() < 0 || proj.pixel.y() < 0 || proj.pixel.x() > width_ - 1 || proj.pixel.y() > height_ - 1) {
+    if (proj.pixel.x() < seen_min_.x() || proj.pixel.y() < seen_min_.y() || proj.pixel.x() > seen_max_.x() ||
+        proj.pixel.y() > seen_max_.y()) {
       return Search::kOutside;
     }
     int gap = static_cast<int>(poses_.size());
@@ -428,7 +430,7 @@ class Extender {
   }
 
   const Eigen::Matrix3d K_;
-  const int width_, height_;
+  const Eigen::Vector2d seen_min_, seen_max_;
   const std::vector<Pose3>& poses_;
   const std::vector<Junctions>& junctions_;
   const TrackExtensionOptions& options_;
@@ -460,9 +462,17 @@ Status TrackExtensionOptions::Check() const {
 void ExtendTracks(const Eigen::Matrix3d& K, int width, int height, const std::vector<Pose3>& world_T_camera,
                   const std::vector<Junctions>& junctions, const TrackExtensionOptions& options,
                   std::vector<JunctionTrack>* tracks, Landmarks* landmarks, TrackExtensionReport* report) {
+  ExtendTracks(K, Eigen::Vector2d(0, 0), Eigen::Vector2d(width - 1, height - 1), world_T_camera, junctions, options,
+               tracks, landmarks, report);
+}
+
+void ExtendTracks(const Eigen::Matrix3d& K, const Eigen::Vector2d& seen_min, const Eigen::Vector2d& seen_max,
+                  const std::vector<Pose3>& world_T_camera, const std::vector<Junctions>& junctions,
+                  const TrackExtensionOptions& options, std::vector<JunctionTrack>* tracks, Landmarks* landmarks,
+                  TrackExtensionReport* report) {
   CHECK_EQ(world_T_camera.size(), junctions.size());
   *report = TrackExtensionReport();
-  Extender(K, width, height, world_T_camera, junctions, options, tracks, landmarks, report).Run();
+  Extender(K, seen_min, seen_max, world_T_camera, junctions, options, tracks, landmarks, report).Run();
 }
 
 }  // namespace sfm

@@ -68,5 +68,13 @@ struct TrackExtensionReport {
 void ExtendTracks(const Eigen::Matrix3d& K, int width, int height, const std::vector<Pose3>& world_T_camera,
                   const std::vector<Junctions>& junctions, const TrackExtensionOptions& options,
                   std::vector<JunctionTrack>* tracks, Landmarks* landmarks, TrackExtensionReport* report);
+// The same, for junctions detected on a wider view than [0, width) x [0, height) (the full-view
+// canvas, --undistort_full_view: junctions lie outside the image): a projection is searched for
+// when it lies in the box [seen_min, seen_max] of K's pixel frame. The overload above is the box
+// (0, 0) .. (width - 1, height - 1).
+void ExtendTracks(const Eigen::Matrix3d& K, const Eigen::Vector2d& seen_min, const Eigen::Vector2d& seen_max,
+                  const std::vector<Pose3>& world_T_camera, const std::vector<Junctions>& junctions,
+                  const TrackExtensionOptions& options, std::vector<JunctionTrack>* tracks, Landmarks* landmarks,
+                  TrackExtensionReport* report);
 
 }  // namespace sfm

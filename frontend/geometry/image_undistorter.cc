@@ -4,6 +4,9 @@
 #include <opencv2/calib3d.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include <algorithm>
+#include <cmath>
+
 namespace sfm {
 
 bool ParseUndistortInterpolation(const std::string& name, UndistortInterpolation* interpolation) {
@@ -29,27 +32,64 @@ const char* UndistortInterpolationName(UndistortInterpolation interpolation) {
   }
 }
 
-ImageUndistorter::ImageUndistorter(const Camera& camera, UndistortInterpolation interpolation)
-    : width_(camera.width),
-      height_(camera.height),
+void FullViewCanvas(const Camera& camera, int pad, Eigen::Vector2d* offset, cv::Size* size) {
+  double min_x = 0, min_y = 0, max_x = camera.width - 1, max_y = camera.height - 1;
+  auto add = [&](double x, double y) {
+    const Eigen::Vector2d u = camera.UndistortPixel(Eigen::Vector2d(x, y));
+    min_x = std::min(min_x, u.x()), max_x = std::max(max_x, u.x());
+    min_y = std::min(min_y, u.y()), max_y = std::max(max_y, u.y());
+  };
+  for (int x = 0; x < camera.width; ++x) add(x, 0), add(x, camera.height - 1);
+  for (int y = 0; y < camera.height; ++y) add(0, y), add(camera.width - 1, y);
+  const int left = static_cast<int>(std::ceil(-min_x)) + pad * (min_x < 0);
+  const int top = static_cast<int>(std::ceil(-min_y)) + pad * (min_y < 0);
+  const int right = static_cast<int>(std::ceil(max_x - (camera.width - 1))) + pad * (max_x > camera.width - 1);
+  const int bottom = static_cast<int>(std::ceil(max_y - (camera.height - 1))) + pad * (max_y > camera.height - 1);
+  *offset = Eigen::Vector2d(left, top);
+  *size = cv::Size(camera.width + left + right, camera.height + top + bottom);
+}
+
+bool SeenByStoredImage(const Camera& camera, const Eigen::Vector2d& p, double margin) {
+  const Eigen::Vector2d d = camera.HasDistortion() ? camera.DistortPixel(p) : p;
+  return d.x() >= margin && d.y() >= margin && d.x() <= camera.width - 1 - margin &&
+         d.y() <= camera.height - 1 - margin;
+}
+
+ImageUndistorter::ImageUndistorter(const Camera& camera, UndistortInterpolation interpolation, UndistortView view)
+    : camera_(camera),
       interpolation_(interpolation == UndistortInterpolation::kCubic      ? cv::INTER_CUBIC
                      : interpolation == UndistortInterpolation::kLanczos4 ? cv::INTER_LANCZOS4
-                                                                          : cv::INTER_LINEAR) {
+                                                                          : cv::INTER_LINEAR),
+      border_mode_(cv::BORDER_CONSTANT),
+      canvas_size_(camera.width, camera.height) {
   if (!camera.HasDistortion()) return;
   const cv::Matx33d camera_matrix(camera.fx, 0, camera.cx, 0, camera.fy, camera.cy, 0, 0, 1);
   const cv::Matx<double, 1, 5> coefficients(camera.distortion[0], camera.distortion[1], camera.distortion[2],
                                             camera.distortion[3], camera.distortion[4]);
+  cv::Matx33d canvas_matrix = camera_matrix;
+  if (view == UndistortView::kFullView) {
+    full_view_ = true;
+    // 3 px beyond the field of view: the reach of the detector's smoothing and Sobel support, so
+    // that the canvas's own border is never next to a seen pixel.
+    FullViewCanvas(camera, 3, &offset_, &canvas_size_);
+    canvas_matrix(0, 2) += offset_.x();
+    canvas_matrix(1, 2) += offset_.y();
+    // The nearest border pixel of the stored image beyond it, not black: no step edge along the
+    // border of the seen region for the detector to find (nor for a crossing edge's chain to
+    // turn into).
+    border_mode_ = cv::BORDER_REPLICATE;
+  }
   // Float maps: the fixed-point CV_16SC2 maps quantise to 1/32 px.
-  cv::initUndistortRectifyMap(camera_matrix, coefficients, cv::noArray(), camera_matrix,
-                              cv::Size(camera.width, camera.height), CV_32FC1, map_x_, map_y_);
+  cv::initUndistortRectifyMap(camera_matrix, coefficients, cv::noArray(), canvas_matrix, canvas_size_, CV_32FC1,
+                              map_x_, map_y_);
 }
 
 cv::Mat ImageUndistorter::Apply(const cv::Mat& image) const {
-  CHECK_EQ(image.cols, width_);
-  CHECK_EQ(image.rows, height_);
+  CHECK_EQ(image.cols, camera_.width);
+  CHECK_EQ(image.rows, camera_.height);
   if (map_x_.empty()) return image;
   cv::Mat undistorted;
-  cv::remap(image, undistorted, map_x_, map_y_, interpolation_, cv::BORDER_CONSTANT, cv::Scalar::all(0));
+  cv::remap(image, undistorted, map_x_, map_y_, interpolation_, border_mode_, cv::Scalar::all(0));
   return undistorted;
 }
 

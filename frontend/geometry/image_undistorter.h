@@ -1,7 +1,9 @@
-// ImageUndistorter: resamples images of a distorted camera to its undistorted geometry (same size
-// and K). The remap tables are built once per camera, not once per frame.
+// ImageUndistorter: resamples images of a distorted camera to its undistorted geometry (same K;
+// the same size, or a canvas holding the stored image's whole field of view). The remap tables
+// are built once per camera, not once per frame.
 #pragma once
 
+#include <Eigen/Core>
 #include <opencv2/core.hpp>
 #include <string>
 
@@ -26,20 +28,65 @@ bool ParseUndistortInterpolation(const std::string& name, UndistortInterpolation
 // The name ParseUndistortInterpolation reads.
 const char* UndistortInterpolationName(UndistortInterpolation interpolation);
 
+// What the undistorted image covers (PipelineOptions::undistort_full_view, the apps'
+// --undistort_full_view).
+enum class UndistortView {
+  // The undistorted image has the stored image's size and K. Under barrel distortion (k1 < 0) it
+  // drops what the stored image sees near its sides (about 50 px per side at k1 = -0.25, 640 px).
+  kSameSize,
+  // A canvas with K's focal lengths whose principal point is shifted by (left, top) margins, just
+  // large enough for the undistorted border of the stored image: the whole field of view. Canvas
+  // pixels whose source lies outside the stored image repeat the stored image's nearest border
+  // pixel (no step edge there; the segments found there are cut off by ClipSegmentsToStoredView).
+  kFullView,
+};
+
+// The view of detection (PipelineOptions::undistort_full_view, the apps' --undistort_full_view).
+// Full view by default: over 33 lens sequence x noise-draw pairs (barrel k1 = -0.12 .. -0.35 and
+// pincushion) it finds 8 % more junctions per frame, turns the rotation ratio 0.146 -> 0.129
+// (26 of 33 better) and the wireframe share 0.949 -> 0.958 (26 of 33), lifts the one goal miss
+// (0.883 -> 0.900) and leaves the ATE ratio as it was on average (0.086 -> 0.086), though worse on
+// corridor turns (0.068 -> 0.085) and on held-out room-dist's draws (0.107 -> 0.132). About
+// 1.3 ms per 640 x 480 frame more (docs/junction_results.md, "Session 8: full field of view").
+constexpr UndistortView kDetectionView = UndistortView::kFullView;
+
 class ImageUndistorter {
  public:
   explicit ImageUndistorter(const Camera& camera,
-                            UndistortInterpolation interpolation = UndistortInterpolation::kLinear);
+                            UndistortInterpolation interpolation = UndistortInterpolation::kLinear,
+                            UndistortView view = UndistortView::kSameSize);
 
-  // The undistorted image (resampled with the constructor's interpolation, black outside the
-  // field of view); a shallow copy of the input when the camera has no distortion. CHECKs that the
-  // image is of the camera's size.
+  // The undistorted image (resampled with the constructor's interpolation); a shallow copy of the
+  // input when the camera has no distortion. kSameSize: black outside the field of view; kFullView:
+  // the canvas (CanvasOffset). CHECKs that the image is of the camera's size.
   cv::Mat Apply(const cv::Mat& image) const;
 
+  // Canvas pixel = K's pixel + CanvasOffset(): (left, top) margins of the full-view canvas; zero for
+  // kSameSize and for cameras without distortion.
+  Eigen::Vector2d CanvasOffset() const { return offset_; }
+  cv::Size CanvasSize() const { return canvas_size_; }
+  // True for kFullView on a camera with distortion (the canvas may still be the image's size: a
+  // pincushion lens sees less than K's image).
+  bool FullView() const { return full_view_; }
+  const Camera& camera() const { return camera_; }
+
  private:
-  int width_, height_;
+  Camera camera_;
   int interpolation_;      // cv::INTER_*
+  int border_mode_;        // cv::BORDER_*
+  bool full_view_ = false;
+  Eigen::Vector2d offset_ = Eigen::Vector2d::Zero();
+  cv::Size canvas_size_;
   cv::Mat map_x_, map_y_;  // empty when there is no distortion
 };
+
+// The full-view canvas of `camera`: (left, top) margins and size, with `pad` px beyond the
+// bounding box of the stored image's undistorted border (sampled every pixel along the four
+// sides). Never smaller than the stored image (left, top >= 0).
+void FullViewCanvas(const Camera& camera, int pad, Eigen::Vector2d* offset, cv::Size* size);
+
+// True when undistorted pixel `p` (K's frame) is seen by the stored image at least `margin` px
+// inside its border (always inside without distortion: then only the image rectangle counts).
+bool SeenByStoredImage(const Camera& camera, const Eigen::Vector2d& p, double margin);
 
 }  // namespace sfm

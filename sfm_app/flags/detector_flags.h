@@ -33,6 +33,8 @@ bool SegmentMethodFromFlags(SegmentDetectorOptions* options, std::string* error)
 // kDetectionInterpolation, linear). False, with a one-line message in *error, for another
 // name.
 bool UndistortInterpolationFromFlags(UndistortInterpolation* interpolation, std::string* error);
+// Same group: --undistort_full_view (default kDetectionView, the full view).
+UndistortView UndistortViewFromFlags();
 
 // Group sfm_flags_segment_branches: --branches_at_free_ends, --branches_to_far_corners,
 // --bridges_past_corners, --short_pieces_at_contacts, --min_contact_length.

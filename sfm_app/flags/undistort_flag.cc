@@ -5,7 +5,16 @@ DEFINE_string(
     "Resampling of each frame to the undistorted image when the camera has lens distortion: 'linear', "
     "'cubic' or 'lanczos4' (docs/junction_results.md, \"Session 7: lens distortion\").");
 
+DEFINE_bool(undistort_full_view, sfm::kDetectionView == sfm::UndistortView::kFullView,
+            "With lens distortion: detect on a canvas holding the stored image's whole field of view (same "
+            "focal lengths, principal point shifted), so junctions may lie outside the image in K's pixels "
+            "(docs/junction_results.md, \"Session 8: full field of view\").");
+
 namespace sfm {
+
+UndistortView UndistortViewFromFlags() {
+  return FLAGS_undistort_full_view ? UndistortView::kFullView : UndistortView::kSameSize;
+}
 
 bool UndistortInterpolationFromFlags(UndistortInterpolation* interpolation, std::string* error) {
   if (ParseUndistortInterpolation(FLAGS_undistort_interpolation, interpolation)) return true;

@@ -76,6 +76,31 @@ LineLandmark Line(const JunctionTrack& track, int s, int point, const std::vecto
   return line;
 }
 
+// Junctions found on a full-view canvas (--undistort_full_view) lie beyond the image. With an
+// image only 300 px wide, frame 3's corner (at x = 311) is outside it: the image-box overload
+// leaves it (0 observations added, the projection counted outside), the box overload with a canvas
+// box (-100, -100) .. (399, 579) joins it (1 added).
+TEST(TrackExtension, AProjectionBeyondTheImageJoinsWhenTheCanvasBoxHoldsIt) {
+  const std::vector<Pose3> cameras = Cameras(4);
+  std::vector<Junctions> frames(4);
+  for (int f = 0; f < 4; ++f) frames[f] = {Elsewhere(), CornerJunction(cameras[f])};
+  ASSERT_GT(frames[3][1].location.x(), 299);
+  for (bool canvas : {false, true}) {
+    std::vector<JunctionTrack> tracks = {Track(0, {0, 1, 2}, 1)};
+    Landmarks landmarks;
+    landmarks.points = {Point(tracks[0], frames, kCorner)};
+    landmarks.lines = {Line(tracks[0], 0, 0, frames)};
+    TrackExtensionReport report;
+    if (canvas) {
+      ExtendTracks(kK, Eigen::Vector2d(-100, -100), Eigen::Vector2d(399, 579), cameras, frames,
+                   TrackExtensionOptions(), &tracks, &landmarks, &report);
+    } else {
+      ExtendTracks(kK, 300, 480, cameras, frames, TrackExtensionOptions(), &tracks, &landmarks, &report);
+    }
+    EXPECT_EQ(report.observations_added, canvas ? 1 : 0) << (canvas ? "canvas box" : "image box");
+  }
+}
+
 // Frames 0-2 see the corner (track 0, junction 1 in each). Frame 3 sees it alone: it joins.
 // Frame 4 sees it twice, 0.4 px apart (both within the gate): ambiguous, left. Frame 5 has a
 // junction at the right place whose segments point elsewhere (rotated by 90 degrees): not
