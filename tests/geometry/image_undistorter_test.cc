@@ -7,20 +7,12 @@
 #include <cstdio>
 #include <string>
 
+#include "tests/test_cameras.h"
+
 namespace sfm {
 namespace {
 
-// The benchmark's distorted corridor lens (docs/junction_results.md): 640 x 480, fx = 450.
-Camera BenchmarkLens() {
-  Camera camera;
-  camera.width = 640;
-  camera.height = 480;
-  camera.fx = camera.fy = 450;
-  camera.cx = 319.5;
-  camera.cy = 239.5;
-  camera.distortion = {-0.25, 0.07, 0.0005, -0.0005, 0};
-  return camera;
-}
+using testing::BenchmarkLens;
 
 // A vertical step of 100 grey levels at undistorted x = `edge_x`, blurred with sigma 0.7 px (the
 // generator's optics), as a function of the undistorted position.

@@ -9,21 +9,20 @@
 #include "frontend/geometry/image_undistorter.h"
 #include "frontend/junctions/junction_detector.h"
 #include "frontend/segments/undistorted_segments.h"
+#include "tests/test_cameras.h"
 
 namespace sfm {
 namespace {
 
-// The benchmark's distorted corridor lens (docs/junction_results.md): 640 x 480, fx = 450,
-// k1 = -0.25, k2 = 0.07: the undistorted image of the stored size loses about 50 px per side.
-Camera BenchmarkLens() {
-  Camera camera;
-  camera.width = 640;
-  camera.height = 480;
-  camera.fx = camera.fy = 450;
-  camera.cx = 319.5;
-  camera.cy = 239.5;
-  camera.distortion = {-0.25, 0.07, 0.0005, -0.0005, 0};
-  return camera;
+using testing::BenchmarkLens;
+
+// The longest of `segments` (nullptr when there are none).
+const LineSegment* Longest(const LineSegments& segments) {
+  const LineSegment* longest = nullptr;
+  for (const LineSegment& s : segments) {
+    if (!longest || s.Length() > longest->Length()) longest = &s;
+  }
+  return longest;
 }
 
 // The stored image of a scene given in undistorted pixels: 60 grey levels where `bright` is false,
@@ -108,10 +107,7 @@ TEST(FullViewTest, SegmentsComeBackInKFrameAndStopAtTheSeenBorder) {
   const ImageUndistorter undistorter(camera, UndistortInterpolation::kLinear, UndistortView::kFullView);
   const SegmentDetectorOptions options;
   const LineSegments segments = DetectUndistortedSegments(undistorter, stored, options);
-  const LineSegment* longest = nullptr;
-  for (const LineSegment& s : segments) {
-    if (!longest || s.Length() > longest->Length()) longest = &s;
-  }
+  const LineSegment* longest = Longest(segments);
   ASSERT_NE(longest, nullptr);
   EXPECT_NEAR(longest->p0.x(), -20, 0.2);
   EXPECT_NEAR(longest->p1.x(), -20, 0.2);
@@ -136,10 +132,7 @@ TEST(FullViewTest, PincushionSegmentsStopAtTheSeenBorder) {
   EXPECT_EQ(undistorter.CanvasSize(), cv::Size(640, 480));
   const SegmentDetectorOptions options;
   const LineSegments segments = DetectUndistortedSegments(undistorter, stored, options);
-  const LineSegment* longest = nullptr;
-  for (const LineSegment& s : segments) {
-    if (!longest || s.Length() > longest->Length()) longest = &s;
-  }
+  const LineSegment* longest = Longest(segments);
   ASSERT_NE(longest, nullptr);
   EXPECT_NEAR(longest->p0.x(), 60, 0.2);
   EXPECT_NEAR(longest->p1.x(), 60, 0.2);
