@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace sfm {
 
@@ -49,6 +50,40 @@ void FullViewCanvas(const Camera& camera, int pad, Eigen::Vector2d* offset, cv::
   *size = cv::Size(camera.width + left + right, camera.height + top + bottom);
 }
 
+double RadialFoldRadius(const Camera& camera) {
+  const double k1 = camera.distortion[0], k2 = camera.distortion[1], k3 = camera.distortion[4];
+  // d/dr [r (1 + k1 r^2 + k2 r^4 + k3 r^6)], scanned in steps of 1e-3 up to r = 10 (a 168 degree
+  // field of view: beyond any lens this polynomial model describes).
+  for (double r = 0; r <= 10; r += 1e-3) {
+    const double r2 = r * r;
+    if (1 + 3 * k1 * r2 + 5 * k2 * r2 * r2 + 7 * k3 * r2 * r2 * r2 <= 0) return r;
+  }
+  return std::numeric_limits<double>::infinity();
+}
+
+bool FullViewIsWellDefined(const Camera& camera, const Eigen::Vector2d& offset, const cv::Size& size) {
+  // The model must be one-to-one over the whole canvas (its corners are the farthest from the
+  // principal point), and every border pixel of the stored image must come back from its
+  // undistortion (it has none beyond the fold).
+  const double fold = RadialFoldRadius(camera);
+  for (const double x : {-offset.x(), size.width - 1 - offset.x()}) {
+    for (const double y : {-offset.y(), size.height - 1 - offset.y()}) {
+      if (!(std::hypot((x - camera.cx) / camera.fx, (y - camera.cy) / camera.fy) < fold)) return false;
+    }
+  }
+  auto round_trips = [&](double x, double y) {
+    const Eigen::Vector2d p(x, y);
+    return (camera.DistortPixel(camera.UndistortPixel(p)) - p).norm() < 0.01;
+  };
+  for (int x = 0; x < camera.width; ++x) {
+    if (!round_trips(x, 0) || !round_trips(x, camera.height - 1)) return false;
+  }
+  for (int y = 0; y < camera.height; ++y) {
+    if (!round_trips(0, y) || !round_trips(camera.width - 1, y)) return false;
+  }
+  return true;
+}
+
 bool SeenByStoredImage(const Camera& camera, const Eigen::Vector2d& p, double margin) {
   const Eigen::Vector2d d = camera.HasDistortion() ? camera.DistortPixel(p) : p;
   return d.x() >= margin && d.y() >= margin && d.x() <= camera.width - 1 - margin &&
@@ -67,11 +102,22 @@ ImageUndistorter::ImageUndistorter(const Camera& camera, UndistortInterpolation 
   const cv::Matx<double, 1, 5> coefficients(camera.distortion[0], camera.distortion[1], camera.distortion[2],
                                             camera.distortion[3], camera.distortion[4]);
   cv::Matx33d canvas_matrix = camera_matrix;
-  if (view == UndistortView::kFullView) {
+  Eigen::Vector2d full_offset;
+  cv::Size full_size;
+  // 3 px beyond the field of view: the reach of the detector's smoothing and Sobel support, so
+  // that the canvas's own border is never next to a seen pixel.
+  if (view == UndistortView::kFullView) FullViewCanvas(camera, 3, &full_offset, &full_size);
+  if (view == UndistortView::kFullView && !FullViewIsWellDefined(camera, full_offset, full_size)) {
+    // A strong barrel lens given by k1 alone folds back before the stored image's corners: the
+    // canvas would mirror the image and grow without bound (k1 = -0.25, k2 = 0 on 640 x 480 gave
+    // 51258 x 43612 px). The same-size view is what this calibration can describe.
+    LOG_FIRST_N(WARNING, 1) << "lens distortion (k1 " << camera.distortion[0] << ", k2 " << camera.distortion[1]
+                            << ") is not one-to-one over the stored image's field of view: detecting on the "
+                               "undistorted image of the stored size";
+  } else if (view == UndistortView::kFullView) {
     full_view_ = true;
-    // 3 px beyond the field of view: the reach of the detector's smoothing and Sobel support, so
-    // that the canvas's own border is never next to a seen pixel.
-    FullViewCanvas(camera, 3, &offset_, &canvas_size_);
+    offset_ = full_offset;
+    canvas_size_ = full_size;
     canvas_matrix(0, 2) += offset_.x();
     canvas_matrix(1, 2) += offset_.y();
     // The nearest border pixel of the stored image beyond it, not black: no step edge along the

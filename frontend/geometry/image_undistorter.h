@@ -85,6 +85,16 @@ class ImageUndistorter {
 // sides). Never smaller than the stored image (left, top >= 0).
 void FullViewCanvas(const Camera& camera, int pad, Eigen::Vector2d* offset, cv::Size* size);
 
+// The normalised radius at which the radial distortion r (1 + k1 r^2 + k2 r^4 + k3 r^6) stops
+// growing (its derivative reaches 0), +infinity when it grows up to r = 10: beyond it the model
+// folds back and an undistorted pixel is not one stored pixel.
+double RadialFoldRadius(const Camera& camera);
+
+// True when the full-view canvas (offset, size from FullViewCanvas) lies inside the radial fold
+// radius and every border pixel of the stored image survives undistortion and distortion back to
+// 0.01 px. Otherwise ImageUndistorter falls back to the same-size view (with a warning).
+bool FullViewIsWellDefined(const Camera& camera, const Eigen::Vector2d& offset, const cv::Size& size);
+
 // True when undistorted pixel `p` (K's frame) is seen by the stored image at least `margin` px
 // inside its border (always inside without distortion: then only the image rectangle counts).
 bool SeenByStoredImage(const Camera& camera, const Eigen::Vector2d& p, double margin);

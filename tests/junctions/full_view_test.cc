@@ -76,6 +76,25 @@ TEST(FullViewTest, CanvasHoldsTheWholeFieldOfView) {
   EXPECT_EQ(plain.CanvasSize(), cv::Size(640, 480));
 }
 
+// A strong barrel lens given by k1 alone (-0.25, k2 = 0) folds back at the normalised radius
+// sqrt(4/3) = 1.1547 (where d/dr r (1 + k1 r^2) = 1 + 3 k1 r^2 = 0), inside the stored corners'
+// radius (hypot(320, 240) / 450 = 0.889 distorted, beyond the fold's largest distorted radius 0.770):
+// the corners have no undistorted position, and before session 8's check the
+// canvas grew to 51258 x 43612 px. Protects: the fold radius to 1e-3, the benchmark lens (k2 = 0.07,
+// never folds) keeping its full view, and the k1-only lens falling back to the image's own size.
+TEST(FullViewTest, ALensThatFoldsBackFallsBackToTheSameSizeView) {
+  Camera folding = BenchmarkLens();
+  folding.distortion = {-0.25, 0, 0, 0, 0};
+  EXPECT_NEAR(RadialFoldRadius(folding), std::sqrt(4.0 / 3.0), 1e-3);
+  EXPECT_TRUE(std::isinf(RadialFoldRadius(BenchmarkLens())));
+  const ImageUndistorter benchmark(BenchmarkLens(), UndistortInterpolation::kLinear, UndistortView::kFullView);
+  EXPECT_TRUE(benchmark.FullView());
+  const ImageUndistorter fallback(folding, UndistortInterpolation::kLinear, UndistortView::kFullView);
+  EXPECT_FALSE(fallback.FullView());
+  EXPECT_EQ(fallback.CanvasSize(), cv::Size(640, 480));
+  EXPECT_EQ(fallback.CanvasOffset(), Eigen::Vector2d::Zero());
+}
+
 // An L corner of a bright quadrant at undistorted (-25, 150), which the stored image sees about
 // 18 px inside its left side: found with the full view within 0.5 px of where it is in K's frame
 // (the canvas offset undone), and not at all without it.
