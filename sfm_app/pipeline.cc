@@ -48,21 +48,16 @@ Status LoadImages(const Sequence& sequence, Progress* progress, std::vector<cv::
   return Status::Ok();
 }
 
-// The box of K's pixel frame where junctions are detected: the image, or with
-// options.undistort_full_view the full-view canvas (ImageUndistorter), for the track extension.
-Eigen::Vector2d SeenMin(const Camera& camera, const PipelineOptions& options) {
-  if (!options.undistort_full_view || !camera.HasDistortion()) return Eigen::Vector2d(0, 0);
+// The box of K's pixel frame where junctions are detected, for the track extension: the image,
+// or with options.undistort_full_view the full-view canvas that ImageUndistorter uses (without its
+// pad), when the lens admits one (DetectionCanvas).
+void DetectionBox(const Camera& camera, const PipelineOptions& options, Eigen::Vector2d* min, Eigen::Vector2d* max) {
   Eigen::Vector2d offset;
   cv::Size size;
-  FullViewCanvas(camera, 0, &offset, &size);
-  return -offset;
-}
-Eigen::Vector2d SeenMax(const Camera& camera, const PipelineOptions& options) {
-  if (!options.undistort_full_view || !camera.HasDistortion()) return Eigen::Vector2d(camera.width - 1, camera.height - 1);
-  Eigen::Vector2d offset;
-  cv::Size size;
-  FullViewCanvas(camera, 0, &offset, &size);
-  return Eigen::Vector2d(size.width - 1, size.height - 1) - offset;
+  DetectionCanvas(camera, options.undistort_full_view ? UndistortView::kFullView : UndistortView::kSameSize, 0,
+                  &offset, &size);
+  *min = -offset;
+  *max = Eigen::Vector2d(size.width - 1, size.height - 1) - offset;
 }
 
 // Paper section 2: junctions and topology graph of every frame, in undistorted pixels.
@@ -232,8 +227,9 @@ Status Refine(const Sequence& sequence, const PipelineOptions& options, Pipeline
       const Clock::time_point start = Clock::now();
       const Calibration& calibration = sequence.calibration;
       TrackExtensionReport report;
-      ExtendTracks(calibration.camera.K(), SeenMin(calibration.camera, options), SeenMax(calibration.camera, options),
-                   CamerasFromBases(world_T_base, calibration.base_T_camera), result->junctions,
+      Eigen::Vector2d box_min, box_max;
+      DetectionBox(calibration.camera, options, &box_min, &box_max);
+      ExtendTracks(calibration.camera.K(), box_min, box_max, CamerasFromBases(world_T_base, calibration.base_T_camera), result->junctions,
                    options.track_extension, &result->tracks, landmarks, &report);
       RecordTrackExtension(report, start, result);
     };
@@ -333,8 +329,9 @@ Status ExtendTracksOnRefinedPoses(const Sequence& sequence, const PipelineOption
   const Clock::time_point start = Clock::now();
   const Calibration& calibration = sequence.calibration;
   TrackExtensionReport report;
-  ExtendTracks(calibration.camera.K(), SeenMin(calibration.camera, options), SeenMax(calibration.camera, options),
-               result->world_T_camera_refined, result->junctions, options.track_extension, &result->tracks,
+  Eigen::Vector2d box_min, box_max;
+  DetectionBox(calibration.camera, options, &box_min, &box_max);
+  ExtendTracks(calibration.camera.K(), box_min, box_max, result->world_T_camera_refined, result->junctions, options.track_extension, &result->tracks,
                &result->landmarks, &report);
   // The changed landmarks as a map of their own (every changed line's point is changed too, or
   // joins it), refined, then put back after the unchanged ones.

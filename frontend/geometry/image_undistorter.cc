@@ -84,6 +84,19 @@ bool FullViewIsWellDefined(const Camera& camera, const Eigen::Vector2d& offset, 
   return true;
 }
 
+bool DetectionCanvas(const Camera& camera, UndistortView view, int pad, Eigen::Vector2d* offset, cv::Size* size) {
+  *offset = Eigen::Vector2d::Zero();
+  *size = cv::Size(camera.width, camera.height);
+  if (view != UndistortView::kFullView || !camera.HasDistortion()) return false;
+  Eigen::Vector2d full_offset;
+  cv::Size full_size;
+  FullViewCanvas(camera, pad, &full_offset, &full_size);
+  if (!FullViewIsWellDefined(camera, full_offset, full_size)) return false;
+  *offset = full_offset;
+  *size = full_size;
+  return true;
+}
+
 bool SeenByStoredImage(const Camera& camera, const Eigen::Vector2d& p, double margin) {
   const Eigen::Vector2d d = camera.HasDistortion() ? camera.DistortPixel(p) : p;
   return d.x() >= margin && d.y() >= margin && d.x() <= camera.width - 1 - margin &&
@@ -102,12 +115,9 @@ ImageUndistorter::ImageUndistorter(const Camera& camera, UndistortInterpolation 
   const cv::Matx<double, 1, 5> coefficients(camera.distortion[0], camera.distortion[1], camera.distortion[2],
                                             camera.distortion[3], camera.distortion[4]);
   cv::Matx33d canvas_matrix = camera_matrix;
-  Eigen::Vector2d full_offset;
-  cv::Size full_size;
   // 3 px beyond the field of view: the reach of the detector's smoothing and Sobel support, so
   // that the canvas's own border is never next to a seen pixel.
-  if (view == UndistortView::kFullView) FullViewCanvas(camera, 3, &full_offset, &full_size);
-  if (view == UndistortView::kFullView && !FullViewIsWellDefined(camera, full_offset, full_size)) {
+  if (view == UndistortView::kFullView && !DetectionCanvas(camera, view, 3, &offset_, &canvas_size_)) {
     // A strong barrel lens given by k1 alone folds back before the stored image's corners: the
     // canvas would mirror the image and grow without bound (k1 = -0.25, k2 = 0 on 640 x 480 gave
     // 51258 x 43612 px). The same-size view is what this calibration can describe.
@@ -116,8 +126,6 @@ ImageUndistorter::ImageUndistorter(const Camera& camera, UndistortInterpolation 
                                "undistorted image of the stored size";
   } else if (view == UndistortView::kFullView) {
     full_view_ = true;
-    offset_ = full_offset;
-    canvas_size_ = full_size;
     canvas_matrix(0, 2) += offset_.x();
     canvas_matrix(1, 2) += offset_.y();
     // The nearest border pixel of the stored image beyond it, not black: no step edge along the
