@@ -51,11 +51,12 @@ Status LoadImages(const Sequence& sequence, Progress* progress, std::vector<cv::
 // The box of K's pixel frame where junctions are detected, for the track extension: the image,
 // or with options.undistort_full_view the full-view canvas that ImageUndistorter uses (without its
 // pad), when the lens admits one (DetectionCanvas).
-void DetectionBox(const Camera& camera, const PipelineOptions& options, Eigen::Vector2d* min, Eigen::Vector2d* max) {
+void DetectionBox(const Camera& camera, const PipelineOptions& options, Eigen::Vector2d* min,
+                  Eigen::Vector2d* max) {
   Eigen::Vector2d offset;
   cv::Size size;
-  DetectionCanvas(camera, options.undistort_full_view ? UndistortView::kFullView : UndistortView::kSameSize, 0,
-                  &offset, &size);
+  DetectionCanvas(camera, options.undistort_full_view ? UndistortView::kFullView : UndistortView::kSameSize,
+                  0, &offset, &size);
   *min = -offset;
   *max = Eigen::Vector2d(size.width - 1, size.height - 1) - offset;
 }
@@ -229,7 +230,8 @@ Status Refine(const Sequence& sequence, const PipelineOptions& options, Pipeline
       TrackExtensionReport report;
       Eigen::Vector2d box_min, box_max;
       DetectionBox(calibration.camera, options, &box_min, &box_max);
-      ExtendTracks(calibration.camera.K(), box_min, box_max, CamerasFromBases(world_T_base, calibration.base_T_camera), result->junctions,
+      ExtendTracks(calibration.camera.K(), box_min, box_max,
+                   CamerasFromBases(world_T_base, calibration.base_T_camera), result->junctions,
                    options.track_extension, &result->tracks, landmarks, &report);
       RecordTrackExtension(report, start, result);
     };
@@ -331,8 +333,8 @@ Status ExtendTracksOnRefinedPoses(const Sequence& sequence, const PipelineOption
   TrackExtensionReport report;
   Eigen::Vector2d box_min, box_max;
   DetectionBox(calibration.camera, options, &box_min, &box_max);
-  ExtendTracks(calibration.camera.K(), box_min, box_max, result->world_T_camera_refined, result->junctions, options.track_extension, &result->tracks,
-               &result->landmarks, &report);
+  ExtendTracks(calibration.camera.K(), box_min, box_max, result->world_T_camera_refined, result->junctions,
+               options.track_extension, &result->tracks, &result->landmarks, &report);
   // The changed landmarks as a map of their own (every changed line's point is changed too, or
   // joins it), refined, then put back after the unchanged ones.
   Landmarks& map = result->landmarks;

@@ -84,7 +84,8 @@ bool FullViewIsWellDefined(const Camera& camera, const Eigen::Vector2d& offset, 
   return true;
 }
 
-bool DetectionCanvas(const Camera& camera, UndistortView view, int pad, Eigen::Vector2d* offset, cv::Size* size) {
+bool DetectionCanvas(const Camera& camera, UndistortView view, int pad, Eigen::Vector2d* offset,
+                     cv::Size* size) {
   *offset = Eigen::Vector2d::Zero();
   *size = cv::Size(camera.width, camera.height);
   if (view != UndistortView::kFullView || !camera.HasDistortion()) return false;

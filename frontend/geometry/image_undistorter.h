@@ -98,7 +98,8 @@ bool FullViewIsWellDefined(const Camera& camera, const Eigen::Vector2d& offset, 
 // The canvas ImageUndistorter detects on for `view`, with `pad` px beyond the field of view: the
 // full-view canvas (FullViewCanvas) when view is kFullView, the camera has distortion and
 // FullViewIsWellDefined (returns true); otherwise the image itself, offset zero (returns false).
-bool DetectionCanvas(const Camera& camera, UndistortView view, int pad, Eigen::Vector2d* offset, cv::Size* size);
+bool DetectionCanvas(const Camera& camera, UndistortView view, int pad, Eigen::Vector2d* offset,
+                     cv::Size* size);
 
 // True when undistorted pixel `p` (K's frame) is seen by the stored image at least `margin` px
 // inside its border (always inside without distortion: then only the image rectangle counts).
