@@ -15,6 +15,9 @@
 // 3. End-point model: t offsets of detected segments against the true edge parts (generated) and
 //    the ground-truth segments (VGG), and the maximum-likelihood lambda and mu (FitEndpointModel).
 // Markdown tables go to stdout and to --output.
+#include <gflags/gflags.h>
+#include <glog/logging.h>
+
 #include <algorithm>
 #include <array>
 #include <chrono>
@@ -23,30 +26,27 @@
 #include <cstdlib>
 #include <filesystem>
 #include <map>
+#include <opencv2/core.hpp>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
 #include <sstream>
 #include <string>
 #include <vector>
 
-#include <gflags/gflags.h>
-#include <glog/logging.h>
-#include <opencv2/core.hpp>
-#include <opencv2/imgcodecs.hpp>
-#include <opencv2/imgproc.hpp>
-
 #include "frontend/geometry/image_undistorter.h"
-#include "frontend/segments/undistorted_segments.h"
 #include "frontend/junctions/junction_detector.h"
 #include "frontend/junctions/pair_probability.h"
 #include "frontend/segments/endpoint_fit.h"
 #include "frontend/segments/segment_detector.h"
 #include "frontend/segments/segment_evaluation.h"
+#include "frontend/segments/undistorted_segments.h"
 #include "frontend/sequence/sequence.h"
 #include "frontend/util/atomic_file.h"
 #include "sequences/generator/ground_truth.h"
 #include "sequences/generator/sequence_writer.h"
-#include "sfm_app/evaluation/table_format.h"
 #include "sfm_app/evaluation/junction_evaluation.h"
 #include "sfm_app/evaluation/junction_overlay.h"
+#include "sfm_app/evaluation/table_format.h"
 #include "sfm_app/flags/detector_flags.h"
 
 namespace {
@@ -770,7 +770,8 @@ Status MeasureSequence(const std::string& directory, const std::string& clean_di
       ++s.frames;
       s.has_contrast = s.has_contrast || !contrast.empty();
       auto start = Clock::now();
-      const LineSegments segments = DetectUndistortedSegments(detection_undistorter, image, methods[m].options);
+      const LineSegments segments =
+          DetectUndistortedSegments(detection_undistorter, image, methods[m].options);
       s.segment_ms += Ms(start);
       // The junction step alone is short (under a millisecond); with --junction_repeats its time is
       // the fastest of that many runs on the same segments, which a loaded machine disturbs least.

@@ -11,22 +11,22 @@
 // location to their end-points. Errors are one line on stderr with a non-zero exit: 2 for bad
 // flags, 1 for bad input or an output that cannot be written. Inputs and output directories are
 // checked before anything is written; each file is written atomically.
+#include <gflags/gflags.h>
+#include <glog/logging.h>
+
 #include <cstdio>
 #include <filesystem>
 #include <memory>
+#include <opencv2/core.hpp>
+#include <opencv2/imgcodecs.hpp>
 #include <string>
 #include <vector>
 
-#include <gflags/gflags.h>
-#include <glog/logging.h>
-#include <opencv2/core.hpp>
-#include <opencv2/imgcodecs.hpp>
-
 #include "frontend/geometry/image_undistorter.h"
-#include "frontend/segments/undistorted_segments.h"
 #include "frontend/junctions/junction_detector.h"
 #include "frontend/junctions/junctions_json.h"
 #include "frontend/segments/segment_detector.h"
+#include "frontend/segments/undistorted_segments.h"
 #include "frontend/sequence/sequence.h"
 #include "frontend/util/atomic_file.h"
 #include "sfm_app/evaluation/junction_overlay.h"
@@ -110,7 +110,8 @@ int main(int argc, char** argv) {
                          " but " + FLAGS_camera + " calibrates " + std::to_string(camera.width) + "x" +
                          std::to_string(camera.height));
     }
-    undistorter = std::make_unique<sfm::ImageUndistorter>(camera, interpolation, sfm::UndistortViewFromFlags());
+    undistorter =
+        std::make_unique<sfm::ImageUndistorter>(camera, interpolation, sfm::UndistortViewFromFlags());
     stored = grey;
     grey = sfm::ImageUndistorter(camera, interpolation).Apply(grey);  // the overlay's background
   }
@@ -122,8 +123,9 @@ int main(int argc, char** argv) {
   }
 
   // Detection.
-  const sfm::LineSegments segments = undistorter ? sfm::DetectUndistortedSegments(*undistorter, stored, segment_options)
-                                                 : sfm::DetectLineSegments(grey, segment_options);
+  const sfm::LineSegments segments =
+      undistorter ? sfm::DetectUndistortedSegments(*undistorter, stored, segment_options)
+                  : sfm::DetectLineSegments(grey, segment_options);
   const sfm::Junctions junctions = sfm::DetectJunctions(segments, junction_options);
 
   // Output.

@@ -14,26 +14,26 @@
 // pair numbered, corresponding junction segments in the same colour, unmatched junctions in grey.
 // Errors are one line on stderr and a non-zero exit, with nothing written: 2 for bad flags, 1 for
 // bad input or an output that cannot be written.
+#include <gflags/gflags.h>
+#include <glog/logging.h>
+
 #include <chrono>
-#include <cstdlib>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
+#include <opencv2/core.hpp>
+#include <opencv2/imgcodecs.hpp>
 #include <string>
 #include <vector>
 
-#include <gflags/gflags.h>
-#include <glog/logging.h>
-#include <opencv2/core.hpp>
-#include <opencv2/imgcodecs.hpp>
-
 #include "frontend/geometry/epipolar.h"
 #include "frontend/geometry/image_undistorter.h"
-#include "frontend/segments/undistorted_segments.h"
 #include "frontend/junctions/junction_detector.h"
 #include "frontend/junctions/topology.h"
 #include "frontend/matching/junction_matcher.h"
 #include "frontend/matching/matches_csv.h"
 #include "frontend/segments/segment_detector.h"
+#include "frontend/segments/undistorted_segments.h"
 #include "frontend/sequence/sequence.h"
 #include "frontend/util/atomic_file.h"
 #include "sfm_app/evaluation/match_overlay.h"
@@ -167,8 +167,10 @@ int main(int argc, char** argv) {
   // Detection on the view --undistort_full_view asks for (junctions in K's pixels either way); the
   // match picture shows the undistorted images of the stored size.
   const sfm::ImageUndistorter detector_view(calibration.camera, interpolation, sfm::UndistortViewFromFlags());
-  const sfm::LineSegments segments_a = sfm::DetectUndistortedSegments(detector_view, image_a, segment_options);
-  const sfm::LineSegments segments_b = sfm::DetectUndistortedSegments(detector_view, image_b, segment_options);
+  const sfm::LineSegments segments_a =
+      sfm::DetectUndistortedSegments(detector_view, image_a, segment_options);
+  const sfm::LineSegments segments_b =
+      sfm::DetectUndistortedSegments(detector_view, image_b, segment_options);
   const sfm::Junctions junctions_a = sfm::DetectJunctions(segments_a, junction_options);
   const sfm::Junctions junctions_b = sfm::DetectJunctions(segments_b, junction_options);
   const sfm::TopologyGraph graph_a = sfm::BuildTopologyGraph(junctions_a);

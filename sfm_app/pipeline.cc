@@ -6,9 +6,9 @@
 #include <chrono>
 #include <filesystem>
 #include <memory>
+#include <opencv2/core.hpp>
 #include <string>
 #include <utility>
-#include <opencv2/core.hpp>
 #include <vector>
 
 #include "backend/bundle_adjustment/bundle_adjuster.h"
@@ -64,8 +64,9 @@ void DetectionBox(const Camera& camera, const PipelineOptions& options, Eigen::V
 // Paper section 2: junctions and topology graph of every frame, in undistorted pixels.
 void DetectJunctionsOfAllFrames(const Sequence& sequence, const std::vector<cv::Mat>& images,
                                 const PipelineOptions& options, Progress* progress, PipelineResult* result) {
-  const ImageUndistorter undistorter(sequence.calibration.camera, options.undistort_interpolation,
-                                     options.undistort_full_view ? UndistortView::kFullView : UndistortView::kSameSize);
+  const ImageUndistorter undistorter(
+      sequence.calibration.camera, options.undistort_interpolation,
+      options.undistort_full_view ? UndistortView::kFullView : UndistortView::kSameSize);
   const int n = static_cast<int>(images.size());
   result->junctions.resize(n);
   result->graphs.resize(n);
@@ -83,7 +84,8 @@ void DetectJunctionsOfAllFrames(const Sequence& sequence, const std::vector<cv::
 // odometry poses and the noise model of sequence.yaml. Part of the input's validation: finite but
 // absurd odometry (a coordinate of 1e160) overflows here, and the matcher must not see it.
 Status OdometryPairGeometries(const Sequence& sequence, const std::string& sequence_dir,
-                              std::vector<std::pair<int, int>>* pairs, std::vector<PairGeometry>* geometries) {
+                              std::vector<std::pair<int, int>>* pairs,
+                              std::vector<PairGeometry>* geometries) {
   const Calibration& calibration = sequence.calibration;
   *pairs = FramePairsToMatch(static_cast<int>(sequence.frames.size()));
   geometries->clear();
@@ -104,8 +106,9 @@ Status OdometryPairGeometries(const Sequence& sequence, const std::string& seque
 }
 
 // Paper sections 3-4 on the pairs of OdometryPairGeometries, with their geometry.
-void MatchFramePairs(const std::vector<std::pair<int, int>>& pairs, const std::vector<PairGeometry>& geometries,
-                     const PipelineOptions& options, Progress* progress, PipelineResult* result) {
+void MatchFramePairs(const std::vector<std::pair<int, int>>& pairs,
+                     const std::vector<PairGeometry>& geometries, const PipelineOptions& options,
+                     Progress* progress, PipelineResult* result) {
   for (size_t p = 0; p < pairs.size(); ++p) {
     progress->Update("matching", "pair", static_cast<int>(p) + 1, static_cast<int>(pairs.size()));
     const auto [a, b] = pairs[p];

@@ -73,8 +73,15 @@ class Extender {
            const std::vector<Pose3>& poses, const std::vector<Junctions>& junctions,
            const TrackExtensionOptions& options, std::vector<JunctionTrack>* tracks, Landmarks* landmarks,
            TrackExtensionReport* report)
-      : K_(K), seen_min_(seen_min), seen_max_(seen_max), poses_(poses), junctions_(junctions), options_(options),
-        tracks_(*tracks), landmarks_(*landmarks), report_(*report) {}
+      : K_(K),
+        seen_min_(seen_min),
+        seen_max_(seen_max),
+        poses_(poses),
+        junctions_(junctions),
+        options_(options),
+        tracks_(*tracks),
+        landmarks_(*landmarks),
+        report_(*report) {}
 
   void Run() {
     Index();
@@ -462,14 +469,14 @@ Status TrackExtensionOptions::Check() const {
 void ExtendTracks(const Eigen::Matrix3d& K, int width, int height, const std::vector<Pose3>& world_T_camera,
                   const std::vector<Junctions>& junctions, const TrackExtensionOptions& options,
                   std::vector<JunctionTrack>* tracks, Landmarks* landmarks, TrackExtensionReport* report) {
-  ExtendTracks(K, Eigen::Vector2d(0, 0), Eigen::Vector2d(width - 1, height - 1), world_T_camera, junctions, options,
-               tracks, landmarks, report);
+  ExtendTracks(K, Eigen::Vector2d(0, 0), Eigen::Vector2d(width - 1, height - 1), world_T_camera, junctions,
+               options, tracks, landmarks, report);
 }
 
 void ExtendTracks(const Eigen::Matrix3d& K, const Eigen::Vector2d& seen_min, const Eigen::Vector2d& seen_max,
                   const std::vector<Pose3>& world_T_camera, const std::vector<Junctions>& junctions,
-                  const TrackExtensionOptions& options, std::vector<JunctionTrack>* tracks, Landmarks* landmarks,
-                  TrackExtensionReport* report) {
+                  const TrackExtensionOptions& options, std::vector<JunctionTrack>* tracks,
+                  Landmarks* landmarks, TrackExtensionReport* report) {
   CHECK_EQ(world_T_camera.size(), junctions.size());
   *report = TrackExtensionReport();
   Extender(K, seen_min, seen_max, world_T_camera, junctions, options, tracks, landmarks, report).Run();

@@ -74,7 +74,7 @@ void ExtendTracks(const Eigen::Matrix3d& K, int width, int height, const std::ve
 // (0, 0) .. (width - 1, height - 1).
 void ExtendTracks(const Eigen::Matrix3d& K, const Eigen::Vector2d& seen_min, const Eigen::Vector2d& seen_max,
                   const std::vector<Pose3>& world_T_camera, const std::vector<Junctions>& junctions,
-                  const TrackExtensionOptions& options, std::vector<JunctionTrack>* tracks, Landmarks* landmarks,
-                  TrackExtensionReport* report);
+                  const TrackExtensionOptions& options, std::vector<JunctionTrack>* tracks,
+                  Landmarks* landmarks, TrackExtensionReport* report);
 
 }  // namespace sfm

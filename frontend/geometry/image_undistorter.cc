@@ -1,12 +1,12 @@
 #include "frontend/geometry/image_undistorter.h"
 
 #include <glog/logging.h>
-#include <opencv2/calib3d.hpp>
-#include <opencv2/imgproc.hpp>
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <opencv2/calib3d.hpp>
+#include <opencv2/imgproc.hpp>
 
 namespace sfm {
 
@@ -44,8 +44,10 @@ void FullViewCanvas(const Camera& camera, int pad, Eigen::Vector2d* offset, cv::
   for (int y = 0; y < camera.height; ++y) add(0, y), add(camera.width - 1, y);
   const int left = static_cast<int>(std::ceil(-min_x)) + pad * (min_x < 0);
   const int top = static_cast<int>(std::ceil(-min_y)) + pad * (min_y < 0);
-  const int right = static_cast<int>(std::ceil(max_x - (camera.width - 1))) + pad * (max_x > camera.width - 1);
-  const int bottom = static_cast<int>(std::ceil(max_y - (camera.height - 1))) + pad * (max_y > camera.height - 1);
+  const int right =
+      static_cast<int>(std::ceil(max_x - (camera.width - 1))) + pad * (max_x > camera.width - 1);
+  const int bottom =
+      static_cast<int>(std::ceil(max_y - (camera.height - 1))) + pad * (max_y > camera.height - 1);
   *offset = Eigen::Vector2d(left, top);
   *size = cv::Size(camera.width + left + right, camera.height + top + bottom);
 }
@@ -104,7 +106,8 @@ bool SeenByStoredImage(const Camera& camera, const Eigen::Vector2d& p, double ma
          d.y() <= camera.height - 1 - margin;
 }
 
-ImageUndistorter::ImageUndistorter(const Camera& camera, UndistortInterpolation interpolation, UndistortView view)
+ImageUndistorter::ImageUndistorter(const Camera& camera, UndistortInterpolation interpolation,
+                                   UndistortView view)
     : camera_(camera),
       interpolation_(interpolation == UndistortInterpolation::kCubic      ? cv::INTER_CUBIC
                      : interpolation == UndistortInterpolation::kLanczos4 ? cv::INTER_LANCZOS4
@@ -122,7 +125,8 @@ ImageUndistorter::ImageUndistorter(const Camera& camera, UndistortInterpolation 
     // A strong barrel lens given by k1 alone folds back before the stored image's corners: the
     // canvas would mirror the image and grow without bound (k1 = -0.25, k2 = 0 on 640 x 480 gave
     // 51258 x 43612 px). The same-size view is what this calibration can describe.
-    LOG_FIRST_N(WARNING, 1) << "lens distortion (k1 " << camera.distortion[0] << ", k2 " << camera.distortion[1]
+    LOG_FIRST_N(WARNING, 1) << "lens distortion (k1 " << camera.distortion[0] << ", k2 "
+                            << camera.distortion[1]
                             << ") is not one-to-one over the stored image's field of view: detecting on the "
                                "undistorted image of the stored size";
   } else if (view == UndistortView::kFullView) {
@@ -135,8 +139,8 @@ ImageUndistorter::ImageUndistorter(const Camera& camera, UndistortInterpolation 
     border_mode_ = cv::BORDER_REPLICATE;
   }
   // Float maps: the fixed-point CV_16SC2 maps quantise to 1/32 px.
-  cv::initUndistortRectifyMap(camera_matrix, coefficients, cv::noArray(), canvas_matrix, canvas_size_, CV_32FC1,
-                              map_x_, map_y_);
+  cv::initUndistortRectifyMap(camera_matrix, coefficients, cv::noArray(), canvas_matrix, canvas_size_,
+                              CV_32FC1, map_x_, map_y_);
 }
 
 cv::Mat ImageUndistorter::Apply(const cv::Mat& image) const {

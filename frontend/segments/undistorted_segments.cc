@@ -5,7 +5,8 @@
 
 namespace sfm {
 
-void ClipSegmentsToStoredView(const Camera& camera, double margin, double min_length, LineSegments* segments) {
+void ClipSegmentsToStoredView(const Camera& camera, double margin, double min_length,
+                              LineSegments* segments) {
   LineSegments kept;
   kept.reserve(segments->size());
   for (const LineSegment& segment : *segments) {

@@ -87,7 +87,8 @@ TEST(FullViewTest, ALensThatFoldsBackFallsBackToTheSameSizeView) {
   folding.distortion = {-0.25, 0, 0, 0, 0};
   EXPECT_NEAR(RadialFoldRadius(folding), std::sqrt(4.0 / 3.0), 1e-3);
   EXPECT_TRUE(std::isinf(RadialFoldRadius(BenchmarkLens())));
-  const ImageUndistorter benchmark(BenchmarkLens(), UndistortInterpolation::kLinear, UndistortView::kFullView);
+  const ImageUndistorter benchmark(BenchmarkLens(), UndistortInterpolation::kLinear,
+                                   UndistortView::kFullView);
   EXPECT_TRUE(benchmark.FullView());
   const ImageUndistorter fallback(folding, UndistortInterpolation::kLinear, UndistortView::kFullView);
   EXPECT_FALSE(fallback.FullView());
@@ -106,9 +107,8 @@ TEST(FullViewTest, FindsAJunctionBeyondTheImageSide) {
       StoredImage(camera, [&](const Eigen::Vector2d& p) { return p.x() > corner.x() && p.y() > corner.y(); });
   auto nearest = [&](UndistortView view) {
     const ImageUndistorter undistorter(camera, UndistortInterpolation::kLinear, view);
-    const Junctions junctions =
-        DetectJunctions(DetectUndistortedSegments(undistorter, stored, SegmentDetectorOptions()),
-                        JunctionDetectorOptions());
+    const Junctions junctions = DetectJunctions(
+        DetectUndistortedSegments(undistorter, stored, SegmentDetectorOptions()), JunctionDetectorOptions());
     double best = 1e9;
     for (const Junction& j : junctions) best = std::min(best, (j.location - corner).norm());
     return best;
@@ -200,8 +200,9 @@ TEST(FullViewTest, ClipsToTheSeenRegion) {
 TEST(FullViewTest, WithoutDistortionTheSameSegments) {
   Camera camera = BenchmarkLens();
   camera.distortion = {0, 0, 0, 0, 0};
-  const cv::Mat stored = StoredImage(
-      camera, [](const Eigen::Vector2d& p) { return p.x() > 100 && p.y() > 80 && p.x() + 0.3 * p.y() < 500; });
+  const cv::Mat stored = StoredImage(camera, [](const Eigen::Vector2d& p) {
+    return p.x() > 100 && p.y() > 80 && p.x() + 0.3 * p.y() < 500;
+  });
   const ImageUndistorter full(camera, UndistortInterpolation::kLinear, UndistortView::kFullView);
   const LineSegments a = DetectUndistortedSegments(full, stored, SegmentDetectorOptions());
   const LineSegments b = DetectLineSegments(stored, SegmentDetectorOptions());
