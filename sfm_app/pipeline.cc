@@ -48,6 +48,11 @@ Status LoadImages(const Sequence& sequence, Progress* progress, std::vector<cv::
   return Status::Ok();
 }
 
+// What the frames are undistorted onto (PipelineOptions::undistort_full_view).
+UndistortView DetectionView(const PipelineOptions& options) {
+  return options.undistort_full_view ? UndistortView::kFullView : UndistortView::kSameSize;
+}
+
 // The box of K's pixel frame where junctions are detected, for the track extension: the image,
 // or with options.undistort_full_view the full-view canvas that ImageUndistorter uses (without its
 // pad), when the lens admits one (DetectionCanvas).
@@ -55,8 +60,7 @@ void DetectionBox(const Camera& camera, const PipelineOptions& options, Eigen::V
                   Eigen::Vector2d* max) {
   Eigen::Vector2d offset;
   cv::Size size;
-  DetectionCanvas(camera, options.undistort_full_view ? UndistortView::kFullView : UndistortView::kSameSize,
-                  0, &offset, &size);
+  DetectionCanvas(camera, DetectionView(options), 0, &offset, &size);
   *min = -offset;
   *max = Eigen::Vector2d(size.width - 1, size.height - 1) - offset;
 }
@@ -64,9 +68,8 @@ void DetectionBox(const Camera& camera, const PipelineOptions& options, Eigen::V
 // Paper section 2: junctions and topology graph of every frame, in undistorted pixels.
 void DetectJunctionsOfAllFrames(const Sequence& sequence, const std::vector<cv::Mat>& images,
                                 const PipelineOptions& options, Progress* progress, PipelineResult* result) {
-  const ImageUndistorter undistorter(
-      sequence.calibration.camera, options.undistort_interpolation,
-      options.undistort_full_view ? UndistortView::kFullView : UndistortView::kSameSize);
+  const ImageUndistorter undistorter(sequence.calibration.camera, options.undistort_interpolation,
+                                     DetectionView(options));
   const int n = static_cast<int>(images.size());
   result->junctions.resize(n);
   result->graphs.resize(n);

@@ -72,6 +72,11 @@ AlliedRivals RivalsOnOneArm(const Junctions& a, const Junctions& b) {
   };
 }
 
+// The allied-rivals test rule (38) uses with these options: RivalsOnOneArm, or none.
+AlliedRivals AlliedRivalsFor(const MatchingOptions& options, const Junctions& a, const Junctions& b) {
+  return options.match_rivals_on_one_arm ? RivalsOnOneArm(a, b) : AlliedRivals();
+}
+
 // depth_range (may be null): a pair it rejects is unmatched, for rule (38) and for sigma's
 // topology support alike.
 std::vector<JunctionMatch> Match(const Junctions& a, const TopologyGraph& graph_a, const Junctions& b,
@@ -102,7 +107,7 @@ std::vector<JunctionMatch> Match(const Junctions& a, const TopologyGraph& graph_
   }
   // Step 2: the mutual test of (38).
   return SelectMatches(candidates, num_a, num_b, options.tau1, options.tau2,
-                       options.match_rivals_on_one_arm ? RivalsOnOneArm(a, b) : AlliedRivals());
+                       AlliedRivalsFor(options, a, b));
 }
 
 // Partial correspondence among the junctions `full` left unmatched (docs/matching.md, "Partial
@@ -201,7 +206,7 @@ std::vector<JunctionMatch> MatchPartial(const Junctions& a, const TopologyGraph&
   std::vector<JunctionMatch> partial;
   for (const JunctionMatch& match :
        SelectMatches(candidates, static_cast<int>(a.size()), static_cast<int>(b.size()), options.tau1,
-                     options.tau2, options.match_rivals_on_one_arm ? RivalsOnOneArm(a, b) : AlliedRivals())) {
+                     options.tau2, AlliedRivalsFor(options, a, b))) {
     if (match.Partial()) partial.push_back(match);
   }
   return partial;
