@@ -52,9 +52,9 @@ struct PipelineOptions {
   RetriangulateRefined retriangulate_refined = RetriangulateRefined::kOff;
   // Which re-triangulated landmarks join the map (landmark_merge.h).
   RetriangulatedLandmarks retriangulated_landmarks = RetriangulatedLandmarks::kAddNew;
-  // After the bundle adjustment, extend and merge the tracks by projecting each point landmark into
-  // the frames its track misses (track_extension.h), then refine the landmarks that changed on the
-  // refined poses held fixed (docs/tracks_and_triangulation.md, "Track extension on the refined poses").
+  // Extend and merge the tracks by projecting each point landmark into the frames its track misses
+  // (track_extension.h), at the stage extend_tracks_stage says (by default inside the bundle
+  // adjustment, TrackExtensionStage above; docs/tracks_and_triangulation.md, "Track extension").
   bool extend_tracks = true;
   TrackExtensionStage extend_tracks_stage = TrackExtensionStage::kInAdjustment;
   TrackExtensionOptions track_extension;
