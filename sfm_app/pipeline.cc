@@ -13,6 +13,9 @@
 
 #include "backend/bundle_adjustment/bundle_adjuster.h"
 #include "backend/bundle_adjustment/pose_covariance.h"
+#include "backend/initialization/odometry_noise_estimate.h"
+#include "backend/initialization/pose_graph.h"
+#include "backend/initialization/visual_constraints.h"
 #include "backend/metrics/drift.h"
 #include "backend/triangulation/triangulate_tracks.h"
 #include "frontend/geometry/image_undistorter.h"
@@ -87,7 +90,7 @@ void DetectJunctionsOfAllFrames(const Sequence& sequence, const std::vector<cv::
 // odometry poses and the noise model of sequence.yaml. Part of the input's validation: finite but
 // absurd odometry (a coordinate of 1e160) overflows here, and the matcher must not see it.
 Status OdometryPairGeometries(const Sequence& sequence, const std::string& sequence_dir,
-                              std::vector<std::pair<int, int>>* pairs,
+                              const OdometryNoise& noise, std::vector<std::pair<int, int>>* pairs,
                               std::vector<PairGeometry>* geometries) {
   const Calibration& calibration = sequence.calibration;
   *pairs = FramePairsToMatch(static_cast<int>(sequence.frames.size()));
@@ -96,8 +99,7 @@ Status OdometryPairGeometries(const Sequence& sequence, const std::string& seque
   for (const auto& [a, b] : *pairs) {
     PairGeometry geometry = PairGeometryFromOdometry(
         calibration.camera.K(), calibration.base_T_camera, sequence.frames[a].world_T_base_odometry,
-        sequence.frames[b].world_T_base_odometry, calibration.odometry_noise.translation_sigma,
-        calibration.odometry_noise.rotation_sigma, b - a);
+        sequence.frames[b].world_T_base_odometry, noise.translation_sigma, noise.rotation_sigma, b - a);
     if (!(geometry.camera2_T_camera1.translation.allFinite() && geometry.covariance.allFinite())) {
       return Status::Error((std::filesystem::path(sequence_dir) / "odometry.txt").string() +
                            ": the poses of frames " + std::to_string(a) + " and " + std::to_string(b) +
@@ -108,10 +110,20 @@ Status OdometryPairGeometries(const Sequence& sequence, const std::string& seque
   return Status::Ok();
 }
 
+std::vector<Pose3> OdometryBasePoses(const Sequence& sequence);
+std::vector<Pose3> CamerasFromBases(const std::vector<Pose3>& world_T_base, const Pose3& base_T_camera);
+
+// A measured odometry rotation noise this many times the declared one widens the matcher's gates
+// (MeasureOdometryNoise).
+constexpr double kRematchNoiseFactor = 1.5;
+
 // Paper sections 3-4 on the pairs of OdometryPairGeometries, with their geometry.
+// `diagnostics` receives each pair's refinement, in the order of `pairs`.
 void MatchFramePairs(const std::vector<std::pair<int, int>>& pairs,
                      const std::vector<PairGeometry>& geometries, const PipelineOptions& options,
-                     Progress* progress, PipelineResult* result) {
+                     Progress* progress, PipelineResult* result, std::vector<MatchingDiagnostics>* diagnostics) {
+  result->pairs.clear();
+  diagnostics->assign(pairs.size(), MatchingDiagnostics());
   for (size_t p = 0; p < pairs.size(); ++p) {
     progress->Update("matching", "pair", static_cast<int>(p) + 1, static_cast<int>(pairs.size()));
     const auto [a, b] = pairs[p];
@@ -119,10 +131,78 @@ void MatchFramePairs(const std::vector<std::pair<int, int>>& pairs,
     matches.frame_a = a;
     matches.frame_b = b;
     matches.matches = MatchJunctions(result->junctions[a], result->graphs[a], result->junctions[b],
-                                     result->graphs[b], geometries[p], options.matching);
+                                     result->graphs[b], geometries[p], options.matching, &(*diagnostics)[p]);
     result->pairs.push_back(std::move(matches));
   }
   progress->Finish();
+}
+
+// The odometry's rotation noise measured against the relative rotations the matches fit
+// (docs/initialization.md, "Odometry noise from the data"). When the images say the odometry
+// turns more erratically than declared, its gates were too narrow for the true matches: the pairs
+// are matched again with the measured noise. The pose graph and the bundle adjustment weigh the
+// odometry by the measured noise in every case.
+Status MeasureOdometryNoise(const Sequence& sequence, const PipelineOptions& options,
+                            const std::vector<std::pair<int, int>>& pairs, Progress* progress,
+                            std::vector<PairGeometry>* geometries, std::vector<MatchingDiagnostics>* diagnostics,
+                            PipelineResult* result) {
+  InitializationSummary& summary = result->initialization;
+  summary.ran = true;
+  summary.declared = sequence.calibration.odometry_noise;
+  summary.used = summary.declared;
+  const Pose3& base_T_camera = sequence.calibration.base_T_camera;
+  const std::vector<Pose3> odometry = OdometryBasePoses(sequence);
+  summary.rotation = EstimateOdometryRotationNoise(
+      odometry, base_T_camera, VisualRotationSamples(pairs, *diagnostics, options.matching.refine_min_inliers));
+  if (!summary.rotation.valid) {
+    LOG(INFO) << "odometry noise: too few image pairs with a relative pose (" << summary.rotation.steps
+              << ") to measure it; the declared noise is used";
+    return Status::Ok();
+  }
+  const double measured = summary.rotation.EffectiveSigma();
+  LOG(INFO) << "odometry rotation noise from " << summary.rotation.steps << " image pairs: " << measured
+            << " rad per frame (bias " << summary.rotation.bias.transpose() << ", spread " << summary.rotation.sigma
+            << "); declared " << summary.declared.rotation_sigma;
+  if (sequence.calibration.odometry_noise_given &&
+      DeclaredSigmaContradicted(summary.declared.rotation_sigma, measured)) {
+    LOG(WARNING) << options.sequence_dir << "/sequence.yaml: odometry_rotation_sigma " << summary.declared.rotation_sigma
+                 << " rad per frame, but the images measure " << measured << "; the measured value is used";
+  }
+  summary.used.rotation_sigma = measured;
+  if (!(measured > kRematchNoiseFactor * summary.declared.rotation_sigma)) return Status::Ok();
+  summary.rematched = true;
+  LOG(INFO) << "matching again with the measured odometry noise";
+  std::vector<std::pair<int, int>> same_pairs;
+  SFM_RETURN_IF_ERROR(
+      OdometryPairGeometries(sequence, options.sequence_dir, summary.used, &same_pairs, geometries));
+  MatchFramePairs(pairs, *geometries, options, progress, result, diagnostics);
+  return Status::Ok();
+}
+
+// The initial trajectory: the images' relative poses and the odometry fused by their
+// uncertainties (SolvePoseGraph), before triangulation.
+Status InitialTrajectory(const Sequence& sequence, const PipelineOptions& options,
+                         const std::vector<std::pair<int, int>>& pairs, const std::vector<PairGeometry>& geometries,
+                         const std::vector<MatchingDiagnostics>& diagnostics, PipelineResult* result) {
+  const Clock::time_point start = Clock::now();
+  InitializationSummary& summary = result->initialization;
+  const std::vector<RelativePoseConstraint> constraints =
+      VisualConstraints(pairs, geometries, diagnostics, &summary.pairs);
+  std::vector<Pose3> world_T_base;
+  SFM_RETURN_IF_ERROR(SolvePoseGraph(OdometryBasePoses(sequence), sequence.calibration.base_T_camera, summary.used,
+                                     options.bundle_adjustment_options, constraints, PoseGraphOptions(),
+                                     &world_T_base, &summary.pose_graph));
+  result->world_T_camera_initial = CamerasFromBases(world_T_base, sequence.calibration.base_T_camera);
+  summary.seconds = SecondsSince(start);
+  const VisualConstraintCounts& counts = summary.pairs;
+  LOG(INFO) << "initial trajectory: " << counts.constraints << " of " << counts.pairs
+            << " pairs gave a relative pose (no pose: " << counts.too_few_matches << " too few matches, "
+            << counts.too_few_inliers << " too few inliers, " << counts.inconsistent_with_prior
+            << " beyond the odometry's gate, " << counts.no_information << " without information); pose graph "
+            << summary.pose_graph.iterations << " iterations, cost " << summary.pose_graph.initial_cost << " -> "
+            << summary.pose_graph.final_cost << ", " << summary.pose_graph.constraints_rejected
+            << " pairs beyond 3 sigma; " << summary.seconds << " s";
+  return Status::Ok();
 }
 
 // world_T_base of every frame's odometry.
@@ -154,7 +234,7 @@ std::vector<Pose3> CameraPoses(const Sequence& sequence, bool groundtruth) {
   return poses;
 }
 
-// Tracks, then 3D points and lines from the odometry poses.
+// Tracks, then 3D points and lines on the initial trajectory.
 void Reconstruct(const Sequence& sequence, const PipelineOptions& options, PipelineResult* result) {
   TrackBuildReport track_report;
   result->tracks = BuildTracks(result->junctions, result->pairs, &track_report);
@@ -163,7 +243,7 @@ void Reconstruct(const Sequence& sequence, const PipelineOptions& options, Pipel
             << " rejected as inconsistent, " << track_report.skipped_partial_occlusion
             << " partial matches at a T or X not joined)";
   TriangulationReport triangulation_report;
-  result->landmarks = TriangulateTracks(sequence.calibration.camera.K(), result->world_T_camera_odometry,
+  result->landmarks = TriangulateTracks(sequence.calibration.camera.K(), result->world_T_camera_initial,
                                         result->junctions, result->tracks, options.triangulation,
                                         &triangulation_report);
   result->unobservable_lines = triangulation_report.Count(LineStatus::kUnobservable);
@@ -220,7 +300,7 @@ void RecordTrackExtension(const TrackExtensionReport& report, Clock::time_point 
             << summary.seconds << " s";
 }
 
-// Bundle adjustment from the odometry: refined poses and landmarks.
+// Bundle adjustment from the initial trajectory, the odometry its prior: refined poses and landmarks.
 Status Refine(const Sequence& sequence, const PipelineOptions& options, PipelineResult* result) {
   std::vector<Pose3> world_T_base_refined;
   BundleAdjustmentSummary summary;
@@ -242,9 +322,12 @@ Status Refine(const Sequence& sequence, const PipelineOptions& options, Pipeline
       RecordTrackExtension(report, start, result);
     };
   }
-  SFM_RETURN_IF_ERROR(BundleAdjust(sequence.calibration, OdometryBasePoses(sequence),
-                                   options.bundle_adjustment_options, &result->landmarks, &world_T_base_refined,
-                                   &summary, extend));
+  Calibration calibration = sequence.calibration;
+  calibration.odometry_noise = result->initialization.used;
+  SFM_RETURN_IF_ERROR(BundleAdjust(calibration, OdometryBasePoses(sequence),
+                                   BasesFromCameras(result->world_T_camera_initial, calibration.base_T_camera),
+                                   /*odometry_scale_start=*/1, options.bundle_adjustment_options, &result->landmarks,
+                                   &world_T_base_refined, &summary, extend));
   result->unobservable_lines += summary.lines_unobservable;
   result->bundle_adjustment = summary;
   result->world_T_camera_refined = CamerasFromBases(world_T_base_refined, sequence.calibration.base_T_camera);
@@ -260,6 +343,29 @@ Status Refine(const Sequence& sequence, const PipelineOptions& options, Pipeline
             << (summary.floor_prior_used ? "; odometry scale " + std::to_string(summary.odometry_scale) : "");
   LogFloorLandmarks("first", *result);
   return Status::Ok();
+}
+
+// The odometry's distance noise and scale error measured against the refined trajectory's step
+// lengths (docs/initialization.md, "Odometry noise from the data"): reported, with a warning when
+// the declared translation sigma contradicts it.
+void MeasureOdometryTranslationNoise(const Sequence& sequence, const PipelineOptions& options,
+                                     PipelineResult* result) {
+  InitializationSummary& summary = result->initialization;
+  summary.translation = EstimateOdometryTranslationNoise(
+      OdometryBasePoses(sequence),
+      BasesFromCameras(result->world_T_camera_refined, sequence.calibration.base_T_camera),
+      options.bundle_adjustment_options.odometry_min_distance_m);
+  if (!summary.translation.valid) return;
+  const double measured = summary.translation.EffectiveSigma();
+  LOG(INFO) << "odometry translation noise from " << summary.translation.steps << " refined steps: scale error "
+            << summary.translation.scale_error << ", distance noise " << summary.translation.distance_sigma
+            << " of the distance; declared " << summary.declared.translation_sigma;
+  if (sequence.calibration.odometry_noise_given &&
+      DeclaredSigmaContradicted(summary.declared.translation_sigma, measured)) {
+    LOG(WARNING) << options.sequence_dir << "/sequence.yaml: odometry_translation_sigma "
+                 << summary.declared.translation_sigma << " of the distance, but the refined trajectory measures "
+                 << measured;
+  }
 }
 
 // A second bundle adjustment of the changed map (`what` says how, for the log), starting from the
@@ -413,7 +519,9 @@ std::shared_ptr<const PoseCovariance> RefinedPoseCovariance(const Sequence& sequ
   const std::vector<Pose3> odometry = OdometryBasePoses(sequence);
   const std::vector<Pose3> refined = BasesFromCameras(poses, sequence.calibration.base_T_camera);
   auto covariance = std::make_shared<PoseCovariance>();
-  const Status status = ComputePoseCovariance(sequence.calibration, odometry, refined, result.landmarks,
+  Calibration calibration = sequence.calibration;
+  calibration.odometry_noise = result.initialization.used;
+  const Status status = ComputePoseCovariance(calibration, odometry, refined, result.landmarks,
                                               options.bundle_adjustment_options, sigma_px, covariance.get());
   if (!status.ok()) {
     LOG(WARNING) << status.message() << "; the wireframe keeps the random-walk pose error model";
@@ -435,7 +543,7 @@ std::shared_ptr<const PoseCovariance> RefinedPoseCovariance(const Sequence& sequ
 // judged on the final poses; bundle adjustment and the COLMAP model keep every landmark.
 void SelectWireframe(const Sequence& sequence, const PipelineOptions& options, PipelineResult* result) {
   const std::vector<Pose3>& poses =
-      result->world_T_camera_refined.empty() ? result->world_T_camera_odometry : result->world_T_camera_refined;
+      result->world_T_camera_refined.empty() ? result->world_T_camera_initial : result->world_T_camera_refined;
   const WireframeOptions& wireframe = options.triangulation.wireframe;
   const Eigen::Matrix3d K = sequence.calibration.camera.K();
   PoseDrift drift = WireframePoseDrift(wireframe, poses);
@@ -489,7 +597,8 @@ Status RunPipeline(const PipelineOptions& options, PipelineResult* result_out) {
   SFM_RETURN_IF_ERROR(LoadImages(sequence, &progress, &images));
   std::vector<std::pair<int, int>> pairs;
   std::vector<PairGeometry> pair_geometries;
-  SFM_RETURN_IF_ERROR(OdometryPairGeometries(sequence, options.sequence_dir, &pairs, &pair_geometries));
+  SFM_RETURN_IF_ERROR(OdometryPairGeometries(sequence, options.sequence_dir, sequence.calibration.odometry_noise,
+                                             &pairs, &pair_geometries));
   SFM_RETURN_IF_ERROR(EnsureWritableDirectory(options.output_dir));
 
   PipelineResult result;
@@ -501,12 +610,17 @@ Status RunPipeline(const PipelineOptions& options, PipelineResult* result_out) {
   DetectJunctionsOfAllFrames(sequence, images, options, &progress, &result);
   result.times.frontend = SecondsSince(stage_start);
   stage_start = Clock::now();
-  MatchFramePairs(pairs, pair_geometries, options, &progress, &result);
+  std::vector<MatchingDiagnostics> diagnostics;
+  MatchFramePairs(pairs, pair_geometries, options, &progress, &result, &diagnostics);
+  SFM_RETURN_IF_ERROR(
+      MeasureOdometryNoise(sequence, options, pairs, &progress, &pair_geometries, &diagnostics, &result));
   result.times.matching = SecondsSince(stage_start);
   stage_start = Clock::now();
+  SFM_RETURN_IF_ERROR(InitialTrajectory(sequence, options, pairs, pair_geometries, diagnostics, &result));
   Reconstruct(sequence, options, &result);
   if (options.bundle_adjustment) {
     SFM_RETURN_IF_ERROR(Refine(sequence, options, &result));
+    MeasureOdometryTranslationNoise(sequence, options, &result);
     if (options.extend_tracks && (options.extend_tracks_stage == TrackExtensionStage::kAfterStructure ||
                                   options.extend_tracks_stage == TrackExtensionStage::kAfterResolve)) {
       SFM_RETURN_IF_ERROR(ExtendTracksOnRefinedPoses(sequence, options, &result));

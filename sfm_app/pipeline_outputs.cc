@@ -164,6 +164,41 @@ std::optional<double> Sim3Scale(const std::optional<DriftMetrics>& drift) {
   return drift ? std::optional<double>(drift->sim3_scale) : std::nullopt;
 }
 
+std::string InitializationJson(const PipelineResult& result) {
+  const InitializationSummary& summary = result.initialization;
+  if (!summary.ran) return "null";
+  const VisualConstraintCounts& pairs = summary.pairs;
+  const OdometryRotationEstimate& rotation = summary.rotation;
+  const OdometryTranslationEstimate& translation = summary.translation;
+  std::ostringstream json;
+  json << "{\"pairs\": " << pairs.pairs << ", \"pairs_with_pose\": " << pairs.constraints
+       << ", \"pairs_without_pose\": {\"too_few_matches\": " << pairs.too_few_matches
+       << ", \"too_few_inliers\": " << pairs.too_few_inliers
+       << ", \"beyond_odometry_gate\": " << pairs.inconsistent_with_prior
+       << ", \"no_information\": " << pairs.no_information << "}"
+       << ", \"odometry_noise_declared\": {\"translation_sigma\": " << JsonNumber(summary.declared.translation_sigma)
+       << ", \"rotation_sigma_rad\": " << JsonNumber(summary.declared.rotation_sigma) << "}"
+       << ", \"odometry_noise_used\": {\"translation_sigma\": " << JsonNumber(summary.used.translation_sigma)
+       << ", \"rotation_sigma_rad\": " << JsonNumber(summary.used.rotation_sigma) << "}"
+       << ", \"odometry_rotation_measured\": "
+       << (rotation.valid ? "{\"pairs\": " + std::to_string(rotation.steps) +
+                                ", \"sigma_rad\": " + JsonNumber(rotation.sigma) + ", \"bias_rad\": [" +
+                                JsonNumber(rotation.bias.x()) + ", " + JsonNumber(rotation.bias.y()) + ", " +
+                                JsonNumber(rotation.bias.z()) + "]}"
+                          : std::string("null"))
+       << ", \"odometry_translation_measured\": "
+       << (translation.valid ? "{\"steps\": " + std::to_string(translation.steps) +
+                                   ", \"scale_error\": " + JsonNumber(translation.scale_error) +
+                                   ", \"distance_sigma\": " + JsonNumber(translation.distance_sigma) + "}"
+                             : std::string("null"))
+       << ", \"rematched\": " << (summary.rematched ? "true" : "false")
+       << ", \"pose_graph\": {\"constraints\": " << summary.pose_graph.constraints
+       << ", \"constraints_beyond_3_sigma\": " << summary.pose_graph.constraints_rejected
+       << ", \"iterations\": " << summary.pose_graph.iterations << "}"
+       << ", \"time_s\": " << JsonNumber(summary.seconds) << "}";
+  return json.str();
+}
+
 }  // namespace
 
 std::string MetricsJson(const Sequence& sequence, const PipelineResult& result) {
@@ -199,6 +234,7 @@ std::string MetricsJson(const Sequence& sequence, const PipelineResult& result) 
        << "  \"time_s\": {\"frontend\": " << JsonNumber(times.frontend)
        << ", \"matching\": " << JsonNumber(times.matching) << ", \"backend\": " << JsonNumber(times.backend)
        << ", \"total\": " << JsonNumber(times.total) << "},\n"
+       << "  \"initialization\": " << InitializationJson(result) << ",\n"
        << "  \"floor_prior\": " << FloorPriorJson(result, refined) << ",\n"
        << "  \"odometry_rotation_bias_rad\": " << RotationBiasJson(result, refined) << ",\n"
        << "  \"retriangulation\": " << RetriangulationJson(result) << ",\n"

@@ -5,6 +5,9 @@
 #include <vector>
 
 #include "backend/bundle_adjustment/bundle_adjustment_options.h"
+#include "backend/initialization/odometry_noise_estimate.h"
+#include "backend/initialization/pose_graph.h"
+#include "backend/initialization/visual_constraints.h"
 #include "backend/metrics/drift.h"
 #include "backend/triangulation/landmarks.h"
 #include "backend/triangulation/wireframe_selection.h"
@@ -38,6 +41,20 @@ struct TrackExtensionSummary {
   double seconds = 0;            // the step's own time (extension and refinement)
 };
 
+// The initial trajectory (docs/initialization.md): the odometry's noise measured against the
+// images, and the pose graph that fuses the images' relative poses with the odometry.
+struct InitializationSummary {
+  bool ran = false;
+  VisualConstraintCounts pairs;            // of the matching whose geometry the run kept
+  OdometryRotationEstimate rotation;       // from the images' relative rotations
+  OdometryTranslationEstimate translation; // from the refined trajectory's step lengths
+  OdometryNoise declared;                  // sequence.yaml's (or the default)
+  OdometryNoise used;                      // what the matcher's gates and the priors were weighted by
+  bool rematched = false;                  // matching ran again with the measured noise
+  PoseGraphSummary pose_graph;
+  double seconds = 0;
+};
+
 struct PipelineResult {
   std::vector<Junctions> junctions;       // per frame
   std::vector<TopologyGraph> graphs;      // per frame
@@ -49,7 +66,9 @@ struct PipelineResult {
   WireframeSelectionReport wireframe_selection;
   int unobservable_lines = 0;             // segment tracks dropped as parallel to the motion
   std::vector<Pose3> world_T_camera_odometry;
+  std::vector<Pose3> world_T_camera_initial;               // the pose graph's (InitializationSummary)
   std::vector<Pose3> world_T_camera_refined;               // empty until bundle adjustment ran
+  InitializationSummary initialization;
   BundleAdjustmentSummary bundle_adjustment;               // when it ran (floor prior, counts)
   RetriangulationSummary retriangulation;
   TrackExtensionSummary track_extension;

@@ -1,0 +1,86 @@
+#include "backend/initialization/pose_graph.h"
+
+#include <ceres/ceres.h>
+
+#include <Eigen/Eigenvalues>
+#include <string>
+
+#include "backend/bundle_adjustment/odometry_prior_cost.h"
+#include "backend/bundle_adjustment/pose_parameters.h"
+#include "backend/initialization/relative_pose_cost.h"
+
+namespace sfm {
+namespace {
+
+// S with S^T S = information, from its eigen-decomposition (negative eigenvalues, rounding of a
+// difference of two information matrices, count as zero).
+Eigen::Matrix<double, 6, 6> SquareRoot(const Eigen::Matrix<double, 6, 6>& information) {
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, 6, 6>> eigen(
+      0.5 * (information + information.transpose()));
+  const Eigen::Matrix<double, 6, 1> roots = eigen.eigenvalues().cwiseMax(0).cwiseSqrt();
+  return roots.asDiagonal() * eigen.eigenvectors().transpose();
+}
+
+}  // namespace
+
+Status SolvePoseGraph(const std::vector<Pose3>& world_T_base_odometry, const Pose3& base_T_camera,
+                      const OdometryNoise& odometry_noise, const BundleAdjustmentOptions& adjustment,
+                      const std::vector<RelativePoseConstraint>& constraints, const PoseGraphOptions& options,
+                      std::vector<Pose3>* world_T_base, PoseGraphSummary* summary) {
+  const int n = static_cast<int>(world_T_base_odometry.size());
+  *summary = PoseGraphSummary();
+  *world_T_base = world_T_base_odometry;
+  if (n < 2 || constraints.empty()) return Status::Ok();
+
+  std::vector<PoseParameters> poses;
+  poses.reserve(n);
+  for (const Pose3& pose : world_T_base_odometry) poses.push_back(PoseParameters::FromPose(pose));
+
+  ceres::Problem problem;
+  for (int k = 0; k + 1 < n; ++k) {
+    const Pose3 step = world_T_base_odometry[k].Inverse() * world_T_base_odometry[k + 1];
+    const OdometryStepSigmas sigmas = OdometryStepSigmasFor(step.translation.norm(), odometry_noise, adjustment);
+    problem.AddResidualBlock(
+        OdometryPriorCost::Create(step, odometry_noise.rotation_sigma, sigmas.along_m, sigmas.across_m), nullptr,
+        poses[k].rotation.data(), poses[k].translation.data(), poses[k + 1].rotation.data(),
+        poses[k + 1].translation.data());
+  }
+  std::vector<ceres::ResidualBlockId> pair_blocks;
+  for (const RelativePoseConstraint& constraint : constraints) {
+    const int i = constraint.frame_i, j = constraint.frame_j;
+    if (!(0 <= i && i < j && j < n)) {
+      return Status::Error("pose graph: constraint between frames " + std::to_string(i) + " and " +
+                           std::to_string(j) + " out of range");
+    }
+    pair_blocks.push_back(problem.AddResidualBlock(
+        RelativePoseCost::Create(base_T_camera, constraint.camera_j_T_camera_i, SquareRoot(constraint.information)),
+        new ceres::CauchyLoss(options.loss_scale_sigmas), poses[i].rotation.data(), poses[i].translation.data(),
+        poses[j].rotation.data(), poses[j].translation.data()));
+  }
+  for (PoseParameters& pose : poses) problem.SetManifold(pose.rotation.data(), new ceres::EigenQuaternionManifold);
+  problem.SetParameterBlockConstant(poses[0].rotation.data());
+  problem.SetParameterBlockConstant(poses[0].translation.data());
+
+  ceres::Solver::Options solver;
+  solver.linear_solver_type = ceres::SPARSE_NORMAL_CHOLESKY;
+  solver.max_num_iterations = options.max_iterations;
+  solver.num_threads = 1;
+  ceres::Solver::Summary report;
+  ceres::Solve(solver, &problem, &report);
+  if (!report.IsSolutionUsable()) return Status::Error("pose graph: " + report.message);
+
+  summary->constraints = static_cast<int>(constraints.size());
+  summary->initial_cost = report.initial_cost;
+  summary->final_cost = report.final_cost;
+  summary->iterations = static_cast<int>(report.iterations.size());
+  for (ceres::ResidualBlockId block : pair_blocks) {
+    double cost = 0;
+    Eigen::Matrix<double, 6, 1> residuals;
+    problem.EvaluateResidualBlock(block, /*apply_loss_function=*/false, &cost, residuals.data(), nullptr);
+    if (residuals.norm() > options.loss_scale_sigmas) ++summary->constraints_rejected;
+  }
+  for (int k = 0; k < n; ++k) (*world_T_base)[k] = poses[k].ToPose();
+  return Status::Ok();
+}
+
+}  // namespace sfm
