@@ -188,10 +188,18 @@ Status InitialTrajectory(const Sequence& sequence, const PipelineOptions& option
   InitializationSummary& summary = result->initialization;
   const std::vector<RelativePoseConstraint> constraints =
       VisualConstraints(pairs, geometries, diagnostics, &summary.pairs);
+  // The pose graph solves for the odometry's rotation bias: its odometry factors are weighted by
+  // the spread about the bias.
+  OdometryNoise noise = summary.used;
+  PoseGraphOptions pose_graph;
+  if (summary.rotation.valid) {
+    noise.rotation_sigma = summary.rotation.sigma;
+    pose_graph.rotation_bias_start = summary.rotation.bias;
+  }
   std::vector<Pose3> world_T_base;
-  SFM_RETURN_IF_ERROR(SolvePoseGraph(OdometryBasePoses(sequence), sequence.calibration.base_T_camera, summary.used,
-                                     options.bundle_adjustment_options, constraints, PoseGraphOptions(),
-                                     &world_T_base, &summary.pose_graph));
+  SFM_RETURN_IF_ERROR(SolvePoseGraph(OdometryBasePoses(sequence), sequence.calibration.base_T_camera, noise,
+                                     options.bundle_adjustment_options, constraints, pose_graph, &world_T_base,
+                                     &summary.pose_graph));
   result->world_T_camera_initial = CamerasFromBases(world_T_base, sequence.calibration.base_T_camera);
   summary.seconds = SecondsSince(start);
   const VisualConstraintCounts& counts = summary.pairs;
@@ -201,7 +209,8 @@ Status InitialTrajectory(const Sequence& sequence, const PipelineOptions& option
             << " beyond the odometry's gate, " << counts.no_information << " without information); pose graph "
             << summary.pose_graph.iterations << " iterations, cost " << summary.pose_graph.initial_cost << " -> "
             << summary.pose_graph.final_cost << ", " << summary.pose_graph.constraints_rejected
-            << " pairs beyond 3 sigma; " << summary.seconds << " s";
+            << " pairs beyond 3 sigma, odometry rotation bias " << summary.pose_graph.rotation_bias.transpose()
+            << " rad per frame; " << summary.seconds << " s";
   return Status::Ok();
 }
 
@@ -633,6 +642,7 @@ Status RunPipeline(const PipelineOptions& options, PipelineResult* result_out) {
   result.times.backend = SecondsSince(stage_start);
   if (result.world_T_camera_truth) {
     result.drift_odometry = ComputeDrift(result.world_T_camera_odometry, *result.world_T_camera_truth);
+    result.drift_initial = ComputeDrift(result.world_T_camera_initial, *result.world_T_camera_truth);
     if (!result.world_T_camera_refined.empty()) {
       result.drift_refined = ComputeDrift(result.world_T_camera_refined, *result.world_T_camera_truth);
     }

@@ -228,6 +228,8 @@ std::string MetricsJson(const Sequence& sequence, const PipelineResult& result) 
        << "  \"ate_sim3_odometry_m\": " << JsonNumber(AteSim3(result.drift_odometry)) << ",\n"
        << "  \"ate_sim3_refined_m\": " << JsonNumber(refined ? AteSim3(result.drift_refined) : std::nullopt)
        << ",\n"
+       << "  \"ate_initial_m\": " << JsonNumber(Ate(result.drift_initial)) << ",\n"
+       << "  \"ate_sim3_initial_m\": " << JsonNumber(AteSim3(result.drift_initial)) << ",\n"
        << "  \"sim3_scale_odometry\": " << JsonNumber(Sim3Scale(result.drift_odometry)) << ",\n"
        << "  \"sim3_scale_refined\": " << JsonNumber(refined ? Sim3Scale(result.drift_refined) : std::nullopt)
        << ",\n"

@@ -74,6 +74,7 @@ struct PipelineResult {
   TrackExtensionSummary track_extension;
   std::optional<std::vector<Pose3>> world_T_camera_truth;  // when the sequence has ground truth
   std::optional<DriftMetrics> drift_odometry, drift_refined;  // against the ground truth
+  std::optional<DriftMetrics> drift_initial;                  // the initial trajectory's
   StageTimes times;
 };
 

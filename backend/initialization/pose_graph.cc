@@ -37,14 +37,17 @@ Status SolvePoseGraph(const std::vector<Pose3>& world_T_base_odometry, const Pos
   for (const Pose3& pose : world_T_base_odometry) poses.push_back(PoseParameters::FromPose(pose));
 
   ceres::Problem problem;
+  Eigen::Vector3d rotation_bias = options.rotation_bias_start;
   for (int k = 0; k + 1 < n; ++k) {
     const Pose3 step = world_T_base_odometry[k].Inverse() * world_T_base_odometry[k + 1];
     const OdometryStepSigmas sigmas = OdometryStepSigmasFor(step.translation.norm(), odometry_noise, adjustment);
     problem.AddResidualBlock(
-        OdometryPriorCost::Create(step, odometry_noise.rotation_sigma, sigmas.along_m, sigmas.across_m), nullptr,
-        poses[k].rotation.data(), poses[k].translation.data(), poses[k + 1].rotation.data(),
-        poses[k + 1].translation.data());
+        OdometryPriorWithBiasCost::Create(step, odometry_noise.rotation_sigma, sigmas.along_m, sigmas.across_m),
+        nullptr, poses[k].rotation.data(), poses[k].translation.data(), poses[k + 1].rotation.data(),
+        poses[k + 1].translation.data(), rotation_bias.data());
   }
+  problem.AddResidualBlock(OdometryRotationBiasPriorCost::Create(odometry_noise.rotation_sigma), nullptr,
+                           rotation_bias.data());
   std::vector<ceres::ResidualBlockId> pair_blocks;
   for (const RelativePoseConstraint& constraint : constraints) {
     const int i = constraint.frame_i, j = constraint.frame_j;
@@ -73,6 +76,7 @@ Status SolvePoseGraph(const std::vector<Pose3>& world_T_base_odometry, const Pos
   summary->initial_cost = report.initial_cost;
   summary->final_cost = report.final_cost;
   summary->iterations = static_cast<int>(report.iterations.size());
+  summary->rotation_bias = rotation_bias;
   for (ceres::ResidualBlockId block : pair_blocks) {
     double cost = 0;
     Eigen::Matrix<double, 6, 1> residuals;

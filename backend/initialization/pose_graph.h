@@ -4,8 +4,11 @@
 // drifted odometry.
 //
 // Unknowns: world_T_base of every frame (the first held, fixing the gauge). Factors:
-//  - the odometry prior of every consecutive step (OdometryPriorCost, the bundle adjustment's),
-//    weighted by the odometry noise model it is given;
+//  - the odometry prior of every consecutive step (the bundle adjustment's OdometryPriorWithBiasCost),
+//    weighted by the odometry noise model it is given, with the odometry's constant rotation
+//    increment per step b (a wheel-base error turns every step by the same angle) solved for
+//    under a zero-mean prior of the rotation sigma: over a stretch where the images say little, the
+//    odometry's drift is then only its random part;
 //  - one factor per image pair whose relative pose the images determined (RelativePoseConstraint),
 //    weighted by the information the pair's matches alone carry about the pose, under a Cauchy
 //    loss so that a pair estimated on wrong matches loses its pull.
@@ -39,6 +42,8 @@ struct PoseGraphOptions {
   // estimate disagrees with the rest by more than a few of its sigmas is a wrong estimate.
   double loss_scale_sigmas = 3.0;
   int max_iterations = 100;
+  // Where b starts (e.g. OdometryRotationEstimate::bias), rad per step, angle-axis in the base frame.
+  Eigen::Vector3d rotation_bias_start = Eigen::Vector3d::Zero();
 };
 
 struct PoseGraphSummary {
@@ -48,9 +53,11 @@ struct PoseGraphSummary {
   double initial_cost = 0;
   double final_cost = 0;
   int iterations = 0;
+  Eigen::Vector3d rotation_bias = Eigen::Vector3d::Zero();  // b at the solution
 };
 
 // The fused trajectory, starting from the odometry. `odometry_noise` weighs the odometry prior
+// (its rotation sigma the spread of a step's rotation about the bias)
 // (with options.odometry_min_distance_m of `adjustment` as for the bundle adjustment), `base_T_camera`
 // turns the camera constraints into base poses. world_T_base_odometry has at least one pose;
 // constraint indices lie within it.
