@@ -113,6 +113,10 @@ Status OdometryPairGeometries(const Sequence& sequence, const std::string& seque
 std::vector<Pose3> OdometryBasePoses(const Sequence& sequence);
 std::vector<Pose3> CamerasFromBases(const std::vector<Pose3>& world_T_base, const Pose3& base_T_camera);
 
+// Radians: below this, the odometry's rotation noise on an axis is not told apart from the
+// images' own (the spread of a pair's rotation from 20-100 junction matches).
+constexpr double kImageRotationSigmaFloor = 2e-4;
+
 // A measured odometry rotation noise this many times the declared one widens the matcher's gates
 // (MeasureOdometryNoise).
 constexpr double kRematchNoiseFactor = 1.5;
@@ -195,6 +199,9 @@ Status InitialTrajectory(const Sequence& sequence, const PipelineOptions& option
   if (summary.rotation.valid) {
     noise.rotation_sigma = summary.rotation.sigma;
     pose_graph.rotation_bias_start = summary.rotation.bias;
+    // The images' own rotation noise (about 1e-4 rad) is the floor: an axis on which the odometry
+    // looks exact is as certain as the images can tell.
+    pose_graph.rotation_sigmas = summary.rotation.axis_sigmas.cwiseMax(kImageRotationSigmaFloor);
   }
   std::vector<Pose3> world_T_base;
   SFM_RETURN_IF_ERROR(SolvePoseGraph(OdometryBasePoses(sequence), sequence.calibration.base_T_camera, noise,

@@ -59,7 +59,7 @@ struct OdometryPriorCost {
                     double across_sigma_m)
       : measured_rotation_inverse(base_i_T_base_j_odometry.rotation.conjugate().normalized()),
         measured_translation(base_i_T_base_j_odometry.translation),
-        rotation_sigma_rad(rotation_sigma_rad),
+        rotation_sigmas_rad(Eigen::Vector3d::Constant(rotation_sigma_rad)),
         translation_whitening(TranslationWhitening(measured_rotation_inverse * measured_translation, along_sigma_m,
                                                    across_sigma_m)) {}
 
@@ -117,7 +117,7 @@ struct OdometryPriorCost {
     T angle_axis[3];
     ceres::QuaternionToAngleAxis(error_wxyz, angle_axis);
     for (int k = 0; k < 3; ++k) {
-      residuals[k] = angle_axis[k] / rotation_sigma_rad;
+      residuals[k] = angle_axis[k] / rotation_sigmas_rad[k];
       residuals[3 + k] = whitened_translation[k];
     }
     return true;
@@ -135,7 +135,9 @@ struct OdometryPriorCost {
 
   Eigen::Quaterniond measured_rotation_inverse;
   Eigen::Vector3d measured_translation;
-  double rotation_sigma_rad;
+  // Per axis of base_i: the constructors set all three to rotation_sigma_rad; a caller that knows
+  // the odometry's noise per axis (a ground robot's turns are noisier than its tilt) sets them apart.
+  Eigen::Vector3d rotation_sigmas_rad;
   Eigen::Matrix3d translation_whitening;
 };
 

@@ -57,7 +57,8 @@ OdometryRotationEstimate EstimateOdometryRotationNoise(const std::vector<Pose3>&
   estimate.valid = true;
   for (int k = 0; k < 3; ++k) {
     estimate.bias[k] = Median(errors[k]);
-    estimate.sigma = std::max(estimate.sigma, RobustSigma(errors[k], estimate.bias[k]));
+    estimate.axis_sigmas[k] = RobustSigma(errors[k], estimate.bias[k]);
+    estimate.sigma = std::max(estimate.sigma, estimate.axis_sigmas[k]);
   }
   return estimate;
 }

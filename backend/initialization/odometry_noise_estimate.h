@@ -22,6 +22,8 @@ struct OdometryRotationEstimate {
   // Robust standard deviation (1.4826 median absolute deviation) about the bias of the noisier
   // axis, radians per frame: the per-axis sigma of sequence.yaml's random-walk model.
   double sigma = 0;
+  // The same per axis, radians per frame.
+  Eigen::Vector3d axis_sigmas = Eigen::Vector3d::Zero();
   // The sigma to weigh the odometry by when its bias is not modelled: sqrt(sigma^2 + |bias|^2),
   // the spread of one step's rotation error about zero.
   double EffectiveSigma() const;

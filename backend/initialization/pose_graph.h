@@ -42,6 +42,9 @@ struct PoseGraphOptions {
   // estimate disagrees with the rest by more than a few of its sigmas is a wrong estimate.
   double loss_scale_sigmas = 3.0;
   int max_iterations = 100;
+  // The odometry's rotation noise per base axis (rad per step, the spread about the bias); where
+  // a component is not positive, odometry_noise.rotation_sigma.
+  Eigen::Vector3d rotation_sigmas = Eigen::Vector3d::Zero();
   // Where b starts (e.g. OdometryRotationEstimate::bias), rad per step, angle-axis in the base frame.
   Eigen::Vector3d rotation_bias_start = Eigen::Vector3d::Zero();
 };
@@ -56,7 +59,8 @@ struct PoseGraphSummary {
   Eigen::Vector3d rotation_bias = Eigen::Vector3d::Zero();  // b at the solution
 };
 
-// The fused trajectory, starting from the odometry. `odometry_noise` weighs the odometry prior
+// The fused trajectory, solved from the odometry's steps with those of consecutive pairs replaced
+// by the images'. `odometry_noise` weighs the odometry prior
 // (its rotation sigma the spread of a step's rotation about the bias)
 // (with options.odometry_min_distance_m of `adjustment` as for the bundle adjustment), `base_T_camera`
 // turns the camera constraints into base poses. world_T_base_odometry has at least one pose;
