@@ -31,6 +31,7 @@ frames=${FRAMES:-60}
 jobs=${JOBS:-2}
 cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Release >/dev/null
 cmake --build "$build" --target junction_sfm make_sequence evaluate_wireframe -j2 >&2
+commit=$(git rev-parse --short HEAD 2>/dev/null || echo unknown)
 mkdir -p "$work"
 manifest="$work/manifest.txt"
 : >"$manifest"
@@ -80,6 +81,6 @@ for pair in $scenes; do
 done
 wait
 
-echo "Commit $(git rev-parse --short HEAD 2>/dev/null || echo unknown); $frames frames; SFM_FLAGS='${SFM_FLAGS:-}'."
+echo "Commit $commit (at the start of the run); $frames frames; SFM_FLAGS='${SFM_FLAGS:-}'."
 echo
 /usr/bin/python3 scripts/robustness_tables.py "$work" "$manifest"

@@ -41,7 +41,7 @@ DEFINE_double(ceiling_height, kDefaults.scene.ceiling_height, "Floor to ceiling 
 DEFINE_bool(island, kDefaults.scene.island, "Room: a table and a box stack in the middle.");
 DEFINE_bool(ceiling_lights, kDefaults.scene.ceiling_lights, "Bright panels on the ceiling.");
 DEFINE_bool(sparse, kDefaults.scene.sparse,
-            "A sparse scene: only cabinets and door frames along the walls, 2-4 m apart, no posters, no island.");
+            "Sparse scene: along the walls only cabinets and doors, 2-4 m apart; no posters, no island.");
 // Trajectory.
 DEFINE_string(trajectory, sfm::TrajectoryTypeName(kDefaults.trajectory.type),
               "Trajectory: straight (along the lane) | loop (round the room) | turns (weaving along the lane).");
@@ -82,8 +82,7 @@ DEFINE_double(odometry_heading_sigma, kDefaults.odometry.heading_sigma,
 DEFINE_double(odometry_heading_bias, kDefaults.odometry.heading_bias,
               "Odometry heading bias per frame, rad (positive: drifts left).");
 DEFINE_double(odometry_noise_scale, 1.0,
-              "Multiplies every odometry noise term above (scale error, distance and heading sigma, heading bias), "
-              "defaults or given: 3 makes the odometry three times as poor.");
+              "Multiplies the four odometry noise terms above, defaults or given (3: three times as poor).");
 
 namespace {
 

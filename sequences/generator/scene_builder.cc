@@ -202,9 +202,11 @@ double Builder::WidthOf(Furniture kind) {
 void Builder::FillWall(const Wall& wall, double s_begin, double s_end, bool allow_doors) {
   // Relative frequencies of cabinet, shelf, box stack, table, door, poster. A sparse scene has
   // cabinets and doors only: plain boxes and frames, no small objects on or above them.
-  const double door_weight = allow_doors ? (options_.sparse ? 0.4 : 0.13) : 0.0;
-  const double weights[6] = {options_.sparse ? 0.6 : 0.2, options_.sparse ? 0.0 : 0.2, options_.sparse ? 0.0 : 0.2,
-                             options_.sparse ? 0.0 : 0.12, door_weight, options_.sparse ? 0.0 : 0.15};
+  static constexpr double kFullWeights[6] = {0.2, 0.2, 0.2, 0.12, 0.13, 0.15};
+  static constexpr double kSparseWeights[6] = {0.6, 0.0, 0.0, 0.0, 0.4, 0.0};
+  double weights[6];
+  std::copy_n(options_.sparse ? kSparseWeights : kFullWeights, 6, weights);
+  if (!allow_doors) weights[4] = 0.0;
   double total = 0;
   for (double w : weights) total += w;
   double s = s_begin + random_.Uniform(0, options_.object_gap_max);

@@ -171,9 +171,9 @@ TEST_P(SparseSceneTest, FewObjectsBareWalls) {
                        sparse.lighting.Shade(sparse.faces[edge.face_b])),
               /*min_contrast=*/0.04 - 1e-12);
   }
-  for (TrajectoryType trajectory :
-       {TrajectoryType::kStraight, TrajectoryType::kTurns, type == SceneType::kRoom ? TrajectoryType::kLoop
-                                                                                    : TrajectoryType::kStraight}) {
+  std::vector<TrajectoryType> trajectories = {TrajectoryType::kStraight, TrajectoryType::kTurns};
+  if (type == SceneType::kRoom) trajectories.push_back(TrajectoryType::kLoop);
+  for (TrajectoryType trajectory : trajectories) {
     TrajectoryOptions trajectory_options;
     trajectory_options.type = trajectory;
     trajectory_options.num_frames = 0;
