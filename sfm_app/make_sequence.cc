@@ -40,6 +40,8 @@ DEFINE_double(room_width, kDefaults.scene.room_width, "Room size along y in m.")
 DEFINE_double(ceiling_height, kDefaults.scene.ceiling_height, "Floor to ceiling in m.");
 DEFINE_bool(island, kDefaults.scene.island, "Room: a table and a box stack in the middle.");
 DEFINE_bool(ceiling_lights, kDefaults.scene.ceiling_lights, "Bright panels on the ceiling.");
+DEFINE_bool(sparse, kDefaults.scene.sparse,
+            "Sparse scene: along the walls only cabinets and doors, 2-4 m apart; no posters, no island.");
 // Trajectory.
 DEFINE_string(trajectory, sfm::TrajectoryTypeName(kDefaults.trajectory.type),
               "Trajectory: straight (along the lane) | loop (round the room) | turns (weaving along the lane).");
@@ -79,6 +81,8 @@ DEFINE_double(odometry_heading_sigma, kDefaults.odometry.heading_sigma,
               "Odometry heading noise per frame, rad (Gaussian sigma).");
 DEFINE_double(odometry_heading_bias, kDefaults.odometry.heading_bias,
               "Odometry heading bias per frame, rad (positive: drifts left).");
+DEFINE_double(odometry_noise_scale, 1.0,
+              "Multiplies the four odometry noise terms above, defaults or given (3: three times as poor).");
 
 namespace {
 
@@ -104,6 +108,7 @@ bool OptionsFromFlags(sfm::GeneratorOptions* options, std::string* problem) {
   options->scene.ceiling_height = FLAGS_ceiling_height;
   options->scene.island = FLAGS_island;
   options->scene.ceiling_lights = FLAGS_ceiling_lights;
+  options->scene.sparse = FLAGS_sparse;
   options->trajectory.num_frames = FLAGS_frames;
   options->trajectory.step = FLAGS_step;
   options->trajectory.max_turn_per_frame = FLAGS_max_turn_per_frame;
@@ -125,6 +130,11 @@ bool OptionsFromFlags(sfm::GeneratorOptions* options, std::string* problem) {
   options->odometry.distance_sigma = FLAGS_odometry_distance_sigma;
   options->odometry.heading_sigma = FLAGS_odometry_heading_sigma;
   options->odometry.heading_bias = FLAGS_odometry_heading_bias;
+  if (!(FLAGS_odometry_noise_scale >= 0)) {
+    *problem = "--odometry_noise_scale must be >= 0, not " + std::to_string(FLAGS_odometry_noise_scale);
+    return false;
+  }
+  options->odometry = options->odometry.Scaled(FLAGS_odometry_noise_scale);
   return true;
 }
 

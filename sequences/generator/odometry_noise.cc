@@ -16,6 +16,15 @@ Status OdometryNoiseOptions::Check() const {
   return Status::Ok();
 }
 
+OdometryNoiseOptions OdometryNoiseOptions::Scaled(double factor) const {
+  OdometryNoiseOptions scaled = *this;
+  scaled.scale_error *= factor;
+  scaled.distance_sigma *= factor;
+  scaled.heading_sigma *= factor;
+  scaled.heading_bias *= factor;
+  return scaled;
+}
+
 OdometryNoise OdometryNoiseOptions::ForCalibration() const {
   OdometryNoise noise;
   noise.translation_sigma = std::max(1e-4, std::hypot(scale_error, distance_sigma));

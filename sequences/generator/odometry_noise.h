@@ -27,6 +27,9 @@ struct OdometryNoiseOptions {
   double heading_bias = 0.001;   // rad per frame, added to every frame's heading change (left > 0)
 
   Status Check() const;
+  // Every term (scale error, distance sigma, heading sigma, heading bias) times `factor`: the same
+  // kind of odometry, `factor` times as poor (make_sequence --odometry_noise_scale).
+  OdometryNoiseOptions Scaled(double factor) const;
   // The model as sequence.yaml states it (SPEC section 1): translation sigma
   // sqrt(scale_error^2 + distance_sigma^2) as a fraction of the distance, rotation sigma
   // sqrt(heading_sigma^2 + heading_bias^2) per frame; floored at 1e-4 and 1e-5 so that a reader

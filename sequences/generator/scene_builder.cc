@@ -21,6 +21,7 @@ constexpr double kBoardRecess = 0.01;      // shelf boards are set back from the
 constexpr double kFlatOffset = 0.005;      // posters and door leaves stand this far off their wall
 constexpr double kDoorWidth = 0.9, kDoorHeight = 2.05;
 constexpr double kJambWidth = 0.07, kJambDepth = 0.03, kLintelDepth = 0.04;
+constexpr double kSparseGapMin = 2.0, kSparseGapMax = 4.0;  // m of bare wall between two pieces (sparse)
 
 // A wall seen from inside: s runs along it from `start`, d into the room, z up.
 struct Wall {
@@ -199,8 +200,13 @@ double Builder::WidthOf(Furniture kind) {
 }
 
 void Builder::FillWall(const Wall& wall, double s_begin, double s_end, bool allow_doors) {
-  // Relative frequencies of cabinet, shelf, box stack, table, door, poster.
-  const double weights[6] = {0.2, 0.2, 0.2, 0.12, allow_doors ? 0.13 : 0.0, 0.15};
+  // Relative frequencies of cabinet, shelf, box stack, table, door, poster. A sparse scene has
+  // cabinets and doors only: plain boxes and frames, no small objects on or above them.
+  static constexpr double kFullWeights[6] = {0.2, 0.2, 0.2, 0.12, 0.13, 0.15};
+  static constexpr double kSparseWeights[6] = {0.6, 0.0, 0.0, 0.0, 0.4, 0.0};
+  double weights[6];
+  std::copy_n(options_.sparse ? kSparseWeights : kFullWeights, 6, weights);
+  if (!allow_doors) weights[4] = 0.0;
   double total = 0;
   for (double w : weights) total += w;
   double s = s_begin + random_.Uniform(0, options_.object_gap_max);
@@ -238,7 +244,8 @@ void Builder::FillWall(const Wall& wall, double s_begin, double s_end, bool allo
       placed = true;
     }
     if (!placed) break;
-    s += random_.Uniform(options_.object_gap_min, options_.object_gap_max);
+    s += options_.sparse ? random_.Uniform(kSparseGapMin, kSparseGapMax)
+                         : random_.Uniform(options_.object_gap_min, options_.object_gap_max);
   }
 }
 
@@ -508,7 +515,7 @@ void Builder::BuildRoom() {
                          {{0, ly}, {0, -1}, {1, 0}, ly}};
   const double corner = options_.max_object_depth + 0.1;
   for (const Wall& wall : walls) FillWall(wall, corner, wall.length - corner, /*allow_doors=*/true);
-  if (options_.island) AddIsland({0.5 * lx, 0.5 * ly});
+  if (options_.island && !options_.sparse) AddIsland({0.5 * lx, 0.5 * ly});
   if (options_.ceiling_lights) {
     for (double fx : {0.3, 0.7}) {
       for (double fy : {0.3, 0.7}) AddCeilingLight({fx * lx, fy * ly}, {1.2, 0.3});

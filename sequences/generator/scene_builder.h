@@ -33,6 +33,11 @@ struct SceneOptions {
   double object_gap_max = 0.9;    // m, at most
   bool ceiling_lights = true;     // bright flat panels on the ceiling
   bool island = true;             // room only: a table and a box stack in the middle of the room
+  // A sparse scene: along the walls only cabinets and door frames, 2-4 m of bare wall between two
+  // of them, no posters and (room) no island; the shell, the corridor's end door and the ceiling
+  // lights as in the full scene. Few junctions per frame and long stretches where the images show
+  // little more than the shell: where a pipeline has to do with what little the images say.
+  bool sparse = false;
   double min_contrast = 0.04;     // brightness step (0..1) across every edge, at least
 
   Lighting lighting;  // the light the contrast is measured under (the renderer uses the same)

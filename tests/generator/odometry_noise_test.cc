@@ -126,5 +126,26 @@ TEST(OdometryNoiseTest, CalibrationSigmasSummariseTheModel) {
   EXPECT_FALSE(options.Check().ok());
 }
 
+// make_sequence --odometry_noise_scale: every term scaled, the draws unchanged, so the odometry's
+// heading error grows by the factor (to 1e-9 relative: the heading error is linear in the terms).
+TEST(OdometryNoiseTest, ScaledMultipliesEveryTerm) {
+  OdometryNoiseOptions options;
+  const OdometryNoiseOptions scaled = options.Scaled(3);
+  EXPECT_DOUBLE_EQ(scaled.scale_error, 3 * options.scale_error);
+  EXPECT_DOUBLE_EQ(scaled.distance_sigma, 3 * options.distance_sigma);
+  EXPECT_DOUBLE_EQ(scaled.heading_sigma, 3 * options.heading_sigma);
+  EXPECT_DOUBLE_EQ(scaled.heading_bias, 3 * options.heading_bias);
+  const OdometryNoiseOptions same = options.Scaled(1);
+  EXPECT_EQ(same.scale_error, options.scale_error);
+  EXPECT_EQ(same.heading_bias, options.heading_bias);
+  const std::vector<Pose3> truth = Path(60);
+  const std::vector<Pose3> base = SimulateOdometry(truth, options, 7);
+  const std::vector<Pose3> tripled = SimulateOdometry(truth, scaled, 7);
+  const double yaw_error = Yaw(base.back()) - Yaw(truth.back());
+  const double yaw_error_tripled = Yaw(tripled.back()) - Yaw(truth.back());
+  ASSERT_GT(std::abs(yaw_error), 1e-3);
+  EXPECT_NEAR(yaw_error_tripled / yaw_error, 3.0, 1e-9);
+}
+
 }  // namespace
 }  // namespace sfm

@@ -263,6 +263,26 @@ TEST_P(EdgesWhereTruthSaysTest, GradientIsStrongOnTruthEdgesAndWeakBesideThem) {
 
 INSTANTIATE_TEST_SUITE_P(Distortion, EdgesWhereTruthSaysTest, ::testing::Bool());
 
+// make_sequence --sparse --odometry_noise_scale=6: a sequence that reads back and validates, with
+// the scaled noise model declared in sequence.yaml.
+TEST(SequenceWriterTest, SparseSceneWithScaledOdometryReadsBack) {
+  GeneratorOptions options = SmallOptions();
+  options.scene.sparse = true;
+  options.scene.type = SceneType::kRoom;
+  options.trajectory.type = TrajectoryType::kLoop;
+  options.odometry = options.odometry.Scaled(6);
+  const std::string dir = Generate(options, "generator_sparse_scaled");
+  Sequence sequence;
+  const Status status = ReadSequence(dir, &sequence);
+  ASSERT_TRUE(status.ok()) << status.message();
+  EXPECT_EQ(sequence.frames.size(), 8u);
+  EXPECT_NEAR(sequence.calibration.odometry_noise.rotation_sigma,
+              6 * GeneratorOptions().odometry.ForCalibration().rotation_sigma, 1e-12);
+  GroundTruth truth;
+  ASSERT_TRUE(ReadGroundTruth(dir, &truth).ok());
+  EXPECT_EQ(truth.frames.size(), 8u);
+}
+
 TEST(SequenceWriterTest, RefusesToOverwriteUnlessAsked) {
   const std::string dir = Generate(SmallOptions(), "generator_overwrite");
   std::ofstream(dir + "/notes.txt") << "keep me";
