@@ -186,12 +186,11 @@ Status MeasureOdometryNoise(const Sequence& sequence, const PipelineOptions& opt
 // The initial trajectory: the images' relative poses and the odometry fused by their
 // uncertainties (SolvePoseGraph), before triangulation.
 Status InitialTrajectory(const Sequence& sequence, const PipelineOptions& options,
-                         const std::vector<std::pair<int, int>>& pairs, const std::vector<PairGeometry>& geometries,
                          const std::vector<MatchingDiagnostics>& diagnostics, PipelineResult* result) {
   const Clock::time_point start = Clock::now();
   InitializationSummary& summary = result->initialization;
-  const std::vector<RelativePoseConstraint> constraints =
-      VisualConstraints(pairs, geometries, diagnostics, &summary.pairs);
+  const std::vector<RelativePoseConstraint> constraints = VisualConstraints(
+      result->pairs, result->junctions, diagnostics, RefinementSettings(options.matching), &summary.pairs);
   // The pose graph solves for the odometry's rotation bias: its odometry factors are weighted by
   // the spread about the bias.
   OdometryNoise noise = summary.used;
@@ -632,7 +631,7 @@ Status RunPipeline(const PipelineOptions& options, PipelineResult* result_out) {
       MeasureOdometryNoise(sequence, options, pairs, &progress, &pair_geometries, &diagnostics, &result));
   result.times.matching = SecondsSince(stage_start);
   stage_start = Clock::now();
-  SFM_RETURN_IF_ERROR(InitialTrajectory(sequence, options, pairs, pair_geometries, diagnostics, &result));
+  SFM_RETURN_IF_ERROR(InitialTrajectory(sequence, options, diagnostics, &result));
   Reconstruct(sequence, options, &result);
   if (options.bundle_adjustment) {
     SFM_RETURN_IF_ERROR(Refine(sequence, options, &result));

@@ -10,6 +10,7 @@
 #include "backend/initialization/pose_graph.h"
 #include "frontend/matching/junction_matcher.h"
 #include "frontend/matching/pair_geometry.h"
+#include "frontend/tracks/tracks.h"
 
 namespace sfm {
 
@@ -29,11 +30,28 @@ struct VisualConstraintCounts {
 // length, and along the whole translation for a pair without parallax.
 Eigen::Matrix<double, 6, 6> InformationFromMatches(const PairGeometry& prior, const PairGeometry& posterior);
 
-// One constraint per pair whose refinement succeeded, for the frame pairs `pairs` whose priors
-// (the geometries matching was given) and diagnostics are in the same order.
-std::vector<RelativePoseConstraint> VisualConstraints(const std::vector<std::pair<int, int>>& pairs,
-                                                      const std::vector<PairGeometry>& priors,
+// The relative pose the matches x1 <-> x2 (pixels, refinement.geometry.K) alone determine, and its
+// covariance: an essential matrix by RANSAC (OpenCV) gives the inliers and the start, then the
+// pose is fitted to those inliers (RefinePairGeometry) under a prior kPriorWidening times wider in
+// every sigma than the MAP pose `refinement` found with the odometry as its prior, and centred at
+// the start. The odometry then only fixes what the matches cannot see (the translation's length;
+// all of the translation without parallax): neither it nor a few wrong matches pull the estimate
+// along the directions the matches determine only weakly (a tilt traded for a sideways
+// translation). Without an essential matrix, the inliers of the MAP pose. The outcome is the fit's;
+// prior_used (optional) receives the fit's prior.
+PairRefinement RelativePoseFromMatches(const PairRefinement& refinement, const std::vector<Eigen::Vector2d>& x1,
+                                       const std::vector<Eigen::Vector2d>& x2,
+                                       const PairRefinementSettings& settings,
+                                       PairGeometry* prior_used = nullptr);
+
+// One constraint per pair whose refinement succeeded: the pose its final matches determine
+// (RelativePoseFromMatches; junction locations of frames[frame_a] and frames[frame_b]) with the
+// information they carry. `diagnostics` is in the order of `matches`; settings are the matcher's
+// refinement settings.
+std::vector<RelativePoseConstraint> VisualConstraints(const std::vector<FramePairMatches>& matches,
+                                                      const std::vector<Junctions>& frames,
                                                       const std::vector<MatchingDiagnostics>& diagnostics,
+                                                      const PairRefinementSettings& settings,
                                                       VisualConstraintCounts* counts);
 
 // The relative rotations the matches fit, whether or not the estimate passed the odometry's gate,

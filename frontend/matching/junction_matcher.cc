@@ -245,12 +245,7 @@ std::vector<JunctionMatch> MatchJunctions(const Junctions& a, const TopologyGrap
     x1.push_back(a[match.index_a].location);
     x2.push_back(b[match.index_b].location);
   }
-  PairRefinementSettings settings;
-  settings.location_sigma_px = options.location_sigma_px;
-  settings.gate_sigmas = options.refine_gate_sigmas;
-  settings.min_inliers = options.refine_min_inliers;
-  settings.constrain_to_prior_gate = options.refine_constrain_to_prior_gate;
-  report.refinement = RefinePairGeometry(geometry, x1, x2, settings);
+  report.refinement = RefinePairGeometry(geometry, x1, x2, RefinementSettings(options));
   if (!report.refinement.Refined()) return first;
 
   // The guided pass: every pair again, in the band of the refined pose. A first-pass match off the
@@ -307,6 +302,15 @@ std::vector<JunctionMatch> MatchJunctions(const Junctions& a, const TopologyGrap
   std::stable_sort(matches.begin(), matches.end(),
                    [](const JunctionMatch& x, const JunctionMatch& y) { return x.index_a < y.index_a; });
   return matches;
+}
+
+PairRefinementSettings RefinementSettings(const MatchingOptions& options) {
+  PairRefinementSettings settings;
+  settings.location_sigma_px = options.location_sigma_px;
+  settings.gate_sigmas = options.refine_gate_sigmas;
+  settings.min_inliers = options.refine_min_inliers;
+  settings.constrain_to_prior_gate = options.refine_constrain_to_prior_gate;
+  return settings;
 }
 
 }  // namespace sfm

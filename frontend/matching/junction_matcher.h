@@ -45,4 +45,7 @@ std::vector<JunctionMatch> MatchJunctions(const Junctions& a, const TopologyGrap
                                          const TopologyGraph& graph_b, const PairGeometry& geometry,
                                          const MatchingOptions& options, MatchingDiagnostics* diagnostics = nullptr);
 
+// The settings of the refinement MatchJunctions runs (RefinePairGeometry), from options.
+PairRefinementSettings RefinementSettings(const MatchingOptions& options);
+
 }  // namespace sfm

@@ -53,7 +53,7 @@ double DistanceToSegment(const Eigen::Vector3d& p, const Eigen::Vector3d& a, con
 
 // Generates the sequence, runs the default pipeline and measures its outputs against the truth.
 HeadlineFigures Measure(const std::string& name, SceneType scene, TrajectoryType trajectory,
-                        std::uint64_t seed) {
+                        std::uint64_t seed, double odometry_noise_scale = 1) {
   HeadlineFigures figures;
   const fs::path scratch = testing::MakeScratchDir(name);
   const std::string sequence_dir = (scratch / "sequence").string(),
@@ -63,6 +63,7 @@ HeadlineFigures Measure(const std::string& name, SceneType scene, TrajectoryType
   generator.trajectory.type = trajectory;
   generator.trajectory.num_frames = kFrames;
   generator.seed = seed;
+  generator.odometry = generator.odometry.Scaled(odometry_noise_scale);
   Status status = GenerateSequence(generator, sequence_dir, /*overwrite=*/true);
   EXPECT_TRUE(status.ok()) << status.message();
   if (!status.ok()) return figures;
@@ -140,6 +141,26 @@ TEST(HeadlineFiguresTest, RoomLoop) {
 TEST(HeadlineFiguresTest, Corridor) {
   ExpectHeadlineFigures(
       Measure("benchmark_corridor", SceneType::kCorridor, TrajectoryType::kStraight, /*seed=*/1));
+}
+
+}  // namespace
+}  // namespace sfm
+
+namespace sfm {
+namespace {
+
+// Issue 17: the images lead when the odometry is poor. A room loop with every odometry noise term
+// 6x the generator's default (12 % scale error, 6 % distance noise, 0.012 rad heading noise and
+// 0.006 rad heading bias per frame); asserted: refined ATE at most 0.3 of the odometry's (the
+// issue's figure). Measured when the test was written: OBSERVED_6X.
+TEST(HeadlineFiguresTest, RoomLoopWithSixTimesTheOdometryNoise) {
+  const HeadlineFigures f =
+      Measure("benchmark_room_loop_6x", SceneType::kRoom, TrajectoryType::kLoop, /*seed=*/1, /*scale=*/6);
+  ASSERT_GT(f.ate_odometry, 0);
+  EXPECT_LE(f.ate_refined / f.ate_odometry, 0.3) << "refined ATE " << f.ate_refined << " m, odometry "
+                                                  << f.ate_odometry << " m";
+  std::printf("6x: ATE ratio %.3f (%.4f / %.4f m)\n", f.ate_refined / f.ate_odometry, f.ate_refined,
+              f.ate_odometry);
 }
 
 }  // namespace
