@@ -15,6 +15,7 @@
 #include "backend/bundle_adjustment/pose_covariance.h"
 #include "backend/initialization/odometry_noise_estimate.h"
 #include "backend/initialization/pose_graph.h"
+#include "backend/initialization/trajectory_evidence.h"
 #include "backend/initialization/visual_constraints.h"
 #include "backend/metrics/drift.h"
 #include "backend/triangulation/triangulate_tracks.h"
@@ -383,6 +384,33 @@ void MeasureOdometryTranslationNoise(const Sequence& sequence, const PipelineOpt
   }
 }
 
+// The refined trajectory against the odometry by the images alone (trajectory_evidence.h): the
+// matches' epipolar fit under each trajectory, and the frames where the refined one leaves the
+// odometry beyond its noise. A refined trajectory the matches fit worse than the odometry is
+// returned with a warning, never silently.
+void WeighTheEvidence(const Sequence& sequence, const PipelineOptions& options, PipelineResult* result) {
+  TrajectoryEvidence& evidence = result->evidence;
+  const Eigen::Matrix3d K = sequence.calibration.camera.K();
+  evidence.computed = true;
+  evidence.epipolar_px_odometry =
+      EpipolarEvidencePx(K, result->world_T_camera_odometry, result->junctions, result->pairs);
+  evidence.epipolar_px_initial = EpipolarEvidencePx(K, result->world_T_camera_initial, result->junctions, result->pairs);
+  evidence.epipolar_px_refined = EpipolarEvidencePx(K, result->world_T_camera_refined, result->junctions, result->pairs);
+  evidence.frames_disagreeing_with_odometry = FramesDisagreeingWithOdometry(
+      OdometryBasePoses(sequence), BasesFromCameras(result->world_T_camera_refined, sequence.calibration.base_T_camera),
+      result->initialization.used, options.bundle_adjustment_options.odometry_min_distance_m);
+  evidence.refined_worse_than_odometry = evidence.epipolar_px_refined > evidence.epipolar_px_odometry;
+  LOG(INFO) << "the matches' epipolar fit (median px): odometry " << evidence.epipolar_px_odometry << ", initial "
+            << evidence.epipolar_px_initial << ", refined " << evidence.epipolar_px_refined << "; "
+            << evidence.frames_disagreeing_with_odometry.size()
+            << " refined steps beyond 3 sigma of the odometry's noise";
+  if (evidence.refined_worse_than_odometry) {
+    LOG(WARNING) << "the matches fit the odometry better than the refined trajectory ("
+                 << evidence.epipolar_px_odometry << " px against " << evidence.epipolar_px_refined
+                 << " px): the refined trajectory may be worse than the odometry";
+  }
+}
+
 // A second bundle adjustment of the changed map (`what` says how, for the log), starting from the
 // refined poses and the first adjustment's odometry scale; the odometry stays the prior. Its
 // poses and summary replace the first's.
@@ -636,6 +664,7 @@ Status RunPipeline(const PipelineOptions& options, PipelineResult* result_out) {
   if (options.bundle_adjustment) {
     SFM_RETURN_IF_ERROR(Refine(sequence, options, &result));
     MeasureOdometryTranslationNoise(sequence, options, &result);
+    WeighTheEvidence(sequence, options, &result);
     if (options.extend_tracks && (options.extend_tracks_stage == TrackExtensionStage::kAfterStructure ||
                                   options.extend_tracks_stage == TrackExtensionStage::kAfterResolve)) {
       SFM_RETURN_IF_ERROR(ExtendTracksOnRefinedPoses(sequence, options, &result));

@@ -199,6 +199,20 @@ std::string InitializationJson(const PipelineResult& result) {
   return json.str();
 }
 
+std::string EvidenceJson(const PipelineResult& result) {
+  const TrajectoryEvidence& evidence = result.evidence;
+  if (!evidence.computed) return "null";
+  std::string frames;
+  for (size_t i = 0; i < evidence.frames_disagreeing_with_odometry.size(); ++i) {
+    frames += (i ? ", " : "") + std::to_string(evidence.frames_disagreeing_with_odometry[i]);
+  }
+  return "{\"epipolar_px\": {\"odometry\": " + JsonNumber(evidence.epipolar_px_odometry) +
+         ", \"initial\": " + JsonNumber(evidence.epipolar_px_initial) +
+         ", \"refined\": " + JsonNumber(evidence.epipolar_px_refined) + "}" +
+         ", \"frames_disagreeing_with_odometry\": [" + frames + "]" +
+         ", \"refined_worse_than_odometry\": " + (evidence.refined_worse_than_odometry ? "true" : "false") + "}";
+}
+
 }  // namespace
 
 std::string MetricsJson(const Sequence& sequence, const PipelineResult& result) {
@@ -237,6 +251,7 @@ std::string MetricsJson(const Sequence& sequence, const PipelineResult& result) 
        << ", \"matching\": " << JsonNumber(times.matching) << ", \"backend\": " << JsonNumber(times.backend)
        << ", \"total\": " << JsonNumber(times.total) << "},\n"
        << "  \"initialization\": " << InitializationJson(result) << ",\n"
+       << "  \"evidence\": " << EvidenceJson(result) << ",\n"
        << "  \"floor_prior\": " << FloorPriorJson(result, refined) << ",\n"
        << "  \"odometry_rotation_bias_rad\": " << RotationBiasJson(result, refined) << ",\n"
        << "  \"retriangulation\": " << RetriangulationJson(result) << ",\n"

@@ -55,6 +55,17 @@ struct InitializationSummary {
   double seconds = 0;
 };
 
+// The run's own evidence on its trajectories, without ground truth (trajectory_evidence.h).
+struct TrajectoryEvidence {
+  bool computed = false;
+  // Median over the matched pairs of the median |Sampson distance| of their matches, pixels.
+  double epipolar_px_odometry = 0, epipolar_px_initial = 0, epipolar_px_refined = 0;
+  // Frames whose refined step departs from the odometry's by more than 3 sigma of the noise used.
+  std::vector<int> frames_disagreeing_with_odometry;
+  // The matches fit the odometry better than the refined trajectory (the run warns).
+  bool refined_worse_than_odometry = false;
+};
+
 struct PipelineResult {
   std::vector<Junctions> junctions;       // per frame
   std::vector<TopologyGraph> graphs;      // per frame
@@ -69,6 +80,7 @@ struct PipelineResult {
   std::vector<Pose3> world_T_camera_initial;               // the pose graph's (InitializationSummary)
   std::vector<Pose3> world_T_camera_refined;               // empty until bundle adjustment ran
   InitializationSummary initialization;
+  TrajectoryEvidence evidence;
   BundleAdjustmentSummary bundle_adjustment;               // when it ran (floor prior, counts)
   RetriangulationSummary retriangulation;
   TrackExtensionSummary track_extension;
