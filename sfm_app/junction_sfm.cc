@@ -51,22 +51,6 @@ DEFINE_bool(bundle_adjustment, kDefaults.bundle_adjustment,
             "Refine poses, points and lines with the Ceres bundle adjustment (false: outputs use the odometry).");
 DEFINE_double(ba_outlier_threshold, kDefaults.bundle_adjustment_options.outlier_threshold_px,
               "Bundle adjustment: observations with a larger error (px) are removed and the problem solved again.");
-DEFINE_int32(ba_observability_rounds, kDefaults.bundle_adjustment_options.observability_rounds,
-             "Bundle adjustment: after the last solve, drop the landmarks it made unobservable (a line behind or "
-             "through a camera, or without triangulation angle) and solve again, at most this many times.");
-DEFINE_bool(ba_inner_iterations_poses, kDefaults.bundle_adjustment_options.inner_iterations_poses,
-            "Bundle adjustment: re-solve the poses, the odometry's scale and rotation bias in Ceres's inner "
-            "iterations too, not only the landmarks (the solver before session 6; slower, same result).");
-DEFINE_bool(ba_single_pose_block, kDefaults.bundle_adjustment_options.single_pose_block,
-            "Bundle adjustment: each frame's pose one 7-number Ceres parameter block in the joint solves "
-            "(false: a rotation block and a translation block, the layout before session 6; slower).");
-DEFINE_bool(ba_inner_iterations_throughout, kDefaults.bundle_adjustment_options.inner_iterations_throughout,
-            "Bundle adjustment: keep Ceres's inner iterations on through every step of a solve (false: Ceres "
-            "turns them off once they gain little, the solver before session 6; slower on corridors).");
-DEFINE_bool(
-    ba_two_view_lines_apart, kDefaults.bundle_adjustment_options.two_view_lines_apart,
-    "Bundle adjustment: leave the lines seen in exactly two views (not on the floor prior) out of the joint "
-    "solves and solve each alone on their poses (they fit any poses exactly; same minimum, smaller solves).");
 DEFINE_double(ba_loss_scale, kDefaults.bundle_adjustment_options.robust_loss_scale_px,
               "Bundle adjustment: scale (px) of the robust loss on image residuals.");
 DEFINE_string(floor_prior, FloorPriorName(kDefaults.bundle_adjustment_options.floor_prior),
@@ -76,16 +60,9 @@ DEFINE_string(floor_prior, FloorPriorName(kDefaults.bundle_adjustment_options.fl
 DEFINE_bool(floor_base_prior, kDefaults.bundle_adjustment_options.floor_base_prior,
             "Bundle adjustment: with the floor prior applied and the odometry on the floor plane, also hold every "
             "base pose's height and tilt there (floor sigma, and floor sigma / camera height rad).");
-DEFINE_bool(floor_rescale_start, kDefaults.bundle_adjustment_options.floor_rescale_start,
-            "Bundle adjustment: with the floor prior applied, start its solves from the coarse map scaled so that "
-            "the floor found on it is at z = 0 (and the odometry's scale factor to match).");
 DEFINE_bool(floor_scale_line_search, kDefaults.bundle_adjustment_options.floor_scale_line_search,
             "Bundle adjustment: with the floor prior applied, after the last solve, a line search on the odometry's "
             "scale factor (three solves with it held, a parabola, a last solve at its minimum).");
-DEFINE_bool(
-    floor_scale_search_solve_centre, kDefaults.bundle_adjustment_options.floor_scale_search_solve_centre,
-    "Bundle adjustment: with the floor scale's line search, solve its centre sample again with the scale "
-    "held (before session 6) instead of taking the last solve's cost there.");
 DEFINE_string(
     odometry_rotation_bias,
     kDefaults.bundle_adjustment_options.estimate_odometry_rotation_bias            ? "on"
@@ -193,12 +170,7 @@ bool OptionsFromFlags(sfm::PipelineOptions* options, std::string* error) {
   options->track_extension.max_angle_deg = FLAGS_extend_tracks_max_angle_deg;
   options->bundle_adjustment_options.outlier_threshold_px = FLAGS_ba_outlier_threshold;
   options->bundle_adjustment_options.robust_loss_scale_px = FLAGS_ba_loss_scale;
-  options->bundle_adjustment_options.observability_rounds = FLAGS_ba_observability_rounds;
   options->bundle_adjustment_options.num_threads = FLAGS_threads;
-  options->bundle_adjustment_options.inner_iterations_poses = FLAGS_ba_inner_iterations_poses;
-  options->bundle_adjustment_options.single_pose_block = FLAGS_ba_single_pose_block;
-  options->bundle_adjustment_options.inner_iterations_throughout = FLAGS_ba_inner_iterations_throughout;
-  options->bundle_adjustment_options.two_view_lines_apart = FLAGS_ba_two_view_lines_apart;
   options->triangulation.wireframe.pose_error_from_bundle_adjustment = FLAGS_wireframe_ba_pose_error;
   options->triangulation.wireframe.line_sigma_subtracts_plane_noise = FLAGS_wireframe_plane_noise;
   options->triangulation.wireframe.tolerance_m = FLAGS_wireframe_tolerance_m;
@@ -210,9 +182,7 @@ bool OptionsFromFlags(sfm::PipelineOptions* options, std::string* error) {
   options->triangulation.wireframe.line_end_along_sigma = FLAGS_wireframe_line_end_along_sigma;
   options->triangulation.wireframe.point_variance_factor = FLAGS_wireframe_point_variance_factor;
   options->bundle_adjustment_options.floor_base_prior = FLAGS_floor_base_prior;
-  options->bundle_adjustment_options.floor_rescale_start = FLAGS_floor_rescale_start;
   options->bundle_adjustment_options.floor_scale_line_search = FLAGS_floor_scale_line_search;
-  options->bundle_adjustment_options.floor_scale_search_solve_centre = FLAGS_floor_scale_search_solve_centre;
   if (FLAGS_floor_prior == "auto") {
     options->bundle_adjustment_options.floor_prior = sfm::FloorPriorMode::kAuto;
   } else if (FLAGS_floor_prior == "on") {

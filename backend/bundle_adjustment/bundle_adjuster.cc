@@ -85,6 +85,10 @@ Eigen::Vector3d ProjectOntoLine(const Eigen::Vector3d& point, const Eigen::Vecto
   return point + direction * direction.dot(x - point);
 }
 
+// Solves after the last joint solve that drop the landmarks it made unobservable, at most
+// (docs/bundle_adjustment.md, "Robust loss, stages and outliers", step 7).
+constexpr int kObservabilityRounds = 3;
+
 class BundleAdjuster {
  public:
   // `start`: the poses the solves start from (the odometry, or an earlier adjustment's result);
@@ -160,7 +164,6 @@ class BundleAdjuster {
     }
     // 5. The floor prior, decided on the coarse map (its floor is where the odometry's scale put it).
     SelectFloor(/*first=*/true);
-    if (options_.floor_rescale_start) RescaleToFloor();
     // A solve that an outlier round follows stops at the looser intermediate tolerance; the
     // returned result always comes from a solve at function_tolerance.
     bool loose = options_.outlier_rounds > 0;
@@ -196,7 +199,7 @@ class BundleAdjuster {
     // 6. The last solve's own landmarks under the rules every earlier solve's passed: a landmark it
     //    made unobservable (on Strecha, lines slid behind or through a camera, which their images
     //    cannot show, and still holding the poses) is dropped, and the rest solved again.
-    for (int round = 0; round < options_.observability_rounds; ++round) {
+    for (int round = 0; round < kObservabilityRounds; ++round) {
       const int unobservable = DropUnobservableLandmarks(/*refined=*/true);
       RemoveLandmarksWithFewViews();
       if (unobservable == 0) break;
@@ -332,7 +335,7 @@ class BundleAdjuster {
                                    std::to_string(plane.support) + " of " + std::to_string(plane.below_camera) +
                                    " landmarks below the cameras), " + std::to_string(floor_.points.size()) +
                                    " points and " + std::to_string(floor_.lines.size()) + " lines held" +
-                                   (base_on_floor_ ? ", base poses held on it" : "") + stray_slab_note_ + start_note_;
+                                   (base_on_floor_ ? ", base poses held on it" : "") + stray_slab_note_;
   }
 
   // How far from z = 0 the floor of a map at the odometry's scale may be: a map whose trajectory is
@@ -341,26 +344,6 @@ class BundleAdjuster {
   // sigmas, and the slab's half width (3 floor sigmas) is the plane's own resolution.
   double AllowedFloorHeight() const {
     return 3 * noise_.translation_sigma * base_T_camera_.translation.z() + 3 * options_.floor_sigma_m;
-  }
-
-  // With the floor prior applied, the coarse map (at the odometry's scale) scaled about the first
-  // camera, whose pose is held, so that the floor found on it lies at z = 0, and the odometry's
-  // scale factor set to the same gain: the start the floor's scale implies. Why: from the
-  // odometry's scale the joint solves must move every pose and landmark along one shallow
-  // direction (a low camera's floor observes the scale weakly), and they end by their function
-  // tolerance with the scale still part-way there, biased towards the odometry's
-  // (docs/bundle_adjustment.md, "Floor scale bias: the start and the line search").
-  void RescaleToFloor() {
-    // A floor the noise model does not allow (applied with --floor_prior=on) says nothing of scale.
-    if (!scale_free_ || !summary_->floor_plane_z_m || !(std::abs(*summary_->floor_plane_z_m) <= AllowedFloorHeight())) {
-      return;
-    }
-    const double gain =
-        FloorScaleGain((poses_[0].ToPose() * base_T_camera_).translation.z(), *summary_->floor_plane_z_m);
-    if (gain == 1) return;
-    ScaleMapAboutFirstCamera(gain);
-    start_note_ = "; started at odometry scale " + std::to_string(odometry_scale_);
-    summary_->floor_prior_report += start_note_;
   }
 
   // The map scaled by `gain` about the first camera's centre (its pose is held): the cameras'
@@ -422,12 +405,8 @@ class BundleAdjuster {
     SFM_RETURN_IF_ERROR(cost_at(scale * (1 - step), loose, &below));
     // The centre sample is the last solve itself: that solve converged (at function_tolerance) with
     // lambda free, so with lambda held at its value a solve stops at once (1 iteration on the room
-    // loop, the same cost to 1e-6) and only costs its time.
-    if (options_.floor_scale_search_solve_centre) {
-      SFM_RETURN_IF_ERROR(cost_at(scale, loose, &centre));
-    } else {
-      centre = cost;
-    }
+    // loop, the same cost to 1e-6) and would only cost its time.
+    centre = cost;
     SFM_RETURN_IF_ERROR(cost_at(scale * (1 + step), loose, &above));
     const double x = ParabolaMinimumStep(below, centre, above, /*max_steps=*/2);
     const double target = scale * (1 + x * step);
@@ -686,8 +665,7 @@ class BundleAdjuster {
     return cost;
   }
 
-  // The lines of a joint solve (`joint`, indices in order) and those solved apart after it
-  // (options.two_view_lines_apart): a line with exactly two views has 4 residuals (the two
+  // The lines of a joint solve (`joint`, indices in order) and those solved apart after it: a line with exactly two views has 4 residuals (the two
   // end-point distances per view) for its 4 degrees of freedom; on any poses it fits both views
   // exactly (the line where its two back-projected planes meet, which the observability check
   // keeps at an angle), so its least cost is 0 on every pose and the joint minimum over the poses
@@ -700,21 +678,17 @@ class BundleAdjuster {
     }
     for (size_t i = 0; i < landmarks_->lines.size(); ++i) {
       const bool two_view = landmarks_->lines[i].observations.size() == 2;
-      (options_.two_view_lines_apart && two_view && !on_floor[i] ? apart : joint)
+      (two_view && !on_floor[i] ? apart : joint)
           ->push_back(static_cast<int>(i));
     }
   }
 
   // Adds `cost` on `blocks` to the joint problem; a pose among the blocks is its rotation's and
-  // translation's pointers, next to each other. With options_.single_pose_block each such pair
-  // is given to Ceres as the pose's one 7-number block (PoseBlockCost: the same residuals and
-  // Jacobian entries, a quarter of the Schur complement's cells).
+  // translation's pointers, next to each other. Each such pair is given to Ceres as the pose's one
+  // 7-number block (PoseBlockCost: the same residuals and Jacobian entries, a quarter of the Schur
+  // complement's cells).
   void AddResidual(ceres::Problem* problem, ceres::CostFunction* cost, ceres::LossFunction* loss,
                    const std::vector<double*>& blocks) const {
-    if (!options_.single_pose_block) {
-      problem->AddResidualBlock(cost, loss, blocks);
-      return;
-    }
     std::vector<int> pose_starts;
     std::vector<double*> outer_blocks;
     for (size_t k = 0; k < blocks.size(); ++k) {
@@ -742,21 +716,12 @@ class BundleAdjuster {
     ceres::Problem problem(problem_options);
     auto ordering = std::make_shared<ceres::ParameterBlockOrdering>();
 
-    // A pose is one block (options_.single_pose_block: the 7 numbers from its rotation on, see
-    // AddResidual) or two.
+    // A pose is one block: the 7 numbers from its rotation on (see AddResidual).
     for (PoseParameters& pose : poses_) {
-      if (options_.single_pose_block) {
-        problem.AddParameterBlock(pose.rotation.data(), 7, &pose_manifold_);
-        ordering->AddElementToGroup(pose.rotation.data(), 1);
-      } else {
-        problem.AddParameterBlock(pose.rotation.data(), 4, &quaternion_manifold_);
-        problem.AddParameterBlock(pose.translation.data(), 3);
-        ordering->AddElementToGroup(pose.rotation.data(), 1);
-        ordering->AddElementToGroup(pose.translation.data(), 1);
-      }
+      problem.AddParameterBlock(pose.rotation.data(), 7, &pose_manifold_);
+      ordering->AddElementToGroup(pose.rotation.data(), 1);
     }
     problem.SetParameterBlockConstant(poses_[0].rotation.data());
-    if (!options_.single_pose_block) problem.SetParameterBlockConstant(poses_[0].translation.data());
 
     // Every landmark's parameters in one buffer, points then lines, in their order: Ceres orders
     // the blocks of an ordering group by address (a std::set<double*>), and that order is the
@@ -874,13 +839,13 @@ class BundleAdjuster {
     // With lines, the steps crawl (for tens of iterations on the room loop, each lowering the cost
     // by about 2e-6 relative, 0.4 of the predicted decrease: the landmarks' nonlinearity); Ceres's
     // inner iterations re-solve each landmark on the step's poses and end the solve in a few.
-    solver_options.use_inner_iterations = with_lines && options_.inner_iterations;
+    solver_options.use_inner_iterations = with_lines;
     if (solver_options.use_inner_iterations) solver_options.inner_iteration_ordering = InnerIterationOrdering(landmark_values);
     // Ceres switches the inner iterations off for the rest of a solve once one of them lowers the
     // cost by less than inner_iteration_tolerance (relative, 1e-3 by default); the crawl then
     // resumes (corridor: 38 iterations of the solve after the outlier round, against 5). A gain
     // the solve's own stopping rule still counts keeps them on.
-    if (options_.inner_iterations_throughout) solver_options.inner_iteration_tolerance = function_tolerance;
+    solver_options.inner_iteration_tolerance = function_tolerance;
     ceres::Solver::Summary ceres_summary;
     ceres::Solve(solver_options, &problem, &ceres_summary);
     if (!ceres_summary.IsSolutionUsable()) {
@@ -924,31 +889,14 @@ class BundleAdjuster {
     return Status::Ok();
   }
 
-  // The groups of Ceres's inner iterations, each an independent set (no two of its blocks in one
-  // residual), solved in turn. By default only the landmarks (`landmark_values`: the points and
-  // lines of the problem, one group): after each step every landmark is re-solved on the step's
-  // poses, the variable projection of Ruhe & Wedin's algorithm II, which is what ended the crawl of
-  // the joint solves; re-solving each pose on its hundreds of observations as well cost a third of
-  // the back end's time and saved no iteration (docs/bundle_adjustment.md, "Solver").
-  // With options.inner_iterations_poses, before them: the rotations of the even frames but the
-  // first (which is held), of the odd ones, the same for the translations, the odometry's scale
-  // factor, the rotation bias (the ordering before session 6). The shape of the ordering Ceres
-  // computes when given none (poses in independent sets, the landmarks last), which it builds
-  // from hash sets keyed by address: its groups varied from run to run and so did the results
-  // (docs/bundle_adjustment.md, "Determinism").
+  // The group of Ceres's inner iterations: the landmarks (`landmark_values`: the points and lines
+  // of the problem, one independent set). After each step every landmark is re-solved on the
+  // step's poses, the variable projection of Ruhe & Wedin's algorithm II, which ends the crawl of
+  // the joint solves (docs/bundle_adjustment.md, "Solver"). Given explicitly: the ordering Ceres
+  // computes when given none comes from hash sets keyed by address, and its groups varied from run
+  // to run, and so did the results (docs/bundle_adjustment.md, "Determinism").
   std::shared_ptr<ceres::ParameterBlockOrdering> InnerIterationOrdering(std::vector<double>& landmark_values) {
     auto ordering = std::make_shared<ceres::ParameterBlockOrdering>();
-    if (options_.inner_iterations_poses) {
-      for (size_t f = 1; f < poses_.size(); ++f) {
-        ordering->AddElementToGroup(poses_[f].rotation.data(), static_cast<int>(f % 2));
-        if (!options_.single_pose_block) {
-          ordering->AddElementToGroup(poses_[f].translation.data(), 2 + static_cast<int>(f % 2));
-        }
-      }
-      if (ScaleInProblem()) ordering->AddElementToGroup(&odometry_scale_, 4);
-      // The rotation bias shares every odometry residual with the scale: a group of its own.
-      if (with_bias_) ordering->AddElementToGroup(rotation_bias_.data(), 5);
-    }
     // The landmark blocks start at their sizes' offsets; walk them as Solve laid them out.
     const size_t point_count = landmarks_->points.size();
     for (size_t i = 0; i < point_count; ++i) ordering->AddElementToGroup(landmark_values.data() + 3 * i, 6);
@@ -1025,7 +973,6 @@ class BundleAdjuster {
   bool scale_free_ = false;
   bool base_on_floor_ = false;  // BaseOnFloorCost on every pose but the first while scale_free_
   std::string stray_slab_note_;  // the report's note when the first selection passed over a stray slab
-  std::string start_note_;  // the report's note of the scale the floor's start set (floor_rescale_start)
   std::string scale_search_note_;  // the report's note of the scale line search (floor_scale_line_search)
   bool hold_scale_ = false;  // the odometry's scale factor held in Solve (the line search's samples)
   FloorLandmarks floor_;
@@ -1034,7 +981,6 @@ class BundleAdjuster {
   // The odometry's rotation bias b (rad per step, angle-axis in base_i), when estimated.
   std::array<double, 3> rotation_bias_ = {0, 0, 0};
   bool with_bias_ = false;  // EstimatesRotationBias(options, ...), fixed for the run
-  ceres::EigenQuaternionManifold quaternion_manifold_;
   PoseManifold pose_manifold_;
   OrthonormalLineManifold line_manifold_;
 };

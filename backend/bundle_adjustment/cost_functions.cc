@@ -167,9 +167,7 @@ OdometryStepSigmas OdometryStepSigmasFor(double distance_m, const OdometryNoise&
   const double d = std::max(distance_m, options.odometry_min_distance_m);
   OdometryStepSigmas sigmas;
   sigmas.along_m = noise.translation_sigma * d;
-  sigmas.across_m = options.odometry_translation_model == OdometryTranslationModel::kAlongAcross
-                        ? noise.rotation_sigma * d
-                        : sigmas.along_m;
+  sigmas.across_m = noise.rotation_sigma * d;
   // Below the floor the measured direction is mostly slip: no direction is known better.
   if (distance_m < options.odometry_min_distance_m) {
     sigmas.along_m = sigmas.across_m = std::max(sigmas.along_m, sigmas.across_m);

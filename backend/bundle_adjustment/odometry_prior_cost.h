@@ -37,9 +37,8 @@ struct OdometryStepSigmas {
 // The sigmas of a step of `distance_m` (docs/bundle_adjustment.md, "Odometry prior"), with
 // d = max(distance_m, options.odometry_min_distance_m):
 //   along  = noise.translation_sigma * d
-//   across = noise.rotation_sigma * d  (kAlongAcross: the step's direction is known to the heading's
-//            accuracy, so a sideways error is the heading error times the distance), or
-//            noise.translation_sigma * d (kIsotropic, the model before the distinction).
+//   across = noise.rotation_sigma * d  (the step's direction is known to the heading's accuracy, so
+//            a sideways error is the heading error times the distance).
 // A step shorter than the floor gets one sigma in every direction, the larger of the two.
 OdometryStepSigmas OdometryStepSigmasFor(double distance_m, const OdometryNoise& noise,
                                          const BundleAdjustmentOptions& options);

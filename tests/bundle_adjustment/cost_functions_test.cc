@@ -403,8 +403,7 @@ TEST(OdometryPriorCostTest, AlongAndAcrossTheStep) {
 
 // The rule of the sigmas (docs/bundle_adjustment.md, "Odometry prior"): along = translation_sigma
 // * d, across = rotation_sigma * d, d the distance floored at odometry_min_distance_m; a step
-// shorter than the floor gets the larger of the two in every direction; kIsotropic: along in every
-// direction. Exact to 1e-15.
+// shorter than the floor gets the larger of the two in every direction. Exact to 1e-15.
 TEST(OdometryPriorCostTest, StepSigmas) {
   OdometryNoise noise;
   noise.translation_sigma = 0.0224;
@@ -424,9 +423,6 @@ TEST(OdometryPriorCostTest, StepSigmas) {
   sigmas = OdometryStepSigmasFor(0.2, noise, options);
   EXPECT_NEAR(sigmas.along_m, 1e-4 * 0.2, 1e-15);
   EXPECT_NEAR(sigmas.across_m, 0.00224 * 0.2, 1e-15);
-  options.odometry_translation_model = OdometryTranslationModel::kIsotropic;
-  sigmas = OdometryStepSigmasFor(0.2, noise, options);
-  EXPECT_NEAR(sigmas.across_m, 1e-4 * 0.2, 1e-15);
 }
 
 // The odometry prior with the scale factor: at scale 1 the plain prior's numbers; at scale s the
