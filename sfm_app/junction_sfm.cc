@@ -26,17 +26,6 @@ const char* FloorPriorName(sfm::FloorPriorMode mode) {
   return "auto";
 }
 
-const char* RetriangulateRefinedName(sfm::RetriangulateRefined mode) {
-  switch (mode) {
-    case sfm::RetriangulateRefined::kOff:
-      return "off";
-    case sfm::RetriangulateRefined::kStructure:
-      return "structure";
-    case sfm::RetriangulateRefined::kFull:
-      return "full";
-  }
-  return "off";
-}
 }  // namespace
 
 DEFINE_string(sequence, SFM_DEFAULT_SEQUENCE,
@@ -72,24 +61,10 @@ DEFINE_string(
     "poses: 'on', 'off' or 'auto' (where the floor prior may apply: a ground robot's rig and planar "
     "odometry).");
 DEFINE_int32(threads, kDefaults.bundle_adjustment_options.num_threads, "Threads for the bundle adjustment.");
-DEFINE_string(retriangulate_refined, RetriangulateRefinedName(kDefaults.retriangulate_refined),
-              "After the bundle adjustment, triangulate every track again on the refined poses: 'off', "
-              "'structure' (the landmarks refined on the refined poses, held fixed) or 'full' (then a second "
-              "bundle adjustment starting from the refined poses).");
-DEFINE_string(
-    retriangulated_landmarks,
-    kDefaults.retriangulated_landmarks == sfm::RetriangulatedLandmarks::kAddNew ? "add" : "replace",
-    "With --retriangulate_refined: 'add' (only landmarks of tracks that had none) or 'replace' (every "
-    "landmark re-triangulated).");
 DEFINE_bool(extend_tracks, kDefaults.extend_tracks,
             "Track extension: project every point landmark into the frames its track misses and join the one "
-            "compatible junction inside its uncertainty gate, or merge the track it belongs to; by default inside "
-            "the bundle adjustment, after its first fine solve (--extend_tracks_stage).");
-DEFINE_string(extend_tracks_stage, "inside",
-              "With --extend_tracks, where it runs: 'inside' (the bundle adjustment, after its fine solve, then "
-              "two fine solves and an outlier round more), 'coarse' (inside it, on its coarse stage's poses, before its "
-              "fine solves), 'structure' (after it; the changed landmarks refined on the refined poses "
-              "held fixed) or 'resolve' (after it, then a second bundle adjustment of everything).");
+            "compatible junction inside its uncertainty gate, or merge the track it belongs to; inside the "
+            "bundle adjustment, after its first fine solve.");
 DEFINE_bool(extend_tracks_merge, kDefaults.track_extension.merge_tracks,
             "Track extension: merge two tracks when a projection finds the other's junction.");
 DEFINE_double(extend_tracks_pixel_sigma, kDefaults.track_extension.pixel_sigma_px,
@@ -100,9 +75,6 @@ DEFINE_double(extend_tracks_max_gate_px, kDefaults.track_extension.max_gate_px,
               "Track extension: the largest gate radius, pixels (a wider gate is not searched).");
 DEFINE_double(extend_tracks_max_angle_deg, kDefaults.track_extension.max_angle_deg,
               "Track extension: the largest angle between a junction segment and its predicted direction, degrees.");
-DEFINE_bool(wireframe_ba_pose_error, kDefaults.triangulation.wireframe.pose_error_from_bundle_adjustment,
-            "Wireframe selection: the pose error of the determination test from bundle adjustment's own pose "
-            "covariance instead of the fixed random walk.");
 DEFINE_double(wireframe_tolerance_m, kDefaults.triangulation.wireframe.tolerance_m,
               "Wireframe selection: an accuracy asked of the drawn map, metres (0: off): the least determined "
               "vertices are dropped until the predicted share within it is --wireframe_tolerance_share "
@@ -151,18 +123,6 @@ bool OptionsFromFlags(sfm::PipelineOptions* options, std::string* error) {
   sfm::MatchingRefineFromFlags(&options->matching);
   options->bundle_adjustment = FLAGS_bundle_adjustment;
   options->extend_tracks = FLAGS_extend_tracks;
-  if (FLAGS_extend_tracks_stage == "inside") {
-    options->extend_tracks_stage = sfm::TrackExtensionStage::kInAdjustment;
-  } else if (FLAGS_extend_tracks_stage == "coarse") {
-    options->extend_tracks_stage = sfm::TrackExtensionStage::kAfterCoarse;
-  } else if (FLAGS_extend_tracks_stage == "structure") {
-    options->extend_tracks_stage = sfm::TrackExtensionStage::kAfterStructure;
-  } else if (FLAGS_extend_tracks_stage == "resolve") {
-    options->extend_tracks_stage = sfm::TrackExtensionStage::kAfterResolve;
-  } else {
-    *error = "--extend_tracks_stage must be 'inside', 'coarse', 'structure' or 'resolve', not '" + FLAGS_extend_tracks_stage + "'";
-    return false;
-  }
   options->track_extension.pixel_sigma_px = FLAGS_extend_tracks_pixel_sigma;
   options->track_extension.merge_tracks = FLAGS_extend_tracks_merge;
   options->track_extension.rotation_step_rad = FLAGS_extend_tracks_rotation_step;
@@ -171,7 +131,6 @@ bool OptionsFromFlags(sfm::PipelineOptions* options, std::string* error) {
   options->bundle_adjustment_options.outlier_threshold_px = FLAGS_ba_outlier_threshold;
   options->bundle_adjustment_options.robust_loss_scale_px = FLAGS_ba_loss_scale;
   options->bundle_adjustment_options.num_threads = FLAGS_threads;
-  options->triangulation.wireframe.pose_error_from_bundle_adjustment = FLAGS_wireframe_ba_pose_error;
   options->triangulation.wireframe.line_sigma_subtracts_plane_noise = FLAGS_wireframe_plane_noise;
   options->triangulation.wireframe.tolerance_m = FLAGS_wireframe_tolerance_m;
   options->triangulation.wireframe.tolerance_share = FLAGS_wireframe_tolerance_share;
@@ -201,26 +160,6 @@ bool OptionsFromFlags(sfm::PipelineOptions* options, std::string* error) {
   } else {
     *error =
         "--odometry_rotation_bias must be 'on', 'off' or 'auto', not '" + FLAGS_odometry_rotation_bias + "'";
-    return false;
-  }
-  if (FLAGS_retriangulate_refined == "off") {
-    options->retriangulate_refined = sfm::RetriangulateRefined::kOff;
-  } else if (FLAGS_retriangulate_refined == "structure") {
-    options->retriangulate_refined = sfm::RetriangulateRefined::kStructure;
-  } else if (FLAGS_retriangulate_refined == "full") {
-    options->retriangulate_refined = sfm::RetriangulateRefined::kFull;
-  } else {
-    *error = "--retriangulate_refined must be 'off', 'structure' or 'full', not '" +
-             FLAGS_retriangulate_refined + "'";
-    return false;
-  }
-  if (FLAGS_retriangulated_landmarks == "add" || FLAGS_retriangulated_landmarks == "replace") {
-    options->retriangulated_landmarks = FLAGS_retriangulated_landmarks == "add"
-                                            ? sfm::RetriangulatedLandmarks::kAddNew
-                                            : sfm::RetriangulatedLandmarks::kReplace;
-  } else {
-    *error =
-        "--retriangulated_landmarks must be 'add' or 'replace', not '" + FLAGS_retriangulated_landmarks + "'";
     return false;
   }
   return true;

@@ -154,14 +154,6 @@ class BundleAdjuster {
     RemoveLandmarksWithFewViews();
     DropUnobservableLandmarks(/*refined=*/true);
     if (CountObservations() == 0) return RevertToOdometry("no landmark left observable on the refined poses");
-    // The caller's change of the coarse map (track extension), judged by the same removals.
-    if (map_hook.change && map_hook.when == MapHook::kAfterCoarse) {
-      map_hook.change(RefinedPoses(), landmarks_);
-      DropUnusableObservations();
-      RemoveLandmarksWithFewViews();
-      DropUnobservableLandmarks(/*refined=*/true);
-      if (CountObservations() == 0) return RevertToOdometry("no landmark left after the coarse map's change");
-    }
     // 5. The floor prior, decided on the coarse map (its floor is where the odometry's scale put it).
     SelectFloor(/*first=*/true);
     // A solve that an outlier round follows stops at the looser intermediate tolerance; the
@@ -171,7 +163,7 @@ class BundleAdjuster {
                               loose ? options_.intermediate_function_tolerance : options_.function_tolerance));
     // The caller's change of the fine map (track extension), before the outlier rounds, which judge
     // the new observations as the old ones, and whose solves refine it with the poses.
-    if (map_hook.change && map_hook.when == MapHook::kAfterFine) {
+    if (map_hook.change) {
       map_hook.change(RefinedPoses(), landmarks_);
       DropUnusableObservations();
       RemoveLandmarksWithFewViews();
@@ -212,43 +204,6 @@ class BundleAdjuster {
     if (options_.floor_scale_line_search) SFM_RETURN_IF_ERROR(SearchScale());
     ComputeRms();
     FinishFloorSummary();
-    return Status::Ok();
-  }
-
-  // The landmarks alone on the poses given (RefineLandmarksOnFixedPoses): the removals of Run's
-  // steps 3-4 with the poses held, so that a landmark is judged by the same rules as in the
-  // adjustment. No odometry or floor prior: with the poses held they constrain nothing but the
-  // floor landmarks' height, and a floor selected on one map is no evidence for another's.
-  Status RunStructureOnly() {
-    summary_->frames = static_cast<int>(poses_.size());
-    DropUnusableObservations();
-    RemoveLandmarksWithFewViews();
-    // The triangulation held every landmark to its depth floor on these very poses.
-    DropUnobservableLandmarks(/*refined=*/true);
-    summary_->points = static_cast<int>(landmarks_->points.size());
-    summary_->lines = static_cast<int>(landmarks_->lines.size());
-    summary_->observations = CountObservations();
-    if (summary_->observations == 0) {
-      summary_->solver_report = "nothing to solve: no observable landmark in two frames";
-      return Status::Ok();
-    }
-    // Triangulated on the final poses, the landmarks start within the triangulation's 4 px limit:
-    // the fine loss scale from the start, as the joint solve of Run's step 4.
-    RefineLandmarksOnFixedPoses(options_.robust_loss_scale_px);
-    for (int round = 0; round < options_.outlier_rounds; ++round) {
-      const int outliers = RemoveOutliers(options_.outlier_threshold_px);
-      RemoveLandmarksWithFewViews();
-      const int unobservable = DropUnobservableLandmarks(/*refined=*/true);
-      if (outliers + unobservable == 0) break;
-      RefineLandmarksOnFixedPoses(options_.robust_loss_scale_px);
-    }
-    // What the adjustment guarantees of its output: no observation beyond the outlier threshold.
-    RemoveOutliers(options_.outlier_threshold_px);
-    RemoveLandmarksWithFewViews();
-    DropUnobservableLandmarks(/*refined=*/true);
-    ComputeRms();
-    summary_->converged = true;
-    summary_->solver_report = "landmarks refined on fixed poses, one small solve each";
     return Status::Ok();
   }
 
@@ -600,30 +555,6 @@ class BundleAdjuster {
     solver_options.num_threads = options_.num_threads;
     solver_options.logging_type = ceres::SILENT;
     return solver_options;
-  }
-
-  // Each point alone, the poses held (one small problem per point, 3 unknowns). A point whose
-  // solve fails keeps its estimate. Then each line, whose end0 follows its point.
-  void RefineLandmarksOnFixedPoses(double loss_scale_px) {
-    const std::unique_ptr<ceres::LossFunction> loss = MakeLoss(loss_scale_px);
-    ceres::Problem::Options problem_options;
-    problem_options.loss_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
-    const ceres::Solver::Options solver_options = SolverOptions(ceres::DENSE_QR);
-    for (PointLandmark& point : landmarks_->points) {
-      Eigen::Vector3d position = point.position;
-      ceres::Problem problem(problem_options);
-      for (const PointObservation& observation : point.observations) {
-        PoseParameters& pose = poses_[observation.frame];
-        problem.AddResidualBlock(PointReprojectionCost::Create(camera_, observation.pixel), loss.get(),
-                                 pose.rotation.data(), pose.translation.data(), position.data());
-        problem.SetParameterBlockConstant(pose.rotation.data());
-        problem.SetParameterBlockConstant(pose.translation.data());
-      }
-      ceres::Solver::Summary ceres_summary;
-      ceres::Solve(solver_options, &problem, &ceres_summary);
-      if (ceres_summary.IsSolutionUsable() && position.allFinite()) point.position = position;
-    }
-    RefineLinesOnFixedPoses(loss_scale_px);
   }
 
   // Each line alone, the poses held where they are (one small problem per line, 4 unknowns). A
@@ -986,22 +917,6 @@ class BundleAdjuster {
 };
 
 }  // namespace
-
-Status RefineLandmarksOnFixedPoses(const Calibration& calibration, const std::vector<Pose3>& world_T_base,
-                                   const BundleAdjustmentOptions& options, Landmarks* landmarks,
-                                   BundleAdjustmentSummary* summary) {
-  CHECK(landmarks != nullptr);
-  CHECK(summary != nullptr);
-  const auto start = std::chrono::steady_clock::now();
-  *summary = BundleAdjustmentSummary();
-  SFM_RETURN_IF_ERROR(options.Check());
-  SFM_RETURN_IF_ERROR(CheckInput(calibration, world_T_base, *landmarks));
-  BundleAdjuster adjuster(calibration, world_T_base, world_T_base, /*start_scale=*/1, options, landmarks,
-                          summary);
-  const Status status = adjuster.RunStructureOnly();
-  summary->time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  return status;
-}
 
 Status BundleAdjust(const Calibration& calibration, const std::vector<Pose3>& world_T_base_odometry,
                     const BundleAdjustmentOptions& options, Landmarks* landmarks,

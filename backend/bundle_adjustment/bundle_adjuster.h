@@ -46,14 +46,10 @@ namespace sfm {
 // `map_hook` (optional): called once with the poses world_T_base of that moment and the landmarks,
 // which it may change (observations added, landmarks merged or dropped; point_landmark indices
 // kept valid): the pipeline's track extension (docs/tracks_and_triangulation.md, "Track
-// extension"). kAfterCoarse: after the coarse stage, before the floor prior is decided and the fine
-// solves; the landmarks then pass the removals of the coarse stage. kAfterFine: after the first fine
-// solve, before its outlier rounds, which then judge the new observations as the old ones (beyond
-// outlier_threshold_px removed) and whose solves refine the changed map with the poses (with no
-// outlier round, one fine solve more).
+// extension"). After the first fine solve, before its outlier rounds, which then judge the new
+// observations as the old ones (beyond outlier_threshold_px removed) and whose solves refine the
+// changed map with the poses (with no outlier round, one fine solve more).
 struct MapHook {
-  enum When { kAfterCoarse, kAfterFine };
-  When when = kAfterFine;
   std::function<void(const std::vector<Pose3>& world_T_base, Landmarks* landmarks)> change;
 };
 Status BundleAdjust(const Calibration& calibration, const std::vector<Pose3>& world_T_base_odometry,
@@ -72,17 +68,5 @@ Status BundleAdjust(const Calibration& calibration, const std::vector<Pose3>& wo
                     const BundleAdjustmentOptions& options, Landmarks* landmarks,
                     std::vector<Pose3>* world_T_base_refined, BundleAdjustmentSummary* summary,
                     const MapHook& map_hook = MapHook());
-
-// Refines `landmarks` in place on the poses world_T_base, which are held: each point and each line
-// alone at the fine loss scale, then the outlier rounds of BundleAdjust (observations beyond
-// options.outlier_threshold_px removed, landmarks left with fewer than two views or unobservable on
-// these poses dropped, solved again), ending, as BundleAdjust does, with no observation beyond the
-// threshold. No odometry or floor prior (the poses are not solved for). `summary` counts as
-// BundleAdjust's (solves and iterations stay 0: no pose was solved). For landmarks triangulated on
-// an adjustment's refined poses (docs/tracks_and_triangulation.md, "Re-triangulation on the
-// refined poses"). Errors as BundleAdjust's.
-Status RefineLandmarksOnFixedPoses(const Calibration& calibration, const std::vector<Pose3>& world_T_base,
-                                   const BundleAdjustmentOptions& options, Landmarks* landmarks,
-                                   BundleAdjustmentSummary* summary);
 
 }  // namespace sfm

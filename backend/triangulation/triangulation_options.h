@@ -108,12 +108,6 @@ struct WireframeOptions {
   // steps of 0.1-0.2 m (an RMS length: sqrt(3) x the per-axis sigma, so 0.0023-0.0038 of the 0.2 m
   // corridor steps). Like the rotation's, a property of the refinement.
   double pose_translation_step_fraction = 0.003;
-  // When true and bundle adjustment ran, the pipeline replaces the two random-walk sizes above by
-  // bundle adjustment's own first-order covariance of the refined poses (ComputePoseCovariance,
-  // backend/bundle_adjustment/pose_covariance.h): the poses' error as the refinement's own noise
-  // models (pixel noise, odometry noise) predict it, at run time, for any sequence and speed.
-  // docs/tracks_and_triangulation.md, "Pose error from bundle adjustment".
-  bool pose_error_from_bundle_adjustment = false;
   // A point whose junction is a T or an X in some view is an occlusion candidate: its location may
   // be where a nearer edge crosses a farther one in the image, which slides along the edges as the
   // camera moves and is no 3D point. With two views the point's test has one degree of freedom
