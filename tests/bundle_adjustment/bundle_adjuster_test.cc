@@ -162,18 +162,6 @@ TEST(BundleAdjusterTest, RoomLoopFromDriftingOdometry) {
   EXPECT_LT(run.point_rmse_after_m, run.point_rmse_before_m / 2);
 }
 
-// RMS angle (rad) between the estimated and the true translation of each step, both in base_i.
-double StepDirectionRmsRad(const std::vector<Pose3>& estimated, const std::vector<Pose3>& truth) {
-  double sum = 0;
-  for (size_t i = 0; i + 1 < truth.size(); ++i) {
-    const Eigen::Vector3d e = (estimated[i].Inverse() * estimated[i + 1]).translation;
-    const Eigen::Vector3d t = (truth[i].Inverse() * truth[i + 1]).translation;
-    const double angle = std::atan2(e.cross(t).norm(), e.dot(t));
-    sum += angle * angle;
-  }
-  return std::sqrt(sum / (truth.size() - 1));
-}
-
 // One point observation in 20 is a gross mismatch: all of them are removed, few others, and the
 // figures hold (40 frames, 0.012 rad/frame of drift).
 TEST(BundleAdjusterTest, OutliersAreRemoved) {
