@@ -197,7 +197,8 @@ void LogFloorLandmarks(const std::string& stage, const PipelineResult& result) {
 }
 
 // The track extension's counts into the result and the log.
-void RecordTrackExtension(const TrackExtensionReport& report, Clock::time_point start, PipelineResult* result) {
+void RecordTrackExtension(const TrackExtensionReport& report, size_t tracks, Clock::time_point start,
+                          PipelineResult* result) {
   TrackExtensionSummary& summary = result->track_extension;
   summary.ran = true;
   summary.observations_added = report.observations_added;
@@ -210,37 +211,60 @@ void RecordTrackExtension(const TrackExtensionReport& report, Clock::time_point 
             << report.tracks_merged << " tracks merged (" << report.merges_refused << " refused), "
             << report.ambiguous << " ambiguous projections, " << report.gate_too_wide << " gates too wide, "
             << report.no_junction << " empty, " << report.incompatible
-            << " with no compatible junction; refused merges: " << report.merge_overlap << " sharing a frame, "
-            << report.merge_disagree << " disagreeing points, " << report.merge_unexplained << " not explained by the point; " << summary.points_changed << " points and "
-            << summary.lines_changed << " lines changed; now " << result->tracks.size() << " tracks; "
+            << " with no compatible junction; refused merges: " << report.merge_overlap
+            << " sharing a frame, " << report.merge_disagree << " disagreeing points, "
+            << report.merge_unexplained << " not explained by the point; " << summary.points_changed
+            << " points and " << summary.lines_changed << " lines changed; now " << tracks << " tracks; "
             << summary.seconds << " s";
 }
 
-// Bundle adjustment from the odometry: refined poses and landmarks.
-Status Refine(const Sequence& sequence, const PipelineOptions& options, PipelineResult* result) {
-  std::vector<Pose3> world_T_base_refined;
-  BundleAdjustmentSummary summary;
-  MapHook extend;
-  if (options.extend_tracks) {
-    // The track extension inside the adjustment; its later solves refine what it changed.
-    extend.change = [&](const std::vector<Pose3>& world_T_base, Landmarks* landmarks) {
-      const Clock::time_point start = Clock::now();
-      const Calibration& calibration = sequence.calibration;
-      TrackExtensionReport report;
-      Eigen::Vector2d box_min, box_max;
-      DetectionBox(calibration.camera, options, &box_min, &box_max);
-      ExtendTracks(calibration.camera.K(), box_min, box_max,
-                   CamerasFromBases(world_T_base, calibration.base_T_camera), result->junctions,
-                   options.track_extension, &result->tracks, landmarks, &report);
-      RecordTrackExtension(report, start, result);
-    };
+// The bundle adjustment's steps with the track extension between its first fine solve and its
+// outlier rounds, which then judge the new observations as the old ones and whose solves refine
+// the changed map with the poses (docs/tracks_and_triangulation.md, "Track extension"; COLMAP's
+// IterativeGlobalRefinement: adjust, complete and merge tracks, filter). The solves start from
+// reconstruction->world_T_base at the odometry's scale factor 1; the odometry is the prior.
+Status AdjustAndExtendTracks(const std::vector<Pose3>& world_T_base_odometry, const PipelineOptions& options,
+                             Reconstruction* reconstruction, BundleAdjustmentSummary* summary,
+                             PipelineResult* result) {
+  BundleAdjustment adjustment(world_T_base_odometry, /*odometry_scale_start=*/1,
+                              options.bundle_adjustment_options, reconstruction, summary);
+  SFM_RETURN_IF_ERROR(adjustment.Start());
+  SFM_RETURN_IF_ERROR(adjustment.SolveCoarse());
+  SFM_RETURN_IF_ERROR(adjustment.SolveFine());
+  if (options.extend_tracks && !adjustment.finished()) {
+    const Clock::time_point start = Clock::now();
+    TrackExtensionReport report;
+    Eigen::Vector2d box_min, box_max;
+    DetectionBox(reconstruction->calibration.camera, options, &box_min, &box_max);
+    ExtendTracks(options.track_extension, box_min, box_max, reconstruction, &report);
+    RecordTrackExtension(report, reconstruction->tracks.size(), start, result);
+    SFM_RETURN_IF_ERROR(adjustment.AcceptChangedMap());
   }
-  SFM_RETURN_IF_ERROR(BundleAdjust(sequence.calibration, OdometryBasePoses(sequence),
-                                   options.bundle_adjustment_options, &result->landmarks, &world_T_base_refined,
-                                   &summary, extend));
+  SFM_RETURN_IF_ERROR(adjustment.Filter());
+  adjustment.Finish();
+  return Status::Ok();
+}
+
+// Bundle adjustment from the odometry, the tracks extended in it: refined poses, landmarks and tracks.
+Status Refine(const Sequence& sequence, const PipelineOptions& options, PipelineResult* result) {
+  const std::vector<Pose3> world_T_base_odometry = OdometryBasePoses(sequence);
+  Reconstruction reconstruction;
+  reconstruction.calibration = sequence.calibration;
+  reconstruction.world_T_base = world_T_base_odometry;  // the start
+  reconstruction.junctions = std::move(result->junctions);
+  reconstruction.tracks = std::move(result->tracks);
+  reconstruction.landmarks = std::move(result->landmarks);
+  BundleAdjustmentSummary summary;
+  const Status status =
+      AdjustAndExtendTracks(world_T_base_odometry, options, &reconstruction, &summary, result);
+  result->junctions = std::move(reconstruction.junctions);
+  result->tracks = std::move(reconstruction.tracks);
+  result->landmarks = std::move(reconstruction.landmarks);
+  SFM_RETURN_IF_ERROR(status);
   result->unobservable_lines += summary.lines_unobservable;
   result->bundle_adjustment = summary;
-  result->world_T_camera_refined = CamerasFromBases(world_T_base_refined, sequence.calibration.base_T_camera);
+  result->world_T_camera_refined =
+      CamerasFromBases(reconstruction.world_T_base, sequence.calibration.base_T_camera);
   LOG(INFO) << "bundle adjustment: " << summary.points << " points, " << summary.lines << " lines, "
             << summary.observations << " observations; " << summary.observations_removed
             << " outlier observations removed, " << summary.lines_unobservable << " more lines unobservable ("
