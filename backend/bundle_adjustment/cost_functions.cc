@@ -178,34 +178,8 @@ OdometryStepSigmas OdometryStepSigmasFor(double distance_m, const OdometryNoise&
 ceres::CostFunction* OdometryPriorCost::Create(const Pose3& base_i_T_base_j_odometry, double rotation_sigma_rad,
                                                double along_sigma_m, double across_sigma_m) {
   CheckOdometrySigmas(base_i_T_base_j_odometry, rotation_sigma_rad, along_sigma_m, across_sigma_m);
-  return new ceres::AutoDiffCostFunction<OdometryPriorCost, 6, 4, 3, 4, 3>(
+  return new ceres::AutoDiffCostFunction<OdometryPriorCost, 6, 4, 3, 4, 3, 1, 3>(
       new OdometryPriorCost(base_i_T_base_j_odometry, rotation_sigma_rad, along_sigma_m, across_sigma_m));
-}
-
-ceres::CostFunction* OdometryPriorWithScaleCost::Create(const Pose3& base_i_T_base_j_odometry,
-                                                       double rotation_sigma_rad, double along_sigma_m,
-                                                       double across_sigma_m) {
-  CheckOdometrySigmas(base_i_T_base_j_odometry, rotation_sigma_rad, along_sigma_m, across_sigma_m);
-  return new ceres::AutoDiffCostFunction<OdometryPriorWithScaleCost, 6, 4, 3, 4, 3, 1>(new OdometryPriorWithScaleCost(
-      OdometryPriorCost(base_i_T_base_j_odometry, rotation_sigma_rad, along_sigma_m, across_sigma_m)));
-}
-
-ceres::CostFunction* OdometryPriorWithBiasCost::Create(const Pose3& base_i_T_base_j_odometry,
-                                                       double rotation_sigma_rad, double along_sigma_m,
-                                                       double across_sigma_m) {
-  CheckOdometrySigmas(base_i_T_base_j_odometry, rotation_sigma_rad, along_sigma_m, across_sigma_m);
-  return new ceres::AutoDiffCostFunction<OdometryPriorWithBiasCost, 6, 4, 3, 4, 3, 3>(
-      new OdometryPriorWithBiasCost(
-          OdometryPriorCost(base_i_T_base_j_odometry, rotation_sigma_rad, along_sigma_m, across_sigma_m)));
-}
-
-ceres::CostFunction* OdometryPriorWithScaleAndBiasCost::Create(const Pose3& base_i_T_base_j_odometry,
-                                                               double rotation_sigma_rad,
-                                                               double along_sigma_m, double across_sigma_m) {
-  CheckOdometrySigmas(base_i_T_base_j_odometry, rotation_sigma_rad, along_sigma_m, across_sigma_m);
-  return new ceres::AutoDiffCostFunction<OdometryPriorWithScaleAndBiasCost, 6, 4, 3, 4, 3, 1, 3>(
-      new OdometryPriorWithScaleAndBiasCost(
-          OdometryPriorCost(base_i_T_base_j_odometry, rotation_sigma_rad, along_sigma_m, across_sigma_m)));
 }
 
 ceres::CostFunction* OdometryRotationBiasPriorCost::Create(double sigma_rad) {

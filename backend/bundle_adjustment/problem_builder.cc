@@ -139,13 +139,13 @@ JointProblem::JointProblem(const AdjustmentSetup& setup, const FloorPriorState& 
   // A start whose scale is not 1 (an earlier adjustment's, which its floor prior rescaled) keeps
   // that scale in the odometry priors, held, until this run's floor frees it: otherwise the first
   // solves would pull the start back to the odometry's scale.
+  // lambda and b are blocks of every odometry prior, held where they are not estimated (lambda
+  // without the floor prior and in the line search's samples, b without with_bias): the odometry
+  // prior then has the residuals and pose Jacobians of one without them (odometry_prior_cost.h).
   double* const scale = &parameters->odometry_scale;
-  const bool scaled = floor.applied() || parameters->odometry_scale != 1.0;
-  if (scaled) {
-    problem.AddParameterBlock(scale, 1);
-    ordering_->AddElementToGroup(scale, 1);
-    if (!floor.applied() || parameters->hold_scale) problem.SetParameterBlockConstant(scale);
-  }
+  problem.AddParameterBlock(scale, 1);
+  ordering_->AddElementToGroup(scale, 1);
+  if (!floor.applied() || parameters->hold_scale) problem.SetParameterBlockConstant(scale);
   if (floor.applied()) {
     const FloorLandmarks& held = floor.landmarks();
     for (int point : held.points) {
@@ -174,11 +174,13 @@ JointProblem::JointProblem(const AdjustmentSetup& setup, const FloorPriorState& 
   // sigma (a bias larger than the whole per-frame noise the model states is outside the model;
   // the steps' vision-determined rotations pin it far tighter, about sigma / sqrt(steps)).
   double* const bias = parameters->rotation_bias.data();
+  problem.AddParameterBlock(bias, 3);
+  ordering_->AddElementToGroup(bias, 1);
   if (parameters->with_bias) {
-    problem.AddParameterBlock(bias, 3);
-    ordering_->AddElementToGroup(bias, 1);
     problem.AddResidualBlock(OdometryRotationBiasPriorCost::Create(setup.noise.rotation_sigma), nullptr,
                              bias);
+  } else {
+    problem.SetParameterBlockConstant(bias);
   }
   // The odometry prior of every step (docs/bundle_adjustment.md, "Odometry prior").
   const std::vector<Pose3>& odometry = setup.odometry;
@@ -186,23 +188,9 @@ JointProblem::JointProblem(const AdjustmentSetup& setup, const FloorPriorState& 
   for (size_t f = 0; f + 1 < poses.size(); ++f) {
     const Pose3 motion = odometry[f].Inverse() * odometry[f + 1];
     const OdometryStepSigmas sigmas = OdometryStepSigmasFor(motion.translation.norm(), setup.noise, options);
-    std::vector<double*> blocks = {poses[f].rotation.data(), poses[f].translation.data(),
-                                   poses[f + 1].rotation.data(), poses[f + 1].translation.data()};
-    ceres::CostFunction* cost = nullptr;
-    if (parameters->with_bias && scaled) {
-      cost =
-          OdometryPriorWithScaleAndBiasCost::Create(motion, rotation_sigma, sigmas.along_m, sigmas.across_m);
-      blocks.insert(blocks.end(), {scale, bias});
-    } else if (parameters->with_bias) {
-      cost = OdometryPriorWithBiasCost::Create(motion, rotation_sigma, sigmas.along_m, sigmas.across_m);
-      blocks.push_back(bias);
-    } else if (scaled) {
-      cost = OdometryPriorWithScaleCost::Create(motion, rotation_sigma, sigmas.along_m, sigmas.across_m);
-      blocks.push_back(scale);
-    } else {
-      cost = OdometryPriorCost::Create(motion, rotation_sigma, sigmas.along_m, sigmas.across_m);
-    }
-    AddResidual(cost, nullptr, blocks);
+    AddResidual(OdometryPriorCost::Create(motion, rotation_sigma, sigmas.along_m, sigmas.across_m), nullptr,
+                {poses[f].rotation.data(), poses[f].translation.data(), poses[f + 1].rotation.data(),
+                 poses[f + 1].translation.data(), scale, bias});
   }
 }
 
