@@ -91,9 +91,6 @@ DEFINE_double(wireframe_far_end_at_point_px, kDefaults.triangulation.wireframe.f
 DEFINE_double(wireframe_far_end_along_px, kDefaults.triangulation.wireframe.far_end_along_px,
               "Wireframe selection, --wireframe_far_end_at_point_px: the largest median distance, pixels, "
               "along the observed image lines between the point's projections and the far end-points.");
-DEFINE_bool(wireframe_far_end_shares_vertex, kDefaults.triangulation.wireframe.far_end_shares_vertex,
-            "Wireframe selection, --wireframe_far_end_at_point_px: the edge ends at the point's own vertex "
-            "(false: at a vertex of its own at the point's position).");
 DEFINE_int32(wireframe_line_end_along_sigma, kDefaults.triangulation.wireframe.line_end_along_sigma,
              "Wireframe selection, rule 2: a back-projected line end's sigma includes its position along "
              "the line (0: off; 1: a line's own end0; 2: end0 and end1; docs/tracks_and_triangulation.md, "
@@ -136,7 +133,6 @@ bool OptionsFromFlags(sfm::PipelineOptions* options, std::string* error) {
   options->triangulation.wireframe.tolerance_share = FLAGS_wireframe_tolerance_share;
   options->triangulation.wireframe.far_end_at_point_px = FLAGS_wireframe_far_end_at_point_px;
   options->triangulation.wireframe.far_end_along_px = FLAGS_wireframe_far_end_along_px;
-  options->triangulation.wireframe.far_end_shares_vertex = FLAGS_wireframe_far_end_shares_vertex;
   options->triangulation.wireframe.line_variance_factor = FLAGS_wireframe_line_variance_factor;
   options->triangulation.wireframe.line_end_along_sigma = FLAGS_wireframe_line_end_along_sigma;
   options->triangulation.wireframe.point_variance_factor = FLAGS_wireframe_point_variance_factor;

@@ -43,11 +43,8 @@ ReconstructedWireframe WireframeOf(const Landmarks& landmarks) {
       first = static_cast<int>(wireframe.vertices.size());
       wireframe.vertices.push_back(line.end0);
     }
-    int last = line.end1_point_landmark;  // the far end at a drawn point shares its vertex
-    if (last < 0) {
-      last = static_cast<int>(wireframe.vertices.size());
-      wireframe.vertices.push_back(line.end1);
-    }
+    const int last = static_cast<int>(wireframe.vertices.size());
+    wireframe.vertices.push_back(line.end1);
     wireframe.edges.emplace_back(first, last);
   }
   return wireframe;

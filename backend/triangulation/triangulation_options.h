@@ -142,17 +142,14 @@ struct WireframeOptions {
   // observed image lines (median distance across them <= far_end_at_point_px) at the observed far
   // end-points (median distance along them <= far_end_along_px), and lies ahead of the line's
   // start (its junction point, else end0) within far_end_max_angle_deg of the segment, end1 is
-  // that point; with far_end_shares_vertex the edge ends at the point's own vertex
-  // (LineLandmark::end1_point_landmark), else (the default) at a vertex of its own at the point's
-  // position, as the far end had before (sharing lowers the share: the far ends it merges into
-  // points are mostly within 5 cm; docs/backend_results.md, session 6 "lineend").
+  // that point's position, a vertex of the edge's own (sharing the point's vertex lowered the
+  // share: the far ends it merges into points are mostly within 5 cm; docs/decisions.md).
   // docs/tracks_and_triangulation.md, "Far ends at junction points". Default 1 px: about 3 sigma
   // of the 0.3 px pixel noise the wireframe's tests use (3 px moves more far ends but breaks two to
   // three times as many good ones).
   double far_end_at_point_px = 1;
   double far_end_along_px = 5;
   double far_end_max_angle_deg = 15;
-  bool far_end_shares_vertex = false;
   // A line's vertex sigmas scaled by its own a-posteriori variance factor relative to the lines'
   // typical one: sqrt(v / v0) when above 1, v = chi2 / dof of its reprojection residuals
   // (LineChiSquare at the test's pixel noise), v0 the lines' variance of unit weight (the median

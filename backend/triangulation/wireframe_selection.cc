@@ -240,7 +240,6 @@ void FarEndsAtPoints(const Eigen::Matrix3d& K, const std::vector<Pose3>& world_T
     }
     if (best < 0) continue;
     line.end1 = selected->points[best].position;
-    if (options.far_end_shares_vertex) line.end1_point_landmark = best;
     ++counts->lines_far_end_at_point;
   }
 }

@@ -62,9 +62,9 @@ PoseDrift WireframePoseDrift(const WireframeOptions& options, const std::vector<
 // vertices are within the bound (LinePositionSigma at end1, and at end0 unless end0 is a kept
 // point). A line whose point was dropped takes its own end0 (the median of its back-projected
 // junction locations) and point_landmark -1; point_landmark is renumbered. Order is preserved.
-// With options.far_end_at_point_px > 0 a kept line's end1 is then moved to a kept point that its
-// observed image lines and far end-points agree with (end1_point_landmark set when
-// far_end_shares_vertex).
+// With options.far_end_at_point_px > 0 a kept line's end1 is then moved to the position of a kept
+// point that its observed image lines and far end-points agree with (the edge keeps a vertex of
+// its own there).
 // options must pass Check(), every observation must index world_T_camera (CHECKed).
 Landmarks SelectWireframeLandmarks(const Eigen::Matrix3d& K, const std::vector<Pose3>& world_T_camera,
                                    const Landmarks& landmarks, const WireframeOptions& options,

@@ -429,9 +429,8 @@ TEST_F(WireframeSelectionTest, AnAccuracyAskedDropsTheLeastDeterminedVerticesOnl
 // WireframeOptions::far_end_at_point_px. A vertical edge from a drawn corner (point 0) to another
 // drawn corner (point 1) 0.8 m below, its observed image segments overshooting the lower corner by
 // 0.02 m (3 px at 3 m, f 450): off, end1 is the median back-projected far end, 0.02 m beyond the
-// corner (to 1e-9 m); on (1 px across, 5 px along), end1 is point 1 itself and the edge shares its
-// vertex (end1_point_landmark 1), or with far_end_shares_vertex false has a vertex of its own there.
-// A corner 0.02 m (3 px) beside the edge's image lines is not taken.
+// corner (to 1e-9 m); on (1 px across, 5 px along), end1 is point 1's position. A corner 0.02 m
+// (3 px) beside the edge's image lines is not taken.
 TEST_F(WireframeSelectionTest, AFarEndAtADrawnPointIsThatPoint) {
   const Eigen::Vector3d top(0.5, 0.2, 3), bottom(0.5, -0.6, 3), overshoot(0.5, -0.62, 3);
   Landmarks landmarks;
@@ -444,27 +443,17 @@ TEST_F(WireframeSelectionTest, AFarEndAtADrawnPointIsThatPoint) {
   Landmarks kept = SelectWireframeLandmarks(K_, cameras_, landmarks, options, &report);
   ASSERT_EQ(kept.lines.size(), 1u);
   EXPECT_LT((kept.lines[0].end1 - overshoot).norm(), 1e-9);
-  EXPECT_EQ(kept.lines[0].end1_point_landmark, -1);
   EXPECT_EQ(report.lines_far_end_at_point, 0);
   options.far_end_at_point_px = 1;
-  options.far_end_shares_vertex = true;
   kept = SelectWireframeLandmarks(K_, cameras_, landmarks, options, &report);
   ASSERT_EQ(kept.lines.size(), 1u);
   EXPECT_EQ(kept.lines[0].end1, bottom);
-  EXPECT_EQ(kept.lines[0].end1_point_landmark, 1);
   EXPECT_EQ(report.lines_far_end_at_point, 1);
-  options.far_end_shares_vertex = false;
-  kept = SelectWireframeLandmarks(K_, cameras_, landmarks, options, &report);
-  ASSERT_EQ(kept.lines.size(), 1u);
-  EXPECT_EQ(kept.lines[0].end1, bottom);
-  EXPECT_EQ(kept.lines[0].end1_point_landmark, -1);
   // Beside the image lines: not the edge's end.
-  options.far_end_shares_vertex = true;
   landmarks.points[1] = Point({0.52, -0.6, 3});
   kept = SelectWireframeLandmarks(K_, cameras_, landmarks, options, &report);
   ASSERT_EQ(kept.lines.size(), 1u);
   EXPECT_LT((kept.lines[0].end1 - overshoot).norm(), 1e-9);
-  EXPECT_EQ(kept.lines[0].end1_point_landmark, -1);
   EXPECT_EQ(report.lines_far_end_at_point, 0);
 }
 
