@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <chrono>
 #include <filesystem>
-#include <memory>
 #include <opencv2/core.hpp>
 #include <string>
 #include <utility>
@@ -13,6 +12,8 @@
 
 #include "backend/bundle_adjustment/bundle_adjuster.h"
 #include "backend/metrics/drift.h"
+#include "backend/triangulation/reconstruction.h"
+#include "backend/triangulation/track_extension.h"
 #include "backend/triangulation/triangulate_tracks.h"
 #include "frontend/geometry/image_undistorter.h"
 #include "frontend/junctions/junction_detector.h"
