@@ -95,14 +95,6 @@ DEFINE_int32(wireframe_line_end_along_sigma, kDefaults.triangulation.wireframe.l
              "Wireframe selection, rule 2: a back-projected line end's sigma includes its position along "
              "the line (0: off; 1: a line's own end0; 2: end0 and end1; docs/tracks_and_triangulation.md, "
              "\"A line end's position along the line\").");
-DEFINE_bool(wireframe_line_variance_factor, kDefaults.triangulation.wireframe.line_variance_factor,
-            "Wireframe selection: a line's vertex sigmas scaled by sqrt(its chi2 / dof over the lines' "
-            "typical one) when "
-            "above 1 (docs/tracks_and_triangulation.md, \"A line's own variance factor\").");
-DEFINE_bool(
-    wireframe_point_variance_factor, kDefaults.triangulation.wireframe.point_variance_factor,
-    "Wireframe selection: a point's sigma scaled by sqrt(its chi2 / dof over the points' typical one) when "
-    "above 1 (docs/tracks_and_triangulation.md, \"A line's own variance factor\").");
 
 namespace {
 
@@ -133,9 +125,7 @@ bool OptionsFromFlags(sfm::PipelineOptions* options, std::string* error) {
   options->triangulation.wireframe.tolerance_share = FLAGS_wireframe_tolerance_share;
   options->triangulation.wireframe.far_end_at_point_px = FLAGS_wireframe_far_end_at_point_px;
   options->triangulation.wireframe.far_end_along_px = FLAGS_wireframe_far_end_along_px;
-  options->triangulation.wireframe.line_variance_factor = FLAGS_wireframe_line_variance_factor;
   options->triangulation.wireframe.line_end_along_sigma = FLAGS_wireframe_line_end_along_sigma;
-  options->triangulation.wireframe.point_variance_factor = FLAGS_wireframe_point_variance_factor;
   options->bundle_adjustment_options.floor_base_prior = FLAGS_floor_base_prior;
   options->bundle_adjustment_options.floor_scale_line_search = FLAGS_floor_scale_line_search;
   if (FLAGS_floor_prior == "auto") {

@@ -150,27 +150,6 @@ struct WireframeOptions {
   double far_end_at_point_px = 1;
   double far_end_along_px = 5;
   double far_end_max_angle_deg = 15;
-  // A line's vertex sigmas scaled by its own a-posteriori variance factor relative to the lines'
-  // typical one: sqrt(v / v0) when above 1, v = chi2 / dof of its reprojection residuals
-  // (LineChiSquare at the test's pixel noise), v0 the lines' variance of unit weight (the median
-  // over the lines of chi2 / median of chi-square(dof), 1 for residuals as the noise model says),
-  // i.e. its covariance by v / v0 (the estimated variance factor of a least-squares adjustment,
-  // Foerstner & Wrobel 2016, "Photogrammetric Computer Vision", ch. 4; applied per line). The
-  // first-order sigma assumes every view's end-points are off by independent pixel noise; a line
-  // whose views disagree more than the other lines' do (a double edge's segments switching between
-  // its two edges, a wrong grouping) gets the larger sigma its residuals show, before the
-  // determination test (rule 2) and the accuracy asked (rule 3). Relative to the lines' own level,
-  // not to pixel_sigma_px: the lines' end-points fit 2-3 times better than the 0.3 px the tests
-  // assume (v0 0.11-0.28 on the generated sequences), so against the assumed noise almost no line
-  // exceeds 1 (measured: -0.0004..+0.003 in the share). Never below the first-order sigma.
-  // docs/tracks_and_triangulation.md, "A line's own variance factor"; docs/backend_results.md,
-  // session 7.
-  bool line_variance_factor = true;
-  // The same for the points: a point's sigma times sqrt(v / v0) when above 1, v its residuals'
-  // chi2 / dof (PointChiSquare), v0 the points' variance of unit weight (median of chi2 / median of
-  // chi-square(dof) over the points). On by default since session 7; measured after
-  // line_variance_factor, on the same development sequences (docs/backend_results.md, session 7).
-  bool point_variance_factor = true;
   // Rule 2 with a line end's position *along* the line (session 8). A back-projected end (end0 of a
   // line without a kept junction point: its junction locations; end1: its far end-points) is where
   // the viewing rays meet the 3D line, so it slides along the line by the line's own error across
