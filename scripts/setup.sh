@@ -22,6 +22,22 @@ sfm_install_missing_packages() {
   fi
 }
 
+# A package that only a benchmark needs (never one of the product's above, e.g. colmap for
+# scripts/benchmark_real.sh): installed when `command` is not on PATH, as root; otherwise the
+# command to run is printed and the function returns 1.
+sfm_install_benchmark_package() {
+  local package=$1 command=$2
+  command -v "$command" >/dev/null && return 0
+  if [ "$(id -u)" -eq 0 ]; then
+    echo "setup: installing $package (a benchmark dependency)" >&2
+    apt-get update -q >&2
+    DEBIAN_FRONTEND=noninteractive apt-get install -y -q --no-install-recommends "$package" >&2
+  else
+    echo "setup: $command not found; run as root: apt-get install -y $package" >&2
+    return 1
+  fi
+}
+
 sfm_configure_and_build() {
   local build_dir=$1; shift
   if [ ! -f "$build_dir/CMakeCache.txt" ]; then

@@ -4,11 +4,12 @@
 //   build/bin/import_sequence --format vgg|strecha|tum --input <data set dir> --output <sequence dir>
 //
 // docs/importers.md describes each format, the noise model and the figures measured on the data.
-#include <cstdio>
-#include <string>
-
 #include <gflags/gflags.h>
 #include <glog/logging.h>
+
+#include <cmath>
+#include <cstdio>
+#include <string>
 
 #include "sequences/importers/imported_sequence.h"
 #include "sequences/importers/strecha_importer.h"
@@ -41,6 +42,9 @@ DEFINE_double(odometry_rotation_sigma, kDefaults.odometry.rotation_sigma,
               "(0.0052 rad = 0.3 deg).");
 DEFINE_double(odometry_rotation_bias, kDefaults.odometry.rotation_bias,
               "Odometry rotation bias per step about the camera's y axis (a heading drift), radians.");
+DEFINE_double(odometry_noise_scale, 1,
+              "Multiplies every odometry noise term above (scale error, distance sigma, rotation sigma, "
+              "rotation bias), after they are set; >= 0 (0: noise-free odometry, 3: three times the noise).");
 DEFINE_bool(
     vgg_refit_poses, sfm::VggImportOptions().refit_poses,
     "vgg: re-estimate the poses for the sequence's one K (by --vgg_refit); false keeps R, C of each P's "
@@ -143,6 +147,12 @@ int main(int argc, char** argv) {
   options.odometry.distance_sigma = FLAGS_odometry_distance_sigma;
   options.odometry.rotation_sigma = FLAGS_odometry_rotation_sigma;
   options.odometry.rotation_bias = FLAGS_odometry_rotation_bias;
+  if (!(FLAGS_odometry_noise_scale >= 0 && std::isfinite(FLAGS_odometry_noise_scale))) {
+    std::fprintf(stderr, "import_sequence: --odometry_noise_scale must be a finite number >= 0 (found %g)\n",
+                 FLAGS_odometry_noise_scale);
+    return 2;
+  }
+  options.odometry = options.odometry.Scaled(FLAGS_odometry_noise_scale);
   options.seed = FLAGS_seed;
   options.overwrite = FLAGS_overwrite;
   sfm::Status status = options.Check();

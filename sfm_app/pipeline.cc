@@ -5,19 +5,19 @@
 #include <algorithm>
 #include <chrono>
 #include <filesystem>
-#include <memory>
 #include <opencv2/core.hpp>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "backend/bundle_adjustment/bundle_adjuster.h"
-#include "backend/bundle_adjustment/pose_covariance.h"
 #include "backend/initialization/odometry_noise_estimate.h"
 #include "backend/initialization/pose_graph.h"
 #include "backend/initialization/trajectory_evidence.h"
 #include "backend/initialization/visual_constraints.h"
 #include "backend/metrics/drift.h"
+#include "backend/triangulation/reconstruction.h"
+#include "backend/triangulation/track_extension.h"
 #include "backend/triangulation/triangulate_tracks.h"
 #include "frontend/geometry/image_undistorter.h"
 #include "frontend/junctions/junction_detector.h"
@@ -113,6 +113,7 @@ Status OdometryPairGeometries(const Sequence& sequence, const std::string& seque
 
 std::vector<Pose3> OdometryBasePoses(const Sequence& sequence);
 std::vector<Pose3> CamerasFromBases(const std::vector<Pose3>& world_T_base, const Pose3& base_T_camera);
+std::vector<Pose3> BasesFromCameras(const std::vector<Pose3>& world_T_camera, const Pose3& base_T_camera);
 
 // Radians: below this, the odometry's rotation noise on an axis is not told apart from the
 // images' own (the spread of a pair's rotation from 20-100 junction matches).
@@ -297,7 +298,8 @@ void LogFloorLandmarks(const std::string& stage, const PipelineResult& result) {
 }
 
 // The track extension's counts into the result and the log.
-void RecordTrackExtension(const TrackExtensionReport& report, Clock::time_point start, PipelineResult* result) {
+void RecordTrackExtension(const TrackExtensionReport& report, size_t tracks, Clock::time_point start,
+                          PipelineResult* result) {
   TrackExtensionSummary& summary = result->track_extension;
   summary.ran = true;
   summary.observations_added = report.observations_added;
@@ -310,43 +312,62 @@ void RecordTrackExtension(const TrackExtensionReport& report, Clock::time_point 
             << report.tracks_merged << " tracks merged (" << report.merges_refused << " refused), "
             << report.ambiguous << " ambiguous projections, " << report.gate_too_wide << " gates too wide, "
             << report.no_junction << " empty, " << report.incompatible
-            << " with no compatible junction; refused merges: " << report.merge_overlap << " sharing a frame, "
-            << report.merge_disagree << " disagreeing points, " << report.merge_unexplained << " not explained by the point; " << summary.points_changed << " points and "
-            << summary.lines_changed << " lines changed; now " << result->tracks.size() << " tracks; "
+            << " with no compatible junction; refused merges: " << report.merge_overlap
+            << " sharing a frame, " << report.merge_disagree << " disagreeing points, "
+            << report.merge_unexplained << " not explained by the point; " << summary.points_changed
+            << " points and " << summary.lines_changed << " lines changed; now " << tracks << " tracks; "
             << summary.seconds << " s";
 }
 
-// Bundle adjustment from the initial trajectory, the odometry its prior: refined poses and landmarks.
-Status Refine(const Sequence& sequence, const PipelineOptions& options, PipelineResult* result) {
-  std::vector<Pose3> world_T_base_refined;
-  BundleAdjustmentSummary summary;
-  MapHook extend;
-  if (options.extend_tracks && (options.extend_tracks_stage == TrackExtensionStage::kInAdjustment ||
-                                options.extend_tracks_stage == TrackExtensionStage::kAfterCoarse)) {
-    // The track extension inside the adjustment; its later solves refine what it changed.
-    extend.when = options.extend_tracks_stage == TrackExtensionStage::kAfterCoarse ? MapHook::kAfterCoarse
-                                                                                  : MapHook::kAfterFine;
-    extend.change = [&](const std::vector<Pose3>& world_T_base, Landmarks* landmarks) {
-      const Clock::time_point start = Clock::now();
-      const Calibration& calibration = sequence.calibration;
-      TrackExtensionReport report;
-      Eigen::Vector2d box_min, box_max;
-      DetectionBox(calibration.camera, options, &box_min, &box_max);
-      ExtendTracks(calibration.camera.K(), box_min, box_max,
-                   CamerasFromBases(world_T_base, calibration.base_T_camera), result->junctions,
-                   options.track_extension, &result->tracks, landmarks, &report);
-      RecordTrackExtension(report, start, result);
-    };
+// The bundle adjustment's steps with the track extension between its first fine solve and its
+// outlier rounds, which then judge the new observations as the old ones and whose solves refine
+// the changed map with the poses (docs/tracks_and_triangulation.md, "Track extension"; COLMAP's
+// IterativeGlobalRefinement: adjust, complete and merge tracks, filter). The solves start from
+// reconstruction->world_T_base at the odometry's scale factor 1; the odometry is the prior.
+Status AdjustAndExtendTracks(const std::vector<Pose3>& world_T_base_odometry, const PipelineOptions& options,
+                             Reconstruction* reconstruction, BundleAdjustmentSummary* summary,
+                             PipelineResult* result) {
+  BundleAdjustment adjustment(world_T_base_odometry, /*odometry_scale_start=*/1,
+                              options.bundle_adjustment_options, reconstruction, summary);
+  SFM_RETURN_IF_ERROR(adjustment.Start());
+  SFM_RETURN_IF_ERROR(adjustment.SolveCoarse());
+  SFM_RETURN_IF_ERROR(adjustment.SolveFine());
+  if (options.extend_tracks && !adjustment.finished()) {
+    const Clock::time_point start = Clock::now();
+    TrackExtensionReport report;
+    Eigen::Vector2d box_min, box_max;
+    DetectionBox(reconstruction->calibration.camera, options, &box_min, &box_max);
+    ExtendTracks(options.track_extension, box_min, box_max, reconstruction, &report);
+    RecordTrackExtension(report, reconstruction->tracks.size(), start, result);
+    SFM_RETURN_IF_ERROR(adjustment.AcceptChangedMap());
   }
-  Calibration calibration = sequence.calibration;
-  calibration.odometry_noise = result->initialization.used;
-  SFM_RETURN_IF_ERROR(BundleAdjust(calibration, OdometryBasePoses(sequence),
-                                   BasesFromCameras(result->world_T_camera_initial, calibration.base_T_camera),
-                                   /*odometry_scale_start=*/1, options.bundle_adjustment_options, &result->landmarks,
-                                   &world_T_base_refined, &summary, extend));
+  SFM_RETURN_IF_ERROR(adjustment.Filter());
+  adjustment.Finish();
+  return Status::Ok();
+}
+
+// Bundle adjustment from the initial trajectory, the odometry its prior, the tracks extended in it:
+// refined poses, landmarks and tracks.
+Status Refine(const Sequence& sequence, const PipelineOptions& options, PipelineResult* result) {
+  const std::vector<Pose3> world_T_base_odometry = OdometryBasePoses(sequence);
+  Reconstruction reconstruction;
+  reconstruction.calibration = sequence.calibration;
+  reconstruction.calibration.odometry_noise = result->initialization.used;
+  reconstruction.world_T_base = BasesFromCameras(result->world_T_camera_initial, sequence.calibration.base_T_camera);
+  reconstruction.junctions = std::move(result->junctions);
+  reconstruction.tracks = std::move(result->tracks);
+  reconstruction.landmarks = std::move(result->landmarks);
+  BundleAdjustmentSummary summary;
+  const Status status =
+      AdjustAndExtendTracks(world_T_base_odometry, options, &reconstruction, &summary, result);
+  result->junctions = std::move(reconstruction.junctions);
+  result->tracks = std::move(reconstruction.tracks);
+  result->landmarks = std::move(reconstruction.landmarks);
+  SFM_RETURN_IF_ERROR(status);
   result->unobservable_lines += summary.lines_unobservable;
   result->bundle_adjustment = summary;
-  result->world_T_camera_refined = CamerasFromBases(world_T_base_refined, sequence.calibration.base_T_camera);
+  result->world_T_camera_refined =
+      CamerasFromBases(reconstruction.world_T_base, sequence.calibration.base_T_camera);
   LOG(INFO) << "bundle adjustment: " << summary.points << " points, " << summary.lines << " lines, "
             << summary.observations << " observations; " << summary.observations_removed
             << " outlier observations removed, " << summary.lines_unobservable << " more lines unobservable ("
@@ -411,177 +432,6 @@ void WeighTheEvidence(const Sequence& sequence, const PipelineOptions& options, 
   }
 }
 
-// A second bundle adjustment of the changed map (`what` says how, for the log), starting from the
-// refined poses and the first adjustment's odometry scale; the odometry stays the prior. Its
-// poses and summary replace the first's.
-Status AdjustAgainFromRefinedPoses(const Sequence& sequence, const BundleAdjustmentOptions& bundle_options,
-                                   const std::string& what, PipelineResult* result) {
-  const Calibration& calibration = sequence.calibration;
-  std::vector<Pose3> world_T_base_second;
-  BundleAdjustmentSummary summary;
-  SFM_RETURN_IF_ERROR(BundleAdjust(calibration, OdometryBasePoses(sequence),
-                                   BasesFromCameras(result->world_T_camera_refined, calibration.base_T_camera),
-                                   result->bundle_adjustment.odometry_scale, bundle_options, &result->landmarks,
-                                   &world_T_base_second, &summary));
-  result->bundle_adjustment = summary;
-  result->world_T_camera_refined = CamerasFromBases(world_T_base_second, calibration.base_T_camera);
-  LOG(INFO) << "second bundle adjustment " << what << ": " << summary.points << " points, " << summary.lines
-            << " lines; " << summary.observations_removed << " outlier observations removed; RMS "
-            << summary.point_rms_px << " px (points), " << summary.line_rms_px << " px (lines); "
-            << summary.floor_prior_report
-            << (summary.floor_prior_used ? "; odometry scale " + std::to_string(summary.odometry_scale) : "")
-            << "; " << summary.solves << " solves, " << summary.iterations << " iterations, " << summary.time_s
-            << " s";
-  return Status::Ok();
-}
-
-// Every track triangulated again on the refined poses: tracks whose triangulation failed on the
-// drifting odometry (parallax, reprojection) can pass now. The new landmarks are refined on the
-// refined poses held fixed and pass the adjustment's outlier rules before they join the map
-// (docs/tracks_and_triangulation.md, "Re-triangulation on the refined poses"). kFull then adjusts
-// everything again, starting from the refined poses; the odometry stays the prior.
-Status RetriangulateOnRefinedPoses(const Sequence& sequence, const PipelineOptions& options,
-                                   PipelineResult* result) {
-  const Calibration& calibration = sequence.calibration;
-  const std::vector<Pose3> world_T_base_refined =
-      BasesFromCameras(result->world_T_camera_refined, calibration.base_T_camera);
-  TriangulationReport triangulation_report;
-  Landmarks retriangulated =
-      TriangulateTracks(calibration.camera.K(), result->world_T_camera_refined, result->junctions,
-                        result->tracks, options.triangulation, &triangulation_report);
-  const size_t triangulated_points = retriangulated.points.size(),
-               triangulated_lines = retriangulated.lines.size();
-  BundleAdjustmentSummary structure_summary;
-  SFM_RETURN_IF_ERROR(RefineLandmarksOnFixedPoses(calibration, world_T_base_refined,
-                                                  options.bundle_adjustment_options, &retriangulated,
-                                                  &structure_summary));
-  const size_t points_before = result->landmarks.points.size(), lines_before = result->landmarks.lines.size();
-  LandmarkMergeReport merge;
-  MergeRetriangulatedLandmarks(retriangulated, options.retriangulated_landmarks, &result->landmarks, &merge);
-  result->retriangulation.ran = true;
-  result->retriangulation.points_added = merge.points_added;
-  result->retriangulation.lines_added = merge.lines_added;
-  result->retriangulation.observations_removed = structure_summary.observations_removed;
-  LOG(INFO) << "re-triangulation on the refined poses: " << triangulated_points << " points and "
-            << triangulated_lines << " lines triangulated, " << retriangulated.points.size() << " and "
-            << retriangulated.lines.size() << " kept after refining them on the fixed poses ("
-            << structure_summary.observations_removed << " outlier observations removed); map "
-            << points_before << " -> " << result->landmarks.points.size() << " points, " << lines_before
-            << " -> " << result->landmarks.lines.size() << " lines (" << merge.lines_linked_to_existing_point
-            << " new lines at an existing point)";
-  if (options.retriangulate_refined != RetriangulateRefined::kFull) return Status::Ok();
-
-  SFM_RETURN_IF_ERROR(AdjustAgainFromRefinedPoses(sequence, options.bundle_adjustment_options,
-                                                  "from the refined poses", result));
-  result->retriangulation.second_adjustment = true;
-  LogFloorLandmarks("second", *result);
-  return Status::Ok();
-}
-
-// Tracks extended and merged by projecting the adjusted points into the frames they miss
-// (track_extension.h); the landmarks that gained observations are then refined alone on the
-// refined poses held fixed, by the adjustment's outlier rules (RefineLandmarksOnFixedPoses), and
-// replace their old selves. The trajectory is unchanged.
-Status ExtendTracksOnRefinedPoses(const Sequence& sequence, const PipelineOptions& options, PipelineResult* result) {
-  const Clock::time_point start = Clock::now();
-  const Calibration& calibration = sequence.calibration;
-  TrackExtensionReport report;
-  Eigen::Vector2d box_min, box_max;
-  DetectionBox(calibration.camera, options, &box_min, &box_max);
-  ExtendTracks(calibration.camera.K(), box_min, box_max, result->world_T_camera_refined, result->junctions,
-               options.track_extension, &result->tracks, &result->landmarks, &report);
-  // The changed landmarks as a map of their own (every changed line's point is changed too, or
-  // joins it), refined, then put back after the unchanged ones.
-  Landmarks& map = result->landmarks;
-  std::vector<bool> point_in(map.points.size(), false), line_in(map.lines.size(), false);
-  for (int p : report.changed_points) point_in[p] = true;
-  for (int l : report.changed_lines) {
-    line_in[l] = true;
-    if (map.lines[l].point_landmark >= 0) point_in[map.lines[l].point_landmark] = true;
-  }
-  Landmarks changed, kept;
-  std::vector<int> index_in(map.points.size(), -1);
-  for (size_t p = 0; p < map.points.size(); ++p) {
-    Landmarks& to = point_in[p] ? changed : kept;
-    index_in[p] = static_cast<int>(to.points.size());
-    to.points.push_back(std::move(map.points[p]));
-  }
-  for (size_t l = 0; l < map.lines.size(); ++l) {
-    LineLandmark line = std::move(map.lines[l]);
-    if (line.point_landmark >= 0) {
-      CHECK(line_in[l] || !point_in[line.point_landmark]) << "a changed point's line left out";
-      line.point_landmark = index_in[line.point_landmark];
-    }
-    (line_in[l] ? changed : kept).lines.push_back(std::move(line));
-  }
-  BundleAdjustmentSummary structure;
-  SFM_RETURN_IF_ERROR(RefineLandmarksOnFixedPoses(
-      calibration, BasesFromCameras(result->world_T_camera_refined, calibration.base_T_camera),
-      options.bundle_adjustment_options, &changed, &structure));
-  const int offset = static_cast<int>(kept.points.size());
-  for (PointLandmark& point : changed.points) kept.points.push_back(std::move(point));
-  for (LineLandmark& line : changed.lines) {
-    if (line.point_landmark >= 0) line.point_landmark += offset;
-    kept.lines.push_back(std::move(line));
-  }
-  map = std::move(kept);
-  RecordTrackExtension(report, start, result);
-  TrackExtensionSummary& summary = result->track_extension;
-  summary.observations_removed = structure.observations_removed;
-  summary.seconds = SecondsSince(start);
-  LOG(INFO) << "track extension: the changed landmarks refined on the fixed poses, "
-            << structure.observations_removed << " outlier observations removed; now " << map.points.size()
-            << " points, " << map.lines.size() << " lines; " << summary.seconds << " s";
-  if (options.extend_tracks_stage != TrackExtensionStage::kAfterResolve) return Status::Ok();
-
-  // The first adjustment's line search already placed the odometry's scale, and the second starts
-  // from it: its own search (three solves more) would only repeat it.
-  BundleAdjustmentOptions second_options = options.bundle_adjustment_options;
-  second_options.floor_scale_line_search = false;
-  SFM_RETURN_IF_ERROR(AdjustAgainFromRefinedPoses(sequence, second_options, "on the extended tracks", result));
-  summary.second_adjustment = true;
-  summary.seconds = SecondsSince(start);
-  LOG(INFO) << "track extension and its second adjustment: " << summary.seconds << " s";
-  return Status::Ok();
-}
-
-// Bundle adjustment's own covariance of the refined poses, at the pixel noise the wireframe's tests
-// use (docs/tracks_and_triangulation.md, "Pose error from bundle adjustment"); null when it cannot
-// be computed (the wireframe then keeps the random-walk model). With ground truth, the log compares
-// it with the refined trajectory's actual relative pose errors.
-std::shared_ptr<const PoseCovariance> RefinedPoseCovariance(const Sequence& sequence,
-                                                            const PipelineOptions& options,
-                                                            const PipelineResult& result) {
-  const WireframeOptions& wireframe = options.triangulation.wireframe;
-  const Eigen::Matrix3d K = sequence.calibration.camera.K();
-  const std::vector<Pose3>& poses = result.world_T_camera_refined;
-  const double sigma_px =
-      wireframe.estimate_pixel_sigma
-          ? std::max(wireframe.pixel_sigma_px, EstimatePixelSigma(K, poses, result.landmarks))
-          : wireframe.pixel_sigma_px;
-  const std::vector<Pose3> odometry = OdometryBasePoses(sequence);
-  const std::vector<Pose3> refined = BasesFromCameras(poses, sequence.calibration.base_T_camera);
-  auto covariance = std::make_shared<PoseCovariance>();
-  Calibration calibration = sequence.calibration;
-  calibration.odometry_noise = result.initialization.used;
-  const Status status = ComputePoseCovariance(calibration, odometry, refined, result.landmarks,
-                                              options.bundle_adjustment_options, sigma_px, covariance.get());
-  if (!status.ok()) {
-    LOG(WARNING) << status.message() << "; the wireframe keeps the random-walk pose error model";
-    return nullptr;
-  }
-  if (result.world_T_camera_truth) {
-    for (const PoseCovarianceCheck& check :
-         CheckPoseCovariance(*covariance, poses, *result.world_T_camera_truth, {1, 4, 16, 32})) {
-      LOG(INFO) << "pose covariance against the truth, lag " << check.lag << " (" << check.pairs
-                << " pairs): rotation RMS predicted " << check.predicted_rotation_rad << " rad, actual "
-                << check.actual_rotation_rad << "; centre predicted " << check.predicted_centre_m
-                << " m, actual " << check.actual_centre_m;
-    }
-  }
-  return covariance;
-}
-
 // The landmarks the wireframe draws (docs/tracks_and_triangulation.md, "Wireframe vertices"):
 // judged on the final poses; bundle adjustment and the COLMAP model keep every landmark.
 void SelectWireframe(const Sequence& sequence, const PipelineOptions& options, PipelineResult* result) {
@@ -589,18 +439,10 @@ void SelectWireframe(const Sequence& sequence, const PipelineOptions& options, P
       result->world_T_camera_refined.empty() ? result->world_T_camera_initial : result->world_T_camera_refined;
   const WireframeOptions& wireframe = options.triangulation.wireframe;
   const Eigen::Matrix3d K = sequence.calibration.camera.K();
-  PoseDrift drift = WireframePoseDrift(wireframe, poses);
-  double covariance_seconds = 0;
-  if (wireframe.pose_error_from_bundle_adjustment && !result->world_T_camera_refined.empty()) {
-    const Clock::time_point start = Clock::now();
-    drift.covariance = RefinedPoseCovariance(sequence, options, *result);
-    covariance_seconds = SecondsSince(start);
-  }
+  const PoseDrift drift = WireframePoseDrift(wireframe, poses);
   WireframeSelectionReport& report = result->wireframe_selection;
   result->wireframe_landmarks =
       SelectWireframeLandmarks(K, poses, result->landmarks, result->junctions, wireframe, drift, &report);
-  report.pose_error_model = drift.covariance ? "bundle_adjustment" : "random_walk";
-  report.pose_covariance_seconds = covariance_seconds;
   LOG(INFO) << "wireframe: " << report.points_kept << " of " << result->landmarks.points.size()
             << " points and " << report.lines_kept << " of " << result->landmarks.lines.size()
             << " lines drawn (pixel noise " << report.pixel_sigma_px << " px); not drawn: points "
@@ -665,13 +507,6 @@ Status RunPipeline(const PipelineOptions& options, PipelineResult* result_out) {
     SFM_RETURN_IF_ERROR(Refine(sequence, options, &result));
     MeasureOdometryTranslationNoise(sequence, options, &result);
     WeighTheEvidence(sequence, options, &result);
-    if (options.extend_tracks && (options.extend_tracks_stage == TrackExtensionStage::kAfterStructure ||
-                                  options.extend_tracks_stage == TrackExtensionStage::kAfterResolve)) {
-      SFM_RETURN_IF_ERROR(ExtendTracksOnRefinedPoses(sequence, options, &result));
-    }
-    if (options.retriangulate_refined != RetriangulateRefined::kOff) {
-      SFM_RETURN_IF_ERROR(RetriangulateOnRefinedPoses(sequence, options, &result));
-    }
   }
   SelectWireframe(sequence, options, &result);
   result.times.backend = SecondsSince(stage_start);

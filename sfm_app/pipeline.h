@@ -5,7 +5,6 @@
 #include <string>
 
 #include "backend/bundle_adjustment/bundle_adjustment_options.h"
-#include "backend/triangulation/landmark_merge.h"
 #include "backend/triangulation/track_extension.h"
 #include "backend/triangulation/triangulation_options.h"
 #include "frontend/geometry/image_undistorter.h"
@@ -16,20 +15,6 @@
 #include "sfm_app/pipeline_result.h"
 
 namespace sfm {
-
-// After the bundle adjustment, triangulate every track again on the refined poses
-// (docs/tracks_and_triangulation.md, "Re-triangulation on the refined poses"): off; structure (the
-// landmarks refined on the refined poses, which stay as they are); full (then a second bundle
-// adjustment of everything, starting from the refined poses, the odometry still its prior).
-enum class RetriangulateRefined { kOff, kStructure, kFull };
-
-// Where the track extension runs (docs/tracks_and_triangulation.md, "Track extension"):
-// inside the bundle adjustment, after its fine solve and outlier rounds, then two fine solves more
-// and an outlier round (MapHook::kAfterFine); inside it on the coarse stage's poses, before its fine
-// solves (kAfterCoarse); after it, the changed landmarks refined on the refined poses held fixed (the
-// trajectory unchanged); or after it with a second bundle adjustment of everything starting from
-// the refined poses (the odometry still the prior).
-enum class TrackExtensionStage { kInAdjustment, kAfterCoarse, kAfterStructure, kAfterResolve };
 
 struct PipelineOptions {
   std::string sequence_dir;   // a SPEC section 1 sequence directory
@@ -49,14 +34,10 @@ struct PipelineOptions {
   TriangulationOptions triangulation;
   bool bundle_adjustment = true;  // false: the outputs use the odometry poses and the first triangulation
   BundleAdjustmentOptions bundle_adjustment_options;
-  RetriangulateRefined retriangulate_refined = RetriangulateRefined::kOff;
-  // Which re-triangulated landmarks join the map (landmark_merge.h).
-  RetriangulatedLandmarks retriangulated_landmarks = RetriangulatedLandmarks::kAddNew;
   // Extend and merge the tracks by projecting each point landmark into the frames its track misses
-  // (track_extension.h), at the stage extend_tracks_stage says (by default inside the bundle
-  // adjustment, TrackExtensionStage above; docs/tracks_and_triangulation.md, "Track extension").
+  // (track_extension.h), inside the bundle adjustment after its first fine solve, whose outlier
+  // rounds then judge the new observations (docs/tracks_and_triangulation.md, "Track extension").
   bool extend_tracks = true;
-  TrackExtensionStage extend_tracks_stage = TrackExtensionStage::kInAdjustment;
   TrackExtensionOptions track_extension;
 
   // OK, or a message naming the first bad setting.

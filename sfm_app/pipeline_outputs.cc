@@ -43,11 +43,8 @@ ReconstructedWireframe WireframeOf(const Landmarks& landmarks) {
       first = static_cast<int>(wireframe.vertices.size());
       wireframe.vertices.push_back(line.end0);
     }
-    int last = line.end1_point_landmark;  // the far end at a drawn point shares its vertex
-    if (last < 0) {
-      last = static_cast<int>(wireframe.vertices.size());
-      wireframe.vertices.push_back(line.end1);
-    }
+    const int last = static_cast<int>(wireframe.vertices.size());
+    wireframe.vertices.push_back(line.end1);
     wireframe.edges.emplace_back(first, last);
   }
   return wireframe;
@@ -122,20 +119,7 @@ std::string WireframeJson(const PipelineResult& result) {
          ", \"lines_unbounded\": " + std::to_string(report.lines_unbounded) +
          ", \"points_beyond_tolerance\": " + std::to_string(report.points_beyond_tolerance) +
          ", \"lines_beyond_tolerance\": " + std::to_string(report.lines_beyond_tolerance) +
-         ", \"predicted_share\": " + JsonNumber(report.predicted_share) +
-         ", \"pose_error_model\": " + JsonString(report.pose_error_model) +
-         ", \"pose_covariance_s\": " + JsonNumber(report.pose_covariance_seconds) + "}";
-}
-
-// Not in SPEC's list: what the re-triangulation on the refined poses added (null when it did not
-// run, --retriangulate_refined=off); "second_adjustment": the poses are a second adjustment's.
-std::string RetriangulationJson(const PipelineResult& result) {
-  const RetriangulationSummary& summary = result.retriangulation;
-  if (!summary.ran) return "null";
-  return "{\"points_added\": " + std::to_string(summary.points_added) +
-         ", \"lines_added\": " + std::to_string(summary.lines_added) +
-         ", \"observations_removed\": " + std::to_string(summary.observations_removed) +
-         ", \"second_adjustment\": " + (summary.second_adjustment ? "true" : "false") + "}";
+         ", \"predicted_share\": " + JsonNumber(report.predicted_share) + "}";
 }
 
 // Not in SPEC's list: what the track extension did (null when it did not run, --extend_tracks=false).
@@ -145,10 +129,8 @@ std::string TrackExtensionJson(const PipelineResult& result) {
   return "{\"observations_added\": " + std::to_string(summary.observations_added) +
          ", \"tracks_merged\": " + std::to_string(summary.tracks_merged) +
          ", \"ambiguous\": " + std::to_string(summary.ambiguous) +
-         ", \"observations_removed\": " + std::to_string(summary.observations_removed) +
          ", \"points_changed\": " + std::to_string(summary.points_changed) +
          ", \"lines_changed\": " + std::to_string(summary.lines_changed) +
-         ", \"second_adjustment\": " + (summary.second_adjustment ? "true" : "false") +
          ", \"time_s\": " + JsonNumber(summary.seconds) + "}";
 }
 
@@ -254,7 +236,6 @@ std::string MetricsJson(const Sequence& sequence, const PipelineResult& result) 
        << "  \"evidence\": " << EvidenceJson(result) << ",\n"
        << "  \"floor_prior\": " << FloorPriorJson(result, refined) << ",\n"
        << "  \"odometry_rotation_bias_rad\": " << RotationBiasJson(result, refined) << ",\n"
-       << "  \"retriangulation\": " << RetriangulationJson(result) << ",\n"
        << "  \"track_extension\": " << TrackExtensionJson(result) << ",\n"
        << "  \"wireframe\": " << WireframeJson(result) << "\n"
        << "}\n";

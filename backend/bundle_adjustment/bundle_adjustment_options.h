@@ -19,12 +19,6 @@ enum class RobustLoss { kHuber, kCauchy };
 // the plane's height).
 enum class FloorPriorMode { kOff, kAuto, kOn };
 
-// How the odometry prior weighs a step's translation error (docs/bundle_adjustment.md, "Odometry
-// prior"): along the step by the distance noise and across it by the heading noise times the
-// distance (kAlongAcross), or by the distance noise in every direction (kIsotropic, the model
-// before the distinction; kept to compare).
-enum class OdometryTranslationModel { kAlongAcross, kIsotropic };
-
 enum class BundleAdjustmentLinearSolver {
   kAuto,         // DENSE_SCHUR up to dense_schur_max_frames frames, SPARSE_SCHUR above
   kDenseSchur,   // ceres::DENSE_SCHUR
@@ -45,45 +39,8 @@ struct BundleAdjustmentOptions {
   // the next solve. A run whose last solve was loose (the outlier round removed nothing) solves
   // once more at function_tolerance.
   double intermediate_function_tolerance = 1e-4;
-  // Ceres's inner iterations (use_inner_iterations) in the solves with lines: after each step,
-  // every landmark is re-solved on the new poses. Without them those solves crawled (room loop:
-  // 100 and 79 iterations, relative cost decrease about 2e-6 per step); with them 4 and 6, to a
-  // cost as low or lower. docs/bundle_adjustment.md, "Solver".
-  bool inner_iterations = true;
-  // The poses, the odometry's scale factor and its rotation bias re-solved in the inner iterations
-  // too, each pose block on its own, before the landmarks (the ordering before session 6). Off:
-  // only the landmarks, the same iterations and final costs on the benchmark for a third less
-  // back-end time (docs/bundle_adjustment.md, "Solver").
-  bool inner_iterations_poses = false;
-  // Each frame's pose one Ceres block of 7 numbers (quaternion and translation, PoseBlockCost)
-  // instead of two (4 and 3) in the joint solves: the Schur eliminator forms a quarter of the
-  // cells, the same arithmetic (docs/bundle_adjustment.md, "Solver"). Off: the layout before
-  // session 6.
-  bool single_pose_block = true;
-  // The inner iterations kept on while they gain what the solve's own stopping rule counts (Ceres's
-  // inner_iteration_tolerance = the solve's function tolerance). Ceres's default (1e-3) turns them
-  // off once one of them gains less than that, and then the joint solve crawls again: corridor's
-  // solve after the outlier round took 38 iterations, 5 with them kept on, to the same cost within
-  // 3e-6 (docs/bundle_adjustment.md, "Solver"). Off: Ceres's default.
-  bool inner_iterations_throughout = true;
-  // The lines seen in exactly two views, not held by the floor prior, left out of the joint solves
-  // and each solved alone on that solve's poses right after it. Such a line has 4 degrees of
-  // freedom and 4 residuals (one per end-point, two views): it fits both views exactly on any
-  // poses (the intersection of its two back-projected planes), so its least cost is 0 whatever the
-  // poses and it cannot move their minimum; out of the joint solve it only costs time
-  // (docs/bundle_adjustment.md, "Two-view lines apart"). On since session 7 (Strecha's back end
-  // -52 % instructions, figures unchanged within solver tolerance). Off: every line in the joint
-  // solves.
-  bool two_view_lines_apart = true;
   double outlier_threshold_px = 3.0;  // px, an observation's error (norm of its 2 residuals)
   int outlier_rounds = 1;             // remove-outliers-and-solve-again rounds after the joint solve
-  // Rounds after the last joint solve: the landmarks that solve itself made unobservable (a line
-  // whose estimate slid behind or through a camera that sees it, or lost its triangulation angle;
-  // the rules applied before every solve) are dropped and the problem solved again, until none is
-  // (at most this many solves; 0: the last solve's landmarks are not checked, the rule before
-  // session 5). Such a line still fits its views (its image does not tell front from back) while
-  // it holds the poses (docs/bundle_adjustment.md, "Robust loss, stages and outliers", step 7).
-  int observability_rounds = 3;
   BundleAdjustmentLinearSolver linear_solver = BundleAdjustmentLinearSolver::kAuto;
   int dense_schur_max_frames = 100;  // frames, kAuto's switch to SPARSE_SCHUR
   int num_threads = 1;               // Ceres threads
@@ -91,7 +48,6 @@ struct BundleAdjustmentOptions {
   // sigmas are set from the distance (a robot turning in place still slips); a step shorter than
   // this is weighted the same in every direction (its measured direction is mostly slip).
   double odometry_min_distance_m = 0.05;
-  OdometryTranslationModel odometry_translation_model = OdometryTranslationModel::kAlongAcross;
   // Estimate the odometry's constant rotation increment per step b jointly with the poses (one
   // shared 3-vector, zero-mean Gaussian prior with the noise model's per-frame rotation sigma;
   // docs/bundle_adjustment.md, "Odometry rotation bias").
@@ -121,14 +77,6 @@ struct BundleAdjustmentOptions {
   // tilt with floor_sigma_m / camera height (the tilt that moves the floor under the camera by one
   // sigma, the rig check's own tolerance). docs/bundle_adjustment.md, "Floor prior".
   bool floor_base_prior = true;
-  // When the floor prior applies, start its solves from the coarse map scaled about the first
-  // camera so that the floor found on it lies at z = 0, with the odometry's scale factor set to
-  // match (the floor's height on the coarse map measures the odometry's scale error). Without it
-  // the fine solves start at the odometry's scale and stop, by their function tolerance, before
-  // the shallow scale direction has converged, part of the odometry's scale error left. Off: on
-  // held-out sequences it was neutral (docs/bundle_adjustment.md, "Floor scale bias: the start
-  // and the line search").
-  bool floor_rescale_start = false;
   // When the floor prior applies, after the last joint solve, a line search on the odometry's
   // scale factor: two solves with it held at lambda (1 +- translation_sigma / sqrt(steps)), a
   // parabola through their costs and the last solve's at lambda, a last solve at its minimum (at most two
@@ -136,11 +84,6 @@ struct BundleAdjustmentOptions {
   // shallow direction; held, they converge (docs/bundle_adjustment.md, "Floor scale bias: the start
   // and the line search").
   bool floor_scale_line_search = true;
-  // The line search's centre sample (lambda as the last joint solve left it) solved again with
-  // lambda held, as the two others are (before session 6). Off: its cost is the last joint solve's,
-  // which converged there with lambda free; one solve fewer (docs/bundle_adjustment.md, "Floor
-  // scale bias: the start and the line search").
-  bool floor_scale_search_solve_centre = false;
   // Landmarks a floor plane needs at least (besides being a peak of the height distribution).
   int floor_min_landmarks = 10;
 
@@ -170,8 +113,8 @@ struct BundleAdjustmentSummary {
   // Dropped with a triangulation angle below the minimum (before solving, or on refined poses).
   int points_unobservable = 0;
   int lines_unobservable = 0;
-  // Of those, dropped after the last joint solve (options.observability_rounds), and the solves
-  // that followed.
+  // Of those, dropped after the last joint solve (at most three rounds, the problem solved again
+  // after each; docs/bundle_adjustment.md, "Robust loss, stages and outliers"), and those solves.
   int landmarks_unobservable_after_last_solve = 0;
   int observability_solves = 0;
   double point_rms_px = 0;    // RMS reprojection error of the point observations kept, at the end

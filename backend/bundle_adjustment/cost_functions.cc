@@ -167,9 +167,7 @@ OdometryStepSigmas OdometryStepSigmasFor(double distance_m, const OdometryNoise&
   const double d = std::max(distance_m, options.odometry_min_distance_m);
   OdometryStepSigmas sigmas;
   sigmas.along_m = noise.translation_sigma * d;
-  sigmas.across_m = options.odometry_translation_model == OdometryTranslationModel::kAlongAcross
-                        ? noise.rotation_sigma * d
-                        : sigmas.along_m;
+  sigmas.across_m = noise.rotation_sigma * d;
   // Below the floor the measured direction is mostly slip: no direction is known better.
   if (distance_m < options.odometry_min_distance_m) {
     sigmas.along_m = sigmas.across_m = std::max(sigmas.along_m, sigmas.across_m);
@@ -180,34 +178,8 @@ OdometryStepSigmas OdometryStepSigmasFor(double distance_m, const OdometryNoise&
 ceres::CostFunction* OdometryPriorCost::Create(const Pose3& base_i_T_base_j_odometry, double rotation_sigma_rad,
                                                double along_sigma_m, double across_sigma_m) {
   CheckOdometrySigmas(base_i_T_base_j_odometry, rotation_sigma_rad, along_sigma_m, across_sigma_m);
-  return new ceres::AutoDiffCostFunction<OdometryPriorCost, 6, 4, 3, 4, 3>(
+  return new ceres::AutoDiffCostFunction<OdometryPriorCost, 6, 4, 3, 4, 3, 1, 3>(
       new OdometryPriorCost(base_i_T_base_j_odometry, rotation_sigma_rad, along_sigma_m, across_sigma_m));
-}
-
-ceres::CostFunction* OdometryPriorWithScaleCost::Create(const Pose3& base_i_T_base_j_odometry,
-                                                       double rotation_sigma_rad, double along_sigma_m,
-                                                       double across_sigma_m) {
-  CheckOdometrySigmas(base_i_T_base_j_odometry, rotation_sigma_rad, along_sigma_m, across_sigma_m);
-  return new ceres::AutoDiffCostFunction<OdometryPriorWithScaleCost, 6, 4, 3, 4, 3, 1>(new OdometryPriorWithScaleCost(
-      OdometryPriorCost(base_i_T_base_j_odometry, rotation_sigma_rad, along_sigma_m, across_sigma_m)));
-}
-
-ceres::CostFunction* OdometryPriorWithBiasCost::Create(const Pose3& base_i_T_base_j_odometry,
-                                                       double rotation_sigma_rad, double along_sigma_m,
-                                                       double across_sigma_m) {
-  CheckOdometrySigmas(base_i_T_base_j_odometry, rotation_sigma_rad, along_sigma_m, across_sigma_m);
-  return new ceres::AutoDiffCostFunction<OdometryPriorWithBiasCost, 6, 4, 3, 4, 3, 3>(
-      new OdometryPriorWithBiasCost(
-          OdometryPriorCost(base_i_T_base_j_odometry, rotation_sigma_rad, along_sigma_m, across_sigma_m)));
-}
-
-ceres::CostFunction* OdometryPriorWithScaleAndBiasCost::Create(const Pose3& base_i_T_base_j_odometry,
-                                                               double rotation_sigma_rad,
-                                                               double along_sigma_m, double across_sigma_m) {
-  CheckOdometrySigmas(base_i_T_base_j_odometry, rotation_sigma_rad, along_sigma_m, across_sigma_m);
-  return new ceres::AutoDiffCostFunction<OdometryPriorWithScaleAndBiasCost, 6, 4, 3, 4, 3, 1, 3>(
-      new OdometryPriorWithScaleAndBiasCost(
-          OdometryPriorCost(base_i_T_base_j_odometry, rotation_sigma_rad, along_sigma_m, across_sigma_m)));
 }
 
 ceres::CostFunction* OdometryRotationBiasPriorCost::Create(double sigma_rad) {

@@ -135,11 +135,6 @@ FloorLandmarks SelectFloorLandmarks(const Landmarks& landmarks, double plane_z_m
   return selected;
 }
 
-double FloorScaleGain(double camera_z_m, double plane_z_m) {
-  if (!(camera_z_m > plane_z_m)) return 1;
-  return camera_z_m / (camera_z_m - plane_z_m);
-}
-
 void ScaleLandmarksAbout(const Eigen::Vector3d& centre, double gain, Landmarks* landmarks) {
   auto scaled = [&](const Eigen::Vector3d& x) -> Eigen::Vector3d { return centre + gain * (x - centre); };
   for (PointLandmark& point : landmarks->points) point.position = scaled(point.position);

@@ -53,12 +53,6 @@ struct FloorLandmarks {
 // The landmarks within half_width_m of height plane_z_m (lines: both ends).
 FloorLandmarks SelectFloorLandmarks(const Landmarks& landmarks, double plane_z_m, double half_width_m);
 
-// The gain that scales a map about a camera centre at height camera_z_m so that a floor plane
-// found at plane_z_m goes to z = 0: camera_z_m / (camera_z_m - plane_z_m). A map whose trajectory
-// is s times too long has its floor at (1 - s) camera_z_m, so this gain is 1 / s. 1 when the plane
-// is not below the camera.
-double FloorScaleGain(double camera_z_m, double plane_z_m);
-
 // Every landmark (points; lines' point, end0 and end1; directions unchanged) scaled by `gain`
 // about `centre`.
 void ScaleLandmarksAbout(const Eigen::Vector3d& centre, double gain, Landmarks* landmarks);

@@ -8,11 +8,14 @@
 // across_sigma_m. The two differ because a wheel odometry measures a step's length with its
 // distance error and the step's direction with its heading error (OdometryStepSigmas;
 // docs/bundle_adjustment.md, "Odometry prior").
-// OdometryPriorWithScaleCost scales the measured translation by a free factor (the floor prior).
-// The *BiasCost variants add a constant rotation increment per step b shared by every step (a
-// wheel-base error or an unequal wheel pair turns the odometry by the same small angle every
-// frame): the odometry's rotation is predicted as Exp(b) X_R (docs/bundle_adjustment.md,
-// "Odometry rotation bias").
+// The measured translation is scaled by the odometry's scale factor lambda (a wheel-radius error,
+// which the floor prior observes; floor_prior_cost.h), and the estimated rotation is turned by a
+// constant rotation increment per step b shared by every step (a wheel-base error or an unequal
+// wheel pair turns the odometry by the same small angle every frame): the odometry's rotation is
+// predicted as Exp(b) X_R (docs/bundle_adjustment.md, "Odometry rotation bias"). Where the
+// adjustment does not estimate them, lambda = 1 and b = 0 are held constant: the residuals and the
+// pose Jacobians are then, bit for bit, those of the prior without them (1 * t is t, Exp(0) is the
+// identity through the angle-axis conversion's small-angle branch).
 #pragma once
 
 #include <ceres/cost_function.h>
@@ -37,9 +40,8 @@ struct OdometryStepSigmas {
 // The sigmas of a step of `distance_m` (docs/bundle_adjustment.md, "Odometry prior"), with
 // d = max(distance_m, options.odometry_min_distance_m):
 //   along  = noise.translation_sigma * d
-//   across = noise.rotation_sigma * d  (kAlongAcross: the step's direction is known to the heading's
-//            accuracy, so a sideways error is the heading error times the distance), or
-//            noise.translation_sigma * d (kIsotropic, the model before the distinction).
+//   across = noise.rotation_sigma * d  (the step's direction is known to the heading's accuracy, so
+//            a sideways error is the heading error times the distance).
 // A step shorter than the floor gets one sigma in every direction, the larger of the two.
 OdometryStepSigmas OdometryStepSigmasFor(double distance_m, const OdometryNoise& noise,
                                          const BundleAdjustmentOptions& options);
@@ -49,11 +51,15 @@ OdometryStepSigmas OdometryStepSigmasFor(double distance_m, const OdometryNoise&
 //   [1] world_T_base_i translation  3  metres
 //   [2] world_T_base_j rotation     4  [qx qy qz qw]
 //   [3] world_T_base_j translation  3  metres
-// Residuals (6, dimensionless): angle-axis(E) / rotation_sigma_rad (3), W trans(E) (3), with W the
-// square root of the translation's information in base_j as measured:
+//   [4] lambda                      1  the odometry's scale factor (dimensionless)
+//   [5] b                           3  rad per step, angle-axis in base_i
+// Residuals (6, dimensionless): angle-axis(E) / rotation_sigma_rad (3), W trans(E) (3), with
+// E = M^-1 X', M the measurement with its translation times lambda, X' the estimated motion with
+// its rotation turned by Exp(b), and W the square root of the translation's information in base_j
+// as measured:
 //   W = u u^T / along_sigma_m + (I - u u^T) / across_sigma_m,  u = the measured step's direction in base_j
 // (W = I / along_sigma_m for a step of zero length, whose direction is undefined; then the two
-// sigmas must be equal). Equal sigmas give the isotropic prior |trans(E)| / sigma.
+// sigmas must be equal).
 struct OdometryPriorCost {
   OdometryPriorCost(const Pose3& base_i_T_base_j_odometry, double rotation_sigma_rad, double along_sigma_m,
                     double across_sigma_m)
@@ -62,10 +68,6 @@ struct OdometryPriorCost {
         rotation_sigmas_rad(Eigen::Vector3d::Constant(rotation_sigma_rad)),
         translation_whitening(TranslationWhitening(measured_rotation_inverse * measured_translation, along_sigma_m,
                                                    across_sigma_m)) {}
-
-  // The isotropic prior: one sigma in every direction.
-  OdometryPriorCost(const Pose3& base_i_T_base_j_odometry, double rotation_sigma_rad, double translation_sigma_m)
-      : OdometryPriorCost(base_i_T_base_j_odometry, rotation_sigma_rad, translation_sigma_m, translation_sigma_m) {}
 
   // W above for a step `step` (any frame; W is in the same frame).
   static Eigen::Matrix3d TranslationWhitening(const Eigen::Vector3d& step, double along_sigma_m,
@@ -77,40 +79,27 @@ struct OdometryPriorCost {
     return along / along_sigma_m + (Eigen::Matrix3d::Identity() - along) / across_sigma_m;
   }
 
-  template <typename T>
-  bool operator()(const T* rotation_i, const T* translation_i, const T* rotation_j, const T* translation_j,
-                  T* residuals) const {
-    return Residuals(rotation_i, translation_i, rotation_j, translation_j, T(1),
-                     static_cast<const T*>(nullptr), residuals);
-  }
-
-  // The residuals with the measured translation multiplied by `scale` (the odometry's scale
-  // factor of the floor prior, OdometryPriorWithScaleCost; 1 without it) and, when
-  // `rotation_bias` is not null, the estimated rotation turned by the odometry's rotation bias b
-  // (angle-axis, base_i) before it is compared with the measurement: E_R = M_R^-1 Exp(b) X_R.
-  // Left multiplication in base_i because the odometry models add their bias that way
-  // (sequences/generator/odometry_noise.h: R' = Rz(bias + noise) R; the importer's
+  // The estimated rotation is turned by b before it is compared with the measurement:
+  // E_R = M_R^-1 Exp(b) X_R. Left multiplication in base_i because the odometry models add their bias that
+  // way (sequences/generator/odometry_noise.h: R' = Rz(bias + noise) R; the importer's
   // camera_odometry_noise.h: R' = Exp(bias e_y + noise) R). The translation is not turned: both
   // models leave the measured step's translation in base_i unrotated by the bias.
   template <typename T>
-  bool Residuals(const T* rotation_i, const T* translation_i, const T* rotation_j, const T* translation_j,
-                 const T& scale, const T* rotation_bias, T* residuals) const {
+  bool operator()(const T* rotation_i, const T* translation_i, const T* rotation_j, const T* translation_j,
+                  const T* scale, const T* rotation_bias, T* residuals) const {
     const Eigen::Map<const Eigen::Quaternion<T>> q_i(rotation_i), q_j(rotation_j);
     const Eigen::Map<const Eigen::Matrix<T, 3, 1>> t_i(translation_i), t_j(translation_j);
     const Eigen::Quaternion<T> q_i_inverse = q_i.conjugate();
     // X = est_i^-1 est_j, then E = M^-1 X = (M_R^T X_R, M_R^T (X_t - M_t)).
-    Eigen::Quaternion<T> estimated_rotation = q_i_inverse * q_j;
-    if (rotation_bias != nullptr) {
-      T bias_wxyz[4];
-      ceres::AngleAxisToQuaternion(rotation_bias, bias_wxyz);
-      estimated_rotation =
-          Eigen::Quaternion<T>(bias_wxyz[0], bias_wxyz[1], bias_wxyz[2], bias_wxyz[3]) * estimated_rotation;
-    }
+    T bias_wxyz[4];
+    ceres::AngleAxisToQuaternion(rotation_bias, bias_wxyz);
+    const Eigen::Quaternion<T> estimated_rotation =
+        Eigen::Quaternion<T>(bias_wxyz[0], bias_wxyz[1], bias_wxyz[2], bias_wxyz[3]) * (q_i_inverse * q_j);
     const Eigen::Matrix<T, 3, 1> estimated_translation = q_i_inverse * (t_j - t_i);
     const Eigen::Quaternion<T> measured_inverse = measured_rotation_inverse.cast<T>();
     const Eigen::Quaternion<T> error_rotation = measured_inverse * estimated_rotation;
     const Eigen::Matrix<T, 3, 1> error_translation =
-        measured_inverse * (estimated_translation - scale * measured_translation.cast<T>());
+        measured_inverse * (estimated_translation - scale[0] * measured_translation.cast<T>());
     const Eigen::Matrix<T, 3, 1> whitened_translation = translation_whitening.cast<T>() * error_translation;
     // ceres::QuaternionToAngleAxis takes [w x y z].
     const T error_wxyz[4] = {error_rotation.w(), error_rotation.x(), error_rotation.y(), error_rotation.z()};
@@ -127,11 +116,6 @@ struct OdometryPriorCost {
   // for a step of zero length the two translation sigmas must be equal.
   static ceres::CostFunction* Create(const Pose3& base_i_T_base_j_odometry, double rotation_sigma_rad,
                                      double along_sigma_m, double across_sigma_m);
-  // The isotropic prior.
-  static ceres::CostFunction* Create(const Pose3& base_i_T_base_j_odometry, double rotation_sigma_rad,
-                                     double translation_sigma_m) {
-    return Create(base_i_T_base_j_odometry, rotation_sigma_rad, translation_sigma_m, translation_sigma_m);
-  }
 
   Eigen::Quaterniond measured_rotation_inverse;
   Eigen::Vector3d measured_translation;
@@ -139,68 +123,6 @@ struct OdometryPriorCost {
   // the odometry's noise per axis (a ground robot's turns are noisier than its tilt) sets them apart.
   Eigen::Vector3d rotation_sigmas_rad;
   Eigen::Matrix3d translation_whitening;
-};
-
-// The same prior with the odometry's translations scaled by a free factor (a wheel-radius error),
-// for the floor prior (floor_prior_cost.h), which observes the scale.
-// Parameter blocks: the four of OdometryPriorCost, then [4] scale 1 (dimensionless).
-struct OdometryPriorWithScaleCost {
-  explicit OdometryPriorWithScaleCost(const OdometryPriorCost& prior) : prior(prior) {}
-
-  template <typename T>
-  bool operator()(const T* rotation_i, const T* translation_i, const T* rotation_j, const T* translation_j,
-                  const T* scale, T* residuals) const {
-    return prior.Residuals(rotation_i, translation_i, rotation_j, translation_j, scale[0],
-                           static_cast<const T*>(nullptr), residuals);
-  }
-
-  // Automatic derivatives (cost_functions.cc). As OdometryPriorCost::Create.
-  static ceres::CostFunction* Create(const Pose3& base_i_T_base_j_odometry, double rotation_sigma_rad,
-                                     double along_sigma_m, double across_sigma_m);
-  static ceres::CostFunction* Create(const Pose3& base_i_T_base_j_odometry, double rotation_sigma_rad,
-                                     double translation_sigma_m) {
-    return Create(base_i_T_base_j_odometry, rotation_sigma_rad, translation_sigma_m, translation_sigma_m);
-  }
-
-  OdometryPriorCost prior;
-};
-
-// The prior with the odometry's rotation bias b (Residuals above).
-// Parameter blocks: the four of OdometryPriorCost, then [4] b 3 (rad, angle-axis in base_i).
-struct OdometryPriorWithBiasCost {
-  explicit OdometryPriorWithBiasCost(const OdometryPriorCost& prior) : prior(prior) {}
-
-  template <typename T>
-  bool operator()(const T* rotation_i, const T* translation_i, const T* rotation_j, const T* translation_j,
-                  const T* rotation_bias, T* residuals) const {
-    return prior.Residuals(rotation_i, translation_i, rotation_j, translation_j, T(1), rotation_bias,
-                           residuals);
-  }
-
-  // Automatic derivatives (cost_functions.cc). As OdometryPriorCost::Create.
-  static ceres::CostFunction* Create(const Pose3& base_i_T_base_j_odometry, double rotation_sigma_rad,
-                                     double along_sigma_m, double across_sigma_m);
-
-  OdometryPriorCost prior;
-};
-
-// The prior with both the scale factor and the rotation bias.
-// Parameter blocks: the four of OdometryPriorCost, [4] scale 1, [5] b 3.
-struct OdometryPriorWithScaleAndBiasCost {
-  explicit OdometryPriorWithScaleAndBiasCost(const OdometryPriorCost& prior) : prior(prior) {}
-
-  template <typename T>
-  bool operator()(const T* rotation_i, const T* translation_i, const T* rotation_j, const T* translation_j,
-                  const T* scale, const T* rotation_bias, T* residuals) const {
-    return prior.Residuals(rotation_i, translation_i, rotation_j, translation_j, scale[0], rotation_bias,
-                           residuals);
-  }
-
-  // Automatic derivatives (cost_functions.cc). As OdometryPriorCost::Create.
-  static ceres::CostFunction* Create(const Pose3& base_i_T_base_j_odometry, double rotation_sigma_rad,
-                                     double along_sigma_m, double across_sigma_m);
-
-  OdometryPriorCost prior;
 };
 
 // Zero-mean Gaussian prior on the odometry's rotation bias: b / sigma_rad (3 residuals,

@@ -82,6 +82,8 @@ Status SolvePoseGraph(const std::vector<Pose3>& world_T_base_odometry, const Pos
 
   ceres::Problem problem;
   Eigen::Vector3d rotation_bias = options.rotation_bias_start;
+  // The odometry's scale is the floor prior's to observe (bundle adjustment): held at 1 here.
+  double odometry_scale = 1;
   for (int k = 0; k + 1 < n; ++k) {
     const Pose3 step = world_T_base_odometry[k].Inverse() * world_T_base_odometry[k + 1];
     const OdometryStepSigmas sigmas = OdometryStepSigmasFor(step.translation.norm(), odometry_noise, adjustment);
@@ -89,13 +91,14 @@ Status SolvePoseGraph(const std::vector<Pose3>& world_T_base_odometry, const Pos
     for (int axis = 0; axis < 3; ++axis) {
       if (options.rotation_sigmas[axis] > 0) prior.rotation_sigmas_rad[axis] = options.rotation_sigmas[axis];
     }
-    problem.AddResidualBlock(new ceres::AutoDiffCostFunction<OdometryPriorWithBiasCost, 6, 4, 3, 4, 3, 3>(
-                                 new OdometryPriorWithBiasCost(prior)),
-                             nullptr, poses[k].rotation.data(), poses[k].translation.data(),
-                             poses[k + 1].rotation.data(), poses[k + 1].translation.data(), rotation_bias.data());
+    problem.AddResidualBlock(
+        new ceres::AutoDiffCostFunction<OdometryPriorCost, 6, 4, 3, 4, 3, 1, 3>(new OdometryPriorCost(prior)), nullptr,
+        poses[k].rotation.data(), poses[k].translation.data(), poses[k + 1].rotation.data(),
+        poses[k + 1].translation.data(), &odometry_scale, rotation_bias.data());
   }
   problem.AddResidualBlock(OdometryRotationBiasPriorCost::Create(odometry_noise.rotation_sigma), nullptr,
                            rotation_bias.data());
+  problem.SetParameterBlockConstant(&odometry_scale);
   std::vector<ceres::ResidualBlockId> pair_blocks;
   for (const RelativePoseConstraint& constraint : constraints) {
     const int i = constraint.frame_i, j = constraint.frame_j;

@@ -4,7 +4,7 @@
 // drifted odometry.
 //
 // Unknowns: world_T_base of every frame (the first held, fixing the gauge). Factors:
-//  - the odometry prior of every consecutive step (the bundle adjustment's OdometryPriorWithBiasCost),
+//  - the odometry prior of every consecutive step (the bundle adjustment's OdometryPriorCost),
 //    weighted by the odometry noise model it is given, with the odometry's constant rotation
 //    increment per step b (a wheel-base error turns every step by the same angle) solved for
 //    under a zero-mean prior of the rotation sigma: over a stretch where the images say little, the

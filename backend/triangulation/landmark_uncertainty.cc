@@ -7,7 +7,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <map>
 
 namespace sfm {
 namespace {
@@ -57,45 +56,21 @@ double SharedSteps(int frame_i, int frame_j, int first_frame) {
 }
 
 bool HasDrift(const PoseDrift& drift) {
-  return drift.covariance != nullptr || drift.rotation_step_rad != 0 || drift.translation_step_m != 0;
-}
-
-Eigen::Matrix3d Cross(const Eigen::Vector3d& v) {
-  Eigen::Matrix3d m;
-  m << 0, -v.z(), v.y(), v.z(), 0, -v.x(), -v.y(), v.x(), 0;
-  return m;
+  return drift.rotation_step_rad != 0 || drift.translation_step_m != 0;
 }
 
 // The covariance of a vertex error v = sum_i gain_i e_i (N x 6 gains, e_i view i's pose error
-// relative to the first frame f0). Random walk: Cov(e_i, e_j) = min(f_i - f0, f_j - f0) x one
-// step. Joint covariance: e_i = Own(i) y_i + Anchor(i, f0) y_f0, so v = sum over the distinct
-// frames f of M_f y_f and Cov(v) = sum_fg M_f Cov(y_f, y_g) M_g^T (cheaper than all view pairs).
+// relative to the first frame f0): Cov(e_i, e_j) = min(f_i - f0, f_j - f0) x one step.
 template <int N>
 Eigen::Matrix<double, N, N> PoseTerm(const PoseDrift& drift, const std::vector<int>& frames,
                                      const std::vector<Eigen::Matrix<double, N, 6>>& gain) {
   const int first_frame = *std::min_element(frames.begin(), frames.end());
   Eigen::Matrix<double, N, N> covariance = Eigen::Matrix<double, N, N>::Zero();
-  if (!drift.covariance) {
-    const Eigen::Matrix<double, 6, 6> step = StepCovariance(drift);
-    for (size_t i = 0; i < frames.size(); ++i) {
-      for (size_t j = 0; j < frames.size(); ++j) {
-        covariance += SharedSteps(frames[i], frames[j], first_frame) * gain[i] * step * gain[j].transpose();
-      }
-    }
-    return covariance;
-  }
-  const PoseCovariance& pose = *drift.covariance;
-  std::map<int, Eigen::Matrix<double, N, 6>> M;
-  M[first_frame].setZero();
+  const Eigen::Matrix<double, 6, 6> step = StepCovariance(drift);
   for (size_t i = 0; i < frames.size(); ++i) {
-    CHECK(frames[i] >= 0 && frames[i] < pose.frames()) << "frame " << frames[i];
-    if (frames[i] == first_frame) continue;  // its relative error is zero
-    auto [own, inserted] = M.try_emplace(frames[i], Eigen::Matrix<double, N, 6>::Zero());
-    own->second += gain[i] * pose.Own(frames[i]);
-    M[first_frame] += gain[i] * pose.Anchor(frames[i], first_frame);
-  }
-  for (const auto& [f, M_f] : M) {
-    for (const auto& [g, M_g] : M) covariance += M_f * pose.Block(f, g) * M_g.transpose();
+    for (size_t j = 0; j < frames.size(); ++j) {
+      covariance += SharedSteps(frames[i], frames[j], first_frame) * gain[i] * step * gain[j].transpose();
+    }
   }
   return covariance;
 }
@@ -129,30 +104,6 @@ double NormalQuantile(double p) {
 }
 
 }  // namespace
-
-Eigen::Matrix<double, 6, 6> PoseCovariance::Own(int i) const {
-  Eigen::Matrix<double, 6, 6> m = Eigen::Matrix<double, 6, 6>::Zero();
-  m.topLeftCorner<3, 3>() = camera_R_world[i];
-  m.bottomLeftCorner<3, 3>() = -Cross(lever[i]);  // dc = dt + delta x lever
-  m.bottomRightCorner<3, 3>().setIdentity();
-  return m;
-}
-
-Eigen::Matrix<double, 6, 6> PoseCovariance::Anchor(int i, int f0) const {
-  // -(camera_R_world_i delta_0), and -dc_0 - delta_0 x (c_i - c_0) = (lever_0 + c_i - c_0) x ... as a
-  // matrix on delta_0: [lever_0]x + [c_i - c_0]x, and -dt_0.
-  Eigen::Matrix<double, 6, 6> m = Eigen::Matrix<double, 6, 6>::Zero();
-  m.topLeftCorner<3, 3>() = -camera_R_world[i];
-  m.bottomLeftCorner<3, 3>() = Cross(lever[f0]) + Cross(centre[i] - centre[f0]);
-  m.bottomRightCorner<3, 3>() = -Eigen::Matrix3d::Identity();
-  return m;
-}
-
-Eigen::Matrix<double, 6, 6> PoseCovariance::Relative(int i, int j, int f0) const {
-  const Eigen::Matrix<double, 6, 6> Oi = Own(i), Ai = Anchor(i, f0), Oj = Own(j), Aj = Anchor(j, f0);
-  return Oi * Block(i, j) * Oj.transpose() + Oi * Block(i, f0) * Aj.transpose() +
-         Ai * Block(f0, j) * Oj.transpose() + Ai * Block(f0, f0) * Aj.transpose();
-}
 
 double PointPositionSigma(const Eigen::Matrix3d& K, const std::vector<Pose3>& world_T_camera,
                           const Eigen::Vector3d& point, double sigma_px) {

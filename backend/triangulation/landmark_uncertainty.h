@@ -6,7 +6,6 @@
 #pragma once
 
 #include <Eigen/Core>
-#include <memory>
 #include <vector>
 
 #include "frontend/geometry/pose.h"
@@ -21,33 +20,6 @@ struct LineSegmentView {
   int frame = 0;  // the frame index: the pose error model's path coordinate (PoseDrift)
 };
 
-// The joint first-order covariance of every frame's pose error, e.g. bundle adjustment's
-// (backend/bundle_adjustment/pose_covariance.h). Each frame f has a 6-vector y_f: a world-frame
-// rotation vector delta of world_T_base (R -> exp([delta]x) R; ceres::EigenQuaternionManifold's
-// tangent is half of it) and the error of world_T_base's translation. A frame held fixed (the
-// gauge) has zero rows.
-struct PoseCovariance {
-  // Per frame, on the poses the covariance was computed at: the camera's rotation camera_R_world,
-  // its centre (world) and its lever arm world_R_base * base_t_camera (world).
-  std::vector<Eigen::Matrix3d> camera_R_world;
-  std::vector<Eigen::Vector3d> centre;
-  std::vector<Eigen::Vector3d> lever;
-  Eigen::MatrixXd tangent;  // 6N x 6N, frame f at rows and columns 6f
-
-  int frames() const { return static_cast<int>(centre.size()); }
-  Eigen::Matrix<double, 6, 6> Block(int f, int g) const { return tangent.block<6, 6>(6 * f, 6 * g); }
-
-  // The error of camera i's pose relative to frame f0 (the rigid motion of the whole
-  // reconstruction that carries f0's error removed), as (rotation of the camera in its own frame,
-  // the point moving to p - dtheta x p; camera centre in the world), is e_i = Own(i) y_i +
-  // Anchor(i, f0) y_f0: rotation camera_R_world_i (delta_i - delta_0), centre dc_i - dc_0 -
-  // delta_0 x (c_i - c_0), where a camera centre's error is dc = dt + delta x lever.
-  Eigen::Matrix<double, 6, 6> Own(int i) const;
-  Eigen::Matrix<double, 6, 6> Anchor(int i, int f0) const;
-  // Cov(e_i, e_j) for the anchor f0 (zero when i or j is f0).
-  Eigen::Matrix<double, 6, 6> Relative(int i, int j, int f0) const;
-};
-
 // The error the final poses still carry, as the determination test sees it. Each camera's rotation
 // error is a random walk along the frame index with `rotation_step_rad` per frame (standard
 // deviation per axis of one step), so the rotation of view i relative to the first frame f0 that
@@ -59,7 +31,6 @@ struct PoseCovariance {
 // (translation_step_m): docs/tracks_and_triangulation.md, "Pose error in the determination test"
 // and "Translation drift". Both 0: pixel noise only.
 struct PoseDrift {
-  // Not an aggregate (the covariance below has no place in a brace list of the two steps).
   PoseDrift() = default;
   explicit PoseDrift(double rotation_step, double translation_step = 0)
       : rotation_step_rad(rotation_step), translation_step_m(translation_step) {}
@@ -69,9 +40,6 @@ struct PoseDrift {
   // to f0 likewise (and independent of the rotations'). A view's centre off by dc moves its pixel
   // as the point moving by -dc would.
   double translation_step_m = 0;
-  // When set (not null), replaces the random walk above: the poses' joint covariance, e.g. bundle
-  // adjustment's own (ComputePoseCovariance, backend/bundle_adjustment/pose_covariance.h).
-  std::shared_ptr<const PoseCovariance> covariance;
 };
 
 // Standard deviation, metres, of `point` along its worst-determined direction: the square root of

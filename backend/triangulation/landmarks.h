@@ -40,10 +40,7 @@ struct LineLandmark {
   // The bounded 3D segment (the junction point at one end where there is one).
   Eigen::Vector3d end0 = Eigen::Vector3d::Zero();
   Eigen::Vector3d end1 = Eigen::Vector3d::Zero();
-  int point_landmark = -1;  // index of the PointLandmark at end0, or -1
-  // Index of the PointLandmark at end1 (end1 is then its position), or -1. Set only by the
-  // wireframe selection's WireframeOptions::far_end_at_point_px with far_end_shares_vertex.
-  int end1_point_landmark = -1;
+  int point_landmark = -1;                    // index of the PointLandmark at end0, or -1
   std::vector<LineObservation> observations;  // at most one per frame
 };
 

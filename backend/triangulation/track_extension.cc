@@ -466,20 +466,14 @@ Status TrackExtensionOptions::Check() const {
   return Status::Ok();
 }
 
-void ExtendTracks(const Eigen::Matrix3d& K, int width, int height, const std::vector<Pose3>& world_T_camera,
-                  const std::vector<Junctions>& junctions, const TrackExtensionOptions& options,
-                  std::vector<JunctionTrack>* tracks, Landmarks* landmarks, TrackExtensionReport* report) {
-  ExtendTracks(K, Eigen::Vector2d(0, 0), Eigen::Vector2d(width - 1, height - 1), world_T_camera, junctions,
-               options, tracks, landmarks, report);
-}
-
-void ExtendTracks(const Eigen::Matrix3d& K, const Eigen::Vector2d& seen_min, const Eigen::Vector2d& seen_max,
-                  const std::vector<Pose3>& world_T_camera, const std::vector<Junctions>& junctions,
-                  const TrackExtensionOptions& options, std::vector<JunctionTrack>* tracks,
-                  Landmarks* landmarks, TrackExtensionReport* report) {
-  CHECK_EQ(world_T_camera.size(), junctions.size());
+void ExtendTracks(const TrackExtensionOptions& options, const Eigen::Vector2d& seen_min,
+                  const Eigen::Vector2d& seen_max, Reconstruction* reconstruction,
+                  TrackExtensionReport* report) {
+  CHECK_EQ(reconstruction->world_T_base.size(), reconstruction->junctions.size());
   *report = TrackExtensionReport();
-  Extender(K, seen_min, seen_max, world_T_camera, junctions, options, tracks, landmarks, report).Run();
+  Extender(reconstruction->calibration.camera.K(), seen_min, seen_max, reconstruction->WorldTCamera(),
+           reconstruction->junctions, options, &reconstruction->tracks, &reconstruction->landmarks, report)
+      .Run();
 }
 
 }  // namespace sfm

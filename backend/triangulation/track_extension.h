@@ -8,11 +8,11 @@
 // Pixels are undistorted pixels (K only); positions in the world frame, metres.
 #pragma once
 
+#include <Eigen/Core>
 #include <vector>
 
-#include <Eigen/Core>
-
 #include "backend/triangulation/landmarks.h"
+#include "backend/triangulation/reconstruction.h"
 #include "frontend/geometry/pose.h"
 #include "frontend/junctions/junction.h"
 #include "frontend/tracks/tracks.h"
@@ -60,21 +60,17 @@ struct TrackExtensionReport {
   std::vector<int> changed_points, changed_lines;
 };
 
-// Extends `tracks` and `landmarks` in place. world_T_camera: the (refined) camera poses, one per
-// frame; junctions: per frame; tracks: as BuildTracks made them (ids 0..n-1 in order); landmarks:
-// their points (track_id) and lines (observations naming track views). Afterwards tracks are
-// renumbered in order of their first view, views sorted by frame, landmark observations sorted by
-// frame, point track_ids updated; no track holds a frame twice or a junction of another track.
-void ExtendTracks(const Eigen::Matrix3d& K, int width, int height, const std::vector<Pose3>& world_T_camera,
-                  const std::vector<Junctions>& junctions, const TrackExtensionOptions& options,
-                  std::vector<JunctionTrack>* tracks, Landmarks* landmarks, TrackExtensionReport* report);
-// The same, for junctions detected on a wider view than [0, width) x [0, height) (the full-view
-// canvas, --undistort_full_view: junctions lie outside the image): a projection is searched for
-// when it lies in the box [seen_min, seen_max] of K's pixel frame. The overload above is the box
-// (0, 0) .. (width - 1, height - 1).
-void ExtendTracks(const Eigen::Matrix3d& K, const Eigen::Vector2d& seen_min, const Eigen::Vector2d& seen_max,
-                  const std::vector<Pose3>& world_T_camera, const std::vector<Junctions>& junctions,
-                  const TrackExtensionOptions& options, std::vector<JunctionTrack>* tracks,
-                  Landmarks* landmarks, TrackExtensionReport* report);
+// Extends reconstruction->tracks and reconstruction->landmarks in place, on the poses
+// reconstruction->world_T_base (the refined ones) with its calibration's K and base_T_camera and
+// its junctions (per frame). The tracks: as BuildTracks made them (ids 0..n-1 in order); the
+// landmarks: their points (track_id) and lines (observations naming track views). Afterwards the
+// tracks are renumbered in order of their first view, views sorted by frame, landmark observations
+// sorted by frame, point track_ids updated; no track holds a frame twice or a junction of another
+// track. A projection is searched for when it lies in the box [seen_min, seen_max] of K's pixel
+// frame: the image, (0, 0) .. (width - 1, height - 1), or the wider canvas the junctions were
+// detected on (the full view, --undistort_full_view: junctions lie outside the image).
+void ExtendTracks(const TrackExtensionOptions& options, const Eigen::Vector2d& seen_min,
+                  const Eigen::Vector2d& seen_max, Reconstruction* reconstruction,
+                  TrackExtensionReport* report);
 
 }  // namespace sfm

@@ -108,12 +108,6 @@ struct WireframeOptions {
   // steps of 0.1-0.2 m (an RMS length: sqrt(3) x the per-axis sigma, so 0.0023-0.0038 of the 0.2 m
   // corridor steps). Like the rotation's, a property of the refinement.
   double pose_translation_step_fraction = 0.003;
-  // When true and bundle adjustment ran, the pipeline replaces the two random-walk sizes above by
-  // bundle adjustment's own first-order covariance of the refined poses (ComputePoseCovariance,
-  // backend/bundle_adjustment/pose_covariance.h): the poses' error as the refinement's own noise
-  // models (pixel noise, odometry noise) predict it, at run time, for any sequence and speed.
-  // docs/tracks_and_triangulation.md, "Pose error from bundle adjustment".
-  bool pose_error_from_bundle_adjustment = false;
   // A point whose junction is a T or an X in some view is an occlusion candidate: its location may
   // be where a nearer edge crosses a farther one in the image, which slides along the edges as the
   // camera moves and is no 3D point. With two views the point's test has one degree of freedom
@@ -148,38 +142,14 @@ struct WireframeOptions {
   // observed image lines (median distance across them <= far_end_at_point_px) at the observed far
   // end-points (median distance along them <= far_end_along_px), and lies ahead of the line's
   // start (its junction point, else end0) within far_end_max_angle_deg of the segment, end1 is
-  // that point; with far_end_shares_vertex the edge ends at the point's own vertex
-  // (LineLandmark::end1_point_landmark), else (the default) at a vertex of its own at the point's
-  // position, as the far end had before (sharing lowers the share: the far ends it merges into
-  // points are mostly within 5 cm; docs/backend_results.md, session 6 "lineend").
+  // that point's position, a vertex of the edge's own (sharing the point's vertex lowered the
+  // share: the far ends it merges into points are mostly within 5 cm; docs/decisions.md).
   // docs/tracks_and_triangulation.md, "Far ends at junction points". Default 1 px: about 3 sigma
   // of the 0.3 px pixel noise the wireframe's tests use (3 px moves more far ends but breaks two to
   // three times as many good ones).
   double far_end_at_point_px = 1;
   double far_end_along_px = 5;
   double far_end_max_angle_deg = 15;
-  bool far_end_shares_vertex = false;
-  // A line's vertex sigmas scaled by its own a-posteriori variance factor relative to the lines'
-  // typical one: sqrt(v / v0) when above 1, v = chi2 / dof of its reprojection residuals
-  // (LineChiSquare at the test's pixel noise), v0 the lines' variance of unit weight (the median
-  // over the lines of chi2 / median of chi-square(dof), 1 for residuals as the noise model says),
-  // i.e. its covariance by v / v0 (the estimated variance factor of a least-squares adjustment,
-  // Foerstner & Wrobel 2016, "Photogrammetric Computer Vision", ch. 4; applied per line). The
-  // first-order sigma assumes every view's end-points are off by independent pixel noise; a line
-  // whose views disagree more than the other lines' do (a double edge's segments switching between
-  // its two edges, a wrong grouping) gets the larger sigma its residuals show, before the
-  // determination test (rule 2) and the accuracy asked (rule 3). Relative to the lines' own level,
-  // not to pixel_sigma_px: the lines' end-points fit 2-3 times better than the 0.3 px the tests
-  // assume (v0 0.11-0.28 on the generated sequences), so against the assumed noise almost no line
-  // exceeds 1 (measured: -0.0004..+0.003 in the share). Never below the first-order sigma.
-  // docs/tracks_and_triangulation.md, "A line's own variance factor"; docs/backend_results.md,
-  // session 7.
-  bool line_variance_factor = true;
-  // The same for the points: a point's sigma times sqrt(v / v0) when above 1, v its residuals'
-  // chi2 / dof (PointChiSquare), v0 the points' variance of unit weight (median of chi2 / median of
-  // chi-square(dof) over the points). On by default since session 7; measured after
-  // line_variance_factor, on the same development sequences (docs/backend_results.md, session 7).
-  bool point_variance_factor = true;
   // Rule 2 with a line end's position *along* the line (session 8). A back-projected end (end0 of a
   // line without a kept junction point: its junction locations; end1: its far end-points) is where
   // the viewing rays meet the 3D line, so it slides along the line by the line's own error across

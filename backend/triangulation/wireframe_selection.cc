@@ -174,8 +174,8 @@ std::vector<ResidualTest> LineResidualTests(const Eigen::Matrix3d& K,
   return tests;
 }
 
-// The variance of unit weight of a set of landmarks (WireframeOptions::line_variance_factor,
-// point_variance_factor) from their residuals' chi2 / m(dof), m(k) the median of a chi-square
+// The variance of unit weight of a set of landmarks (each landmark's own variance
+// factor, rule 2) from their residuals' chi2 / m(dof), m(k) the median of a chi-square
 // variable with k degrees of freedom: the median of the ratios, so that landmarks whose residuals
 // follow the noise model give 1 whatever their number of views, robust to the wrong tracks and
 // groupings among them. 1 when there is none, or when the median is 0 (noise-free observations).
@@ -240,7 +240,6 @@ void FarEndsAtPoints(const Eigen::Matrix3d& K, const std::vector<Pose3>& world_T
     }
     if (best < 0) continue;
     line.end1 = selected->points[best].position;
-    if (options.far_end_shares_vertex) line.end1_point_landmark = best;
     ++counts->lines_far_end_at_point;
   }
 }
@@ -319,8 +318,12 @@ Landmarks SelectWireframeLandmarks(const Eigen::Matrix3d& K, const std::vector<P
   WireframeSelectionReport counts;
   const std::vector<ResidualTest> point_tests = PointResidualTests(K, world_T_camera, landmarks, sigma_px);
   const std::vector<ResidualTest> line_tests = LineResidualTests(K, world_T_camera, landmarks, sigma_px);
-  const double point_unit_variance = options.point_variance_factor ? UnitVariance(point_tests) : 1.0;
-  const double line_unit_variance = options.line_variance_factor ? UnitVariance(line_tests) : 1.0;
+  // The points' and the lines' variances of unit weight: each landmark's sigma is scaled by its own
+  // a-posteriori variance factor relative to its kind's, when above 1 (Foerstner & Wrobel 2016,
+  // "Photogrammetric Computer Vision", ch. 4; docs/tracks_and_triangulation.md, "A line's own
+  // variance factor").
+  const double point_unit_variance = UnitVariance(point_tests);
+  const double line_unit_variance = UnitVariance(line_tests);
   Landmarks selected;
   std::vector<int> new_index(landmarks.points.size(), -1);
   // The drawn vertices' sigmas, for the accuracy asked (tolerance_m): kept points', and kept lines'
@@ -348,9 +351,8 @@ Landmarks SelectWireframeLandmarks(const Eigen::Matrix3d& K, const std::vector<P
       ++counts.points_occlusion_untested;
       continue;
     }
-    // The point's own variance factor (point_variance_factor), as for the lines below.
-    const double point_factor =
-        options.point_variance_factor ? OwnSigmaFactor(chi_square, dof, point_unit_variance) : 1.0;
+    // The point's own variance factor, as for the lines below.
+    const double point_factor = OwnSigmaFactor(chi_square, dof, point_unit_variance);
     const double point_sigma =
         point_factor * PointPositionSigma(K, cameras, frames, point.position, sigma_px, drift);
     if (!determined(point_sigma, SmallestDepth(cameras, point.position))) {
@@ -400,11 +402,9 @@ Landmarks SelectWireframeLandmarks(const Eigen::Matrix3d& K, const std::vector<P
     kept.direction = (segment.end1 - segment.end0).normalized();
     kept.end0 = kept.point_landmark >= 0 ? line.end0 : segment.end0;
     kept.end1 = segment.end1;
-    // The line's own variance factor (line_variance_factor): its residuals' chi2 / dof relative to
-    // the lines' typical one, when above 1, scales its covariance (both vertices' sigmas by the
-    // square root).
-    const double factor =
-        options.line_variance_factor ? OwnSigmaFactor(chi_square, dof, line_unit_variance) : 1.0;
+    // The line's own variance factor: its residuals' chi2 / dof relative to the lines' typical one,
+    // when above 1, scales its covariance (both vertices' sigmas by the square root).
+    const double factor = OwnSigmaFactor(chi_square, dof, line_unit_variance);
     // line_end_along_sigma: a back-projected end's rule-2 sigma is the worse of across and along
     // the line (LineEndAlongSigma), the along part from the same across sigma and pixel noise.
     auto end_sigma = [&](const Eigen::Vector3d& end, bool along) {

@@ -34,10 +34,6 @@ struct WireframeSelectionReport {
   int points_kept = 0, lines_kept = 0;
   int lines_far_end_at_point = 0;   // kept lines whose end1 is a drawn point (far_end_at_point_px)
   double pixel_sigma_px = 0;      // the noise the chi-square tests used
-  // Set by the pipeline: the pose error model of the determination test ("random_walk" or
-  // "bundle_adjustment"), and the seconds the bundle adjustment's pose covariance took (0 without).
-  std::string pose_error_model = "random_walk";
-  double pose_covariance_seconds = 0;
 };
 
 // The largest position sigma (metres) that WireframeOptions allows for a vertex whose smallest
@@ -66,9 +62,9 @@ PoseDrift WireframePoseDrift(const WireframeOptions& options, const std::vector<
 // vertices are within the bound (LinePositionSigma at end1, and at end0 unless end0 is a kept
 // point). A line whose point was dropped takes its own end0 (the median of its back-projected
 // junction locations) and point_landmark -1; point_landmark is renumbered. Order is preserved.
-// With options.far_end_at_point_px > 0 a kept line's end1 is then moved to a kept point that its
-// observed image lines and far end-points agree with (end1_point_landmark set when
-// far_end_shares_vertex).
+// With options.far_end_at_point_px > 0 a kept line's end1 is then moved to the position of a kept
+// point that its observed image lines and far end-points agree with (the edge keeps a vertex of
+// its own there).
 // options must pass Check(), every observation must index world_T_camera (CHECKed).
 Landmarks SelectWireframeLandmarks(const Eigen::Matrix3d& K, const std::vector<Pose3>& world_T_camera,
                                    const Landmarks& landmarks, const WireframeOptions& options,
@@ -83,8 +79,7 @@ Landmarks SelectWireframeLandmarks(const Eigen::Matrix3d& K, const std::vector<P
                                    const WireframeOptions& options,
                                    WireframeSelectionReport* report = nullptr);
 
-// The same with the pose error given (instead of WireframePoseDrift(options, world_T_camera)), e.g.
-// PoseDrift::covariance from bundle adjustment (backend/bundle_adjustment/pose_covariance.h).
+// The same with the pose error given (instead of WireframePoseDrift(options, world_T_camera)).
 Landmarks SelectWireframeLandmarks(const Eigen::Matrix3d& K, const std::vector<Pose3>& world_T_camera,
                                    const Landmarks& landmarks, const std::vector<Junctions>& junctions,
                                    const WireframeOptions& options, const PoseDrift& drift,

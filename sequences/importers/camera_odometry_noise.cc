@@ -28,6 +28,15 @@ Status CameraOdometryNoiseOptions::Check() const {
   return Status::Ok();
 }
 
+CameraOdometryNoiseOptions CameraOdometryNoiseOptions::Scaled(double factor) const {
+  CameraOdometryNoiseOptions scaled = *this;
+  scaled.scale_error *= factor;
+  scaled.distance_sigma *= factor;
+  scaled.rotation_sigma *= factor;
+  scaled.rotation_bias *= factor;
+  return scaled;
+}
+
 OdometryNoise CameraOdometryNoiseOptions::ForCalibration() const {
   OdometryNoise noise;
   noise.translation_sigma = std::max(1e-4, std::hypot(scale_error, distance_sigma));

@@ -29,6 +29,10 @@ struct CameraOdometryNoiseOptions {
   double rotation_bias = 0.0017;  // rad per frame about the camera's y axis (0.1 deg)
 
   Status Check() const;
+  // Every noise term (scale error, distance sigma, rotation sigma, rotation bias) times `factor`
+  // (>= 0): one knob for odometry "k times worse" than these options, the way issue 17's
+  // benchmarks state odometry levels. 0 gives noise-free odometry.
+  CameraOdometryNoiseOptions Scaled(double factor) const;
   // The model as sequence.yaml states it (SPEC section 1): translation sigma
   // sqrt(scale_error^2 + distance_sigma^2) as a fraction of the distance, rotation sigma
   // sqrt(rotation_sigma^2 + rotation_bias^2) per frame; floored at 1e-4 and 1e-5 as the generator

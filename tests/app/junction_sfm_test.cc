@@ -181,19 +181,17 @@ TEST_F(JunctionSfmBadInput, OutputDirectoryThatCannotBeWritten) {
 }
 
 // A flag value that is not one of the choices: exit 2, one line naming the flag, nothing written.
-// The valid values run (the three-frame sequence has too little for a second adjustment to change
-// anything, but every path is taken).
-TEST_F(JunctionSfmBadInput, RetriangulationFlags) {
+// The other values run.
+TEST_F(JunctionSfmBadInput, BundleAdjustmentChoiceFlags) {
   const std::string io = "--sequence=" + sequence_.string() + " --output=" + output_.string();
-  const RunResult bad = RunJunctionSfm(io + " --retriangulate_refined=twice", scratch_);
+  const RunResult bad = RunJunctionSfm(io + " --floor_prior=sometimes", scratch_);
   EXPECT_EQ(bad.exit_code, 2);
-  EXPECT_THAT(bad.stderr_text, HasSubstr("--retriangulate_refined must be 'off', 'structure' or 'full'"));
+  EXPECT_THAT(bad.stderr_text, HasSubstr("--floor_prior must be 'auto', 'on' or 'off'"));
   EXPECT_TRUE(!fs::exists(output_) || fs::is_empty(output_));
-  const RunResult bad_merge = RunJunctionSfm(io + " --retriangulated_landmarks=some", scratch_);
-  EXPECT_EQ(bad_merge.exit_code, 2);
-  EXPECT_THAT(bad_merge.stderr_text, HasSubstr("--retriangulated_landmarks must be 'add' or 'replace'"));
-  for (const std::string flags : {"--retriangulate_refined=structure", "--retriangulate_refined=full",
-                                  "--retriangulate_refined=full --retriangulated_landmarks=replace"}) {
+  const RunResult bad_bias = RunJunctionSfm(io + " --odometry_rotation_bias=some", scratch_);
+  EXPECT_EQ(bad_bias.exit_code, 2);
+  EXPECT_THAT(bad_bias.stderr_text, HasSubstr("--odometry_rotation_bias must be 'on', 'off' or 'auto'"));
+  for (const std::string flags : {"--floor_prior=on", "--floor_prior=off --odometry_rotation_bias=on"}) {
     const RunResult result = RunJunctionSfm(io + " " + flags, scratch_);
     EXPECT_EQ(result.exit_code, 0) << flags << ": " << result.stderr_text;
     EXPECT_TRUE(fs::exists(output_ / "metrics.json")) << flags;

@@ -13,6 +13,7 @@
 
 #include "backend/bundle_adjustment/floor_prior.h"
 #include "backend/bundle_adjustment/observability.h"
+#include "backend/triangulation/reconstruction.h"
 #include "tests/bundle_adjustment/synthetic_room.h"
 
 namespace sfm {
@@ -116,7 +117,8 @@ RoomRun RunRoomLoop(int frames, double heading_drift_rad, double outlier_fractio
   }
   run.point_rmse_before_m = PointRmse(observed.landmarks, observed);
   std::vector<Pose3> refined;
-  const Status status = BundleAdjust(calibration, odometry, options, &observed.landmarks, &refined, &run.summary);
+  const Status status = testing::AdjustFromOdometry(calibration, odometry, options, &observed.landmarks,
+                                                    &refined, &run.summary);
   EXPECT_TRUE(status.ok()) << status.message();
   if (refined_out != nullptr) *refined_out = refined;
   if (truth_out != nullptr) *truth_out = truth;
@@ -162,41 +164,54 @@ TEST(BundleAdjusterTest, RoomLoopFromDriftingOdometry) {
   EXPECT_LT(run.point_rmse_after_m, run.point_rmse_before_m / 2);
 }
 
-// RMS angle (rad) between the estimated and the true translation of each step, both in base_i.
-double StepDirectionRmsRad(const std::vector<Pose3>& estimated, const std::vector<Pose3>& truth) {
-  double sum = 0;
-  for (size_t i = 0; i + 1 < truth.size(); ++i) {
-    const Eigen::Vector3d e = (estimated[i].Inverse() * estimated[i + 1]).translation;
-    const Eigen::Vector3d t = (truth[i].Inverse() * truth[i + 1]).translation;
-    const double angle = std::atan2(e.cross(t).norm(), e.dot(t));
-    sum += angle * angle;
-  }
-  return std::sqrt(sum / (truth.size() - 1));
-}
+// The solves start from a given trajectory (BundleAdjustment's start poses, e.g. a vision-first
+// one), the drifting odometry staying the prior: a 40-frame lap with 0.008 rad/frame of heading
+// drift started from the true poses reaches the start from the odometry's camera position RMSE
+// within 5 % (observed 0.0743 against 0.0747 m, in 22 iterations against 18: the start is used),
+// at most a quarter of the odometry's (0.337 m; the unobservable 3 % scale error is most of what
+// is left), and the rotation RPE at most half the odometry's. A start the
+// adjustment cannot use is an error naming it: not as many poses as the odometry, a first pose
+// other than the odometry's (the gauge), a scale factor not > 0.
+TEST(BundleAdjusterTest, StartsFromAGivenTrajectory) {
+  const Calibration calibration = RoomCalibration(0.008);
+  const std::vector<Pose3> truth = testing::LoopTrajectory(40);
+  const std::vector<Pose3> odometry = MakeOdometry(truth, kScaleError, 0.008, kHeadingNoiseRad, 7);
+  const Observed observed = Observe(BoxRoom(), calibration, truth, odometry, kPixelNoisePx, 11);
+  auto adjust = [&](std::vector<Pose3> start, double scale, BundleAdjustmentSummary* summary) {
+    Reconstruction reconstruction;
+    reconstruction.calibration = calibration;
+    reconstruction.world_T_base = std::move(start);
+    reconstruction.landmarks = observed.landmarks;
+    const Status status = BundleAdjust(odometry, scale, BundleAdjustmentOptions(), &reconstruction, summary);
+    return std::make_pair(status, reconstruction.world_T_base);
+  };
+  std::vector<Pose3> start = truth;
+  start[0] = odometry[0];
+  BundleAdjustmentSummary from_truth_summary, from_odometry_summary;
+  const auto [status, from_truth] = adjust(start, 1, &from_truth_summary);
+  ASSERT_TRUE(status.ok()) << status.message();
+  const auto [odometry_status, from_odometry] = adjust(odometry, 1, &from_odometry_summary);
+  ASSERT_TRUE(odometry_status.ok()) << odometry_status.message();
+  const Drift before = MeasureDrift(odometry, truth, calibration.base_T_camera);
+  const Drift after = MeasureDrift(from_truth, truth, calibration.base_T_camera);
+  const Drift after_odometry = MeasureDrift(from_odometry, truth, calibration.base_T_camera);
+  std::printf(
+      "[ figures  ] camera position RMSE: odometry %.4f m, refined from the true poses %.4f m (%d "
+      "iterations), from the odometry %.4f m (%d iterations); rotation RPE %.5f -> %.5f rad\n",
+      before.position_rmse_m, after.position_rmse_m, from_truth_summary.iterations,
+      after_odometry.position_rmse_m, from_odometry_summary.iterations, before.rotation_rpe_rad,
+      after.rotation_rpe_rad);
+  EXPECT_LE(after.position_rmse_m, 1.05 * after_odometry.position_rmse_m);
+  EXPECT_LE(after.position_rmse_m, before.position_rmse_m / 4);
+  EXPECT_LE(after.rotation_rpe_rad, before.rotation_rpe_rad / 2);
 
-// The odometry prior weighs a step's translation along the step by the distance noise and across
-// it by the heading noise times the distance (docs/bundle_adjustment.md, "Odometry prior"). The
-// lap's odometry measures every step's direction exactly (its errors are a scale error and
-// heading noise), so a prior as loose across the step as along it (3 % of the step: 1.7 deg)
-// lets the image noise turn the steps. Figures (60 frames, 0.004 rad/frame of drift): RMS step
-// direction error isotropic 0.0055 -> along/across 0.00034 rad; camera position RMSE 0.077 ->
-// 0.071 m (after the best scaling 0.0106 -> 0.0127 m: with the direction held, what is left is in
-// the step lengths). Asserted: direction error at most half, position RMSE no worse (+5 %).
-TEST(BundleAdjusterTest, AnisotropicOdometryPriorKeepsTheStepDirections) {
-  BundleAdjustmentOptions isotropic;
-  isotropic.odometry_translation_model = OdometryTranslationModel::kIsotropic;
-  std::vector<Pose3> refined_isotropic, refined_anisotropic, truth;
-  const RoomRun run_isotropic = RunRoomLoop(60, kSmallDriftRad, 0, isotropic, &refined_isotropic, &truth);
-  const RoomRun run_anisotropic =
-      RunRoomLoop(60, kSmallDriftRad, 0, BundleAdjustmentOptions(), &refined_anisotropic, nullptr);
-  const double isotropic_rad = StepDirectionRmsRad(refined_isotropic, truth);
-  const double anisotropic_rad = StepDirectionRmsRad(refined_anisotropic, truth);
-  std::printf("[ figures  ] step direction RMS error: isotropic %.6f rad, along/across %.6f rad; scaled position "
-              "RMSE %.4f -> %.4f m\n",
-              isotropic_rad, anisotropic_rad, run_isotropic.refined.scaled_position_rmse_m,
-              run_anisotropic.refined.scaled_position_rmse_m);
-  EXPECT_LE(anisotropic_rad, isotropic_rad / 2);
-  EXPECT_LE(run_anisotropic.refined.position_rmse_m, 1.05 * run_isotropic.refined.position_rmse_m);
+  BundleAdjustmentSummary summary;
+  std::vector<Pose3> short_start(start.begin(), start.end() - 1);
+  EXPECT_NE(adjust(short_start, 1, &summary).first.message().find("start poses"), std::string::npos);
+  std::vector<Pose3> moved = start;
+  moved[0].translation.x() += 0.1;
+  EXPECT_NE(adjust(moved, 1, &summary).first.message().find("gauge"), std::string::npos);
+  EXPECT_NE(adjust(start, 0, &summary).first.message().find("scale"), std::string::npos);
 }
 
 // One point observation in 20 is a gross mismatch: all of them are removed, few others, and the
@@ -231,8 +246,8 @@ TEST(BundleAdjusterTest, NoMotionDropsEveryLandmark) {
   ASSERT_GT(points, 0);
   std::vector<Pose3> refined;
   BundleAdjustmentSummary summary;
-  const Status status =
-      BundleAdjust(calibration, truth, BundleAdjustmentOptions(), &observed.landmarks, &refined, &summary);
+  const Status status = testing::AdjustFromOdometry(calibration, truth, BundleAdjustmentOptions(),
+                                                    &observed.landmarks, &refined, &summary);
   ASSERT_TRUE(status.ok()) << status.message();
   EXPECT_EQ(summary.points_unobservable, points);
   EXPECT_EQ(summary.lines_unobservable, lines);
@@ -288,8 +303,8 @@ TEST(BundleAdjusterTest, LandmarksNextToTheCamerasAreDropped) {
   EXPECT_GT(points_with_angle, 0);
   std::vector<Pose3> refined;
   BundleAdjustmentSummary summary;
-  const Status status =
-      BundleAdjust(calibration, jittered, BundleAdjustmentOptions(), &observed.landmarks, &refined, &summary);
+  const Status status = testing::AdjustFromOdometry(calibration, jittered, BundleAdjustmentOptions(),
+                                                    &observed.landmarks, &refined, &summary);
   ASSERT_TRUE(status.ok()) << status.message();
   std::printf("[ figures  ] next to the cameras: %d points, %d lines; unobservable %d + %d, removed %d + %d\n",
               points, lines, summary.points_unobservable, summary.lines_unobservable, summary.points_removed,
@@ -326,8 +341,8 @@ TEST(BundleAdjusterTest, PureRotation) {
     Observed observed = Observe(BoxRoom(), calibration, truth, odometry, kPixelNoisePx, 5);
     std::vector<Pose3> refined;
     BundleAdjustmentSummary summary;
-    const Status status = BundleAdjust(calibration, odometry, BundleAdjustmentOptions(), &observed.landmarks,
-                                       &refined, &summary);
+    const Status status = testing::AdjustFromOdometry(calibration, odometry, BundleAdjustmentOptions(),
+                                                      &observed.landmarks, &refined, &summary);
     ASSERT_TRUE(status.ok()) << status.message();
     ASSERT_EQ(refined.size(), truth.size());
     ExpectFinite(refined);
@@ -352,8 +367,8 @@ TEST(BundleAdjusterTest, SingleLandmark) {
   ASSERT_EQ(observed.landmarks.points.size(), 1u);
   std::vector<Pose3> refined;
   BundleAdjustmentSummary summary;
-  const Status status =
-      BundleAdjust(calibration, odometry, BundleAdjustmentOptions(), &observed.landmarks, &refined, &summary);
+  const Status status = testing::AdjustFromOdometry(calibration, odometry, BundleAdjustmentOptions(),
+                                                    &observed.landmarks, &refined, &summary);
   ASSERT_TRUE(status.ok()) << status.message();
   EXPECT_EQ(summary.points, 1);
   EXPECT_GE(summary.solves, 1);
@@ -394,8 +409,8 @@ BiasRun RunBiasedDrive(bool estimate_bias) {
   options.estimate_odometry_rotation_bias_on_floor = false;  // not auto: this rig passes the floor's check
   BiasRun run;
   std::vector<Pose3> refined;
-  const Status status =
-      BundleAdjust(calibration, odometry, options, &observed.landmarks, &refined, &run.summary);
+  const Status status = testing::AdjustFromOdometry(calibration, odometry, options, &observed.landmarks,
+                                                    &refined, &run.summary);
   EXPECT_TRUE(status.ok()) << status.message();
   run.realized_bias_rad = (Yaw(odometry.back()) - Yaw(odometry.front())) / (kFrames - 1);
   run.odometry_final_yaw_rad = std::abs(Yaw(odometry.back()) - Yaw(truth.back()));
@@ -461,7 +476,8 @@ TEST(BundleAdjusterTest, LinesParallelToTheMotionAreDropped) {
   ASSERT_GT(static_cast<int>(observed.true_segments.size()), unobservable);
   std::vector<Pose3> refined;
   BundleAdjustmentSummary summary;
-  const Status status = BundleAdjust(calibration, odometry, options, &observed.landmarks, &refined, &summary);
+  const Status status =
+      testing::AdjustFromOdometry(calibration, odometry, options, &observed.landmarks, &refined, &summary);
   ASSERT_TRUE(status.ok()) << status.message();
   EXPECT_GE(unobservable, parallel);
   EXPECT_EQ(summary.lines_unobservable, unobservable);
@@ -516,9 +532,9 @@ int UnobservableLandmarks(const Calibration& calibration, const std::vector<Pose
 // corrects it. One more line is seen from frames 19 and 20, 9.5 cm in front of camera 20 across its
 // view: on the odometry's poses its two back-projected planes meet 13 cm in front, above the 10 cm
 // depth floor, so it passes every check before the last solve; on the corrected poses it is 9.5 cm
-// deep and fails the same check after it. With outlier_rounds = 0 the joint solve is the last:
-// without observability rounds the line is in the output (1 unobservable landmark), with one round
-// it is dropped (0). (A two-view line fits exactly and holds no pose: nothing else moves here; on
+// deep and fails the same check after it. With outlier_rounds = 0 the joint solve is the last: the
+// line is dropped after it (counted in landmarks_unobservable_after_last_solve, one solve more)
+// and no unobservable landmark is left. (A two-view line fits exactly and holds no pose: nothing else moves here; on
 // Strecha such lines had three views and bent the trajectory.)
 TEST(BundleAdjusterTest, TheLastSolveLeavesNoUnobservableLandmark) {
   Calibration calibration = RoomCalibration(kSmallDriftRad);
@@ -574,29 +590,27 @@ TEST(BundleAdjusterTest, TheLastSolveLeavesNoUnobservableLandmark) {
   const BundleAdjustmentOptions defaults;
   ASSERT_GT(odometry_depth_m, defaults.min_depth_m);
 
-  int unobservable[2] = {-1, -1};
-  for (int rounds : {0, 1}) {
-    BundleAdjustmentOptions options;
-    options.outlier_rounds = 0;
-    options.observability_rounds = rounds;
-    Landmarks landmarks = observed.landmarks;
-    std::vector<Pose3> refined;
-    BundleAdjustmentSummary summary;
-    const Status status = BundleAdjust(calibration, odometry, options, &landmarks, &refined, &summary);
-    ASSERT_TRUE(status.ok()) << status.message();
-    unobservable[rounds] = UnobservableLandmarks(calibration, refined, landmarks, options);
-    const double rotation_error_rad =
-        Eigen::AngleAxisd(truth[kFrame].rotation.inverse() * refined[kFrame].rotation).angle();
-    std::printf("[ figures  ] observability rounds %d: the near line %.3f m deep on the odometry, %d "
-                "unobservable landmarks left, %d solves, frame %d rotation error %.3f -> %.4f rad\n",
-                rounds, odometry_depth_m, unobservable[rounds], summary.solves, kFrame, kPitchRad,
-                rotation_error_rad);
-    // The joint solve corrected the frame (what makes the line fail): at most a fifth left (0.0021
-    // observed, the level of the lap's other frames).
-    EXPECT_LT(rotation_error_rad, kPitchRad / 5);
-  }
-  EXPECT_EQ(unobservable[0], 1);
-  EXPECT_EQ(unobservable[1], 0);
+  BundleAdjustmentOptions options;
+  options.outlier_rounds = 0;
+  Landmarks landmarks = observed.landmarks;
+  std::vector<Pose3> refined;
+  BundleAdjustmentSummary summary;
+  const Status status =
+      testing::AdjustFromOdometry(calibration, odometry, options, &landmarks, &refined, &summary);
+  ASSERT_TRUE(status.ok()) << status.message();
+  const int unobservable = UnobservableLandmarks(calibration, refined, landmarks, options);
+  const double rotation_error_rad =
+      Eigen::AngleAxisd(truth[kFrame].rotation.inverse() * refined[kFrame].rotation).angle();
+  std::printf("[ figures  ] the near line %.3f m deep on the odometry; %d dropped after the last solve, %d "
+              "unobservable landmarks left, %d solves, frame %d rotation error %.3f -> %.4f rad\n",
+              odometry_depth_m, summary.landmarks_unobservable_after_last_solve, unobservable, summary.solves,
+              kFrame, kPitchRad, rotation_error_rad);
+  // The joint solve corrected the frame (what makes the line fail): at most a fifth left (0.0021
+  // observed, the level of the lap's other frames).
+  EXPECT_LT(rotation_error_rad, kPitchRad / 5);
+  EXPECT_GE(summary.landmarks_unobservable_after_last_solve, 1);
+  EXPECT_GE(summary.observability_solves, 1);
+  EXPECT_EQ(unobservable, 0);
 }
 
 TEST(BundleAdjusterTest, NothingToSolve) {
@@ -605,13 +619,15 @@ TEST(BundleAdjusterTest, NothingToSolve) {
   std::vector<Pose3> refined;
   BundleAdjustmentSummary summary;
   const std::vector<Pose3> one_frame = {testing::LoopTrajectory(1).front()};
-  ASSERT_TRUE(
-      BundleAdjust(calibration, one_frame, BundleAdjustmentOptions(), &landmarks, &refined, &summary).ok());
+  ASSERT_TRUE(testing::AdjustFromOdometry(calibration, one_frame, BundleAdjustmentOptions(), &landmarks,
+                                          &refined, &summary)
+                  .ok());
   EXPECT_EQ(refined.size(), 1u);
   EXPECT_EQ(summary.solves, 0);
   const std::vector<Pose3> odometry = testing::LoopTrajectory(5);
-  ASSERT_TRUE(
-      BundleAdjust(calibration, odometry, BundleAdjustmentOptions(), &landmarks, &refined, &summary).ok());
+  ASSERT_TRUE(testing::AdjustFromOdometry(calibration, odometry, BundleAdjustmentOptions(), &landmarks,
+                                          &refined, &summary)
+                  .ok());
   ASSERT_EQ(refined.size(), odometry.size());
   for (size_t f = 0; f < odometry.size(); ++f)
     EXPECT_NEAR((refined[f].translation - odometry[f].translation).norm(), 0, 1e-12);
@@ -623,15 +639,17 @@ TEST(BundleAdjusterTest, BadInputIsAnError) {
   std::vector<Pose3> refined;
   BundleAdjustmentSummary summary;
   Landmarks landmarks;
-  EXPECT_FALSE(BundleAdjust(good, {}, BundleAdjustmentOptions(), &landmarks, &refined, &summary).ok());
+  EXPECT_FALSE(
+      testing::AdjustFromOdometry(good, {}, BundleAdjustmentOptions(), &landmarks, &refined, &summary).ok());
   Calibration no_noise = good;
   no_noise.odometry_noise.rotation_sigma = 0;
-  EXPECT_FALSE(
-      BundleAdjust(no_noise, odometry, BundleAdjustmentOptions(), &landmarks, &refined, &summary).ok());
+  EXPECT_FALSE(testing::AdjustFromOdometry(no_noise, odometry, BundleAdjustmentOptions(), &landmarks,
+                                           &refined, &summary)
+                   .ok());
   landmarks.points.resize(1);
   landmarks.points[0].observations = {{0, 0, {1, 1}}, {5, 0, {1, 1}}};  // frame 5 of 5
   const Status status =
-      BundleAdjust(good, odometry, BundleAdjustmentOptions(), &landmarks, &refined, &summary);
+      testing::AdjustFromOdometry(good, odometry, BundleAdjustmentOptions(), &landmarks, &refined, &summary);
   EXPECT_FALSE(status.ok());
   EXPECT_NE(status.message().find("frame 5"), std::string::npos) << status.message();
 }
@@ -652,8 +670,6 @@ TEST(BundleAdjustmentOptionsTest, CheckNamesTheBadField) {
       message([](BundleAdjustmentOptions* o) { o->outlier_threshold_px = -1; }).find("outlier_threshold_px"),
       std::string::npos);
   EXPECT_NE(message([](BundleAdjustmentOptions* o) { o->outlier_rounds = -1; }).find("outlier_rounds"),
-            std::string::npos);
-  EXPECT_NE(message([](BundleAdjustmentOptions* o) { o->observability_rounds = -1; }).find("observability_rounds"),
             std::string::npos);
   EXPECT_NE(message([](BundleAdjustmentOptions* o) { o->num_threads = 0; }).find("num_threads"),
             std::string::npos);
@@ -690,11 +706,8 @@ struct FloorRun {
 // `camera_height` m above the base origin.
 FloorRun RunFloorLoop(double floor_z, double camera_height, FloorPriorMode mode, bool base_prior = true,
                       const std::vector<Eigen::Vector3d>& extra_points = {}, bool bias_on_floor = true,
-                      double scale_error = kScaleError,
-                      bool rescale_start = BundleAdjustmentOptions().floor_rescale_start,
-                      double function_tolerance = 0,
-                      bool line_search = BundleAdjustmentOptions().floor_scale_line_search,
-                      bool solver_before_session6 = false, bool inner_iterations_poses = false) {
+                      double scale_error = kScaleError, double function_tolerance = 0,
+                      bool line_search = BundleAdjustmentOptions().floor_scale_line_search) {
   Calibration calibration = RoomCalibration(kSmallDriftRad);
   calibration.base_T_camera.translation.z() = camera_height;
   const std::vector<Pose3> truth = testing::LoopTrajectory(60);
@@ -706,22 +719,14 @@ FloorRun RunFloorLoop(double floor_z, double camera_height, FloorPriorMode mode,
   options.floor_prior = mode;
   options.floor_base_prior = base_prior;
   options.estimate_odometry_rotation_bias_on_floor = bias_on_floor;
-  options.floor_rescale_start = rescale_start;
   options.floor_scale_line_search = line_search;
-  options.inner_iterations_poses = inner_iterations_poses;
-  if (solver_before_session6) {
-    options.inner_iterations_poses = true;
-    options.single_pose_block = false;
-    options.inner_iterations_throughout = false;
-    options.floor_scale_search_solve_centre = true;
-  }
   if (function_tolerance > 0) {
     options.function_tolerance = function_tolerance;
     options.intermediate_function_tolerance = std::max(function_tolerance, options.intermediate_function_tolerance);
   }
   FloorRun run;
-  const Status status =
-      BundleAdjust(calibration, odometry, options, &observed.landmarks, &run.world_T_base_refined, &run.summary);
+  const Status status = testing::AdjustFromOdometry(calibration, odometry, options, &observed.landmarks,
+                                                    &run.world_T_base_refined, &run.summary);
   EXPECT_TRUE(status.ok()) << status.message();
   run.odometry = MeasureDrift(odometry, truth, calibration.base_T_camera);
   run.refined = MeasureDrift(run.world_T_base_refined, truth, calibration.base_T_camera);
@@ -762,39 +767,6 @@ TEST(FloorPriorTest, ThreePercentScaleErrorIsCorrected) {
   EXPECT_GT(without.refined.position_rmse_m, 3 * with.refined.position_rmse_m);
 }
 
-// The session-6 solver economies (landmarks alone in the inner iterations, kept on throughout, one
-// 7-number block per pose, the line search's centre taken from the last solve) change the work,
-// not the answer: the
-// 60-frame lap with 3 % too long odometry (floor prior, rotation bias and scale line search
-// applied) refined with and without them agrees to 0.2 mm in every base position (observed
-// 4.2e-5 m, against a refined camera RMSE of 2.6 mm) and to 5e-5 in the odometry scale (observed
-// 8.6e-6; its standard error through the priors is 0.004), in one solve fewer and no more
-// iterations. The differences are where the solves stop by their tolerances.
-TEST(FloorPriorTest, SolverEconomiesKeepTheAnswer) {
-  const BundleAdjustmentOptions defaults;
-  const FloorRun before = RunFloorLoop(0, 1.0, FloorPriorMode::kAuto, true, {}, true, kScaleError,
-                                       defaults.floor_rescale_start, 0, defaults.floor_scale_line_search,
-                                       /*solver_before_session6=*/true);
-  const FloorRun after = RunFloorLoop(0, 1.0, FloorPriorMode::kAuto);
-  EXPECT_TRUE(after.summary.floor_prior_used) << after.summary.floor_prior_report;
-  ASSERT_EQ(before.world_T_base_refined.size(), after.world_T_base_refined.size());
-  double largest_m = 0;
-  for (size_t f = 0; f < before.world_T_base_refined.size(); ++f) {
-    largest_m = std::max(
-        largest_m,
-        (before.world_T_base_refined[f].translation - after.world_T_base_refined[f].translation).norm());
-  }
-  std::printf(
-      "[ figures  ] largest base position difference %.2e m; odometry scale %.8f -> %.8f; "
-      "iterations %d -> %d in %d -> %d solves\n",
-      largest_m, before.summary.odometry_scale, after.summary.odometry_scale, before.summary.iterations,
-      after.summary.iterations, before.summary.solves, after.summary.solves);
-  EXPECT_LT(largest_m, 2e-4);
-  EXPECT_NEAR(after.summary.odometry_scale, before.summary.odometry_scale, 5e-5);
-  EXPECT_LE(after.summary.iterations, before.summary.iterations);
-  EXPECT_EQ(after.summary.solves, before.summary.solves - 1);  // the line search's centre
-}
-
 // The odometry's rotation bias is estimated (auto) where the floor prior may apply: a ground robot's
 // rig and planar odometry, the prior not off (docs/bundle_adjustment.md, "Floor scale bias"). Not
 // with the prior off, nor with the camera at the base origin (the VGG and Strecha imports), where
@@ -822,52 +794,20 @@ TEST(FloorPriorTest, RotationBiasIsEstimatedWhereTheFloorPriorMayApply) {
   }
 }
 
-// The start at the floor's scale (floor_rescale_start): the odometry 3 % too long and 3 % too short,
-// the camera 0.5 m above the floor, every solve ended at a loose function tolerance (1e-2) as the
-// pipeline's solves end before the shallow scale direction has converged (docs/bundle_adjustment.md,
-// "Floor scale bias: the start and the line search"). The odometry's scale factor times (1 + error) is the trajectory's
-// length against the truth; it should not depend on the sign of the odometry's error. Figure
-// protected: the gap between the two runs at most 0.005 started at the floor's scale (observed
-// 0.0036: 0.99676 / 0.99314), and more than that started at the odometry's (observed 0.0103:
-// 1.00263 / 0.99232, each pulled towards its odometry); converged (1e-6) both starts give a gap of
-// 0.0024.
-TEST(FloorPriorTest, TheStartAtTheFloorsScaleDoesNotKeepTheOdometrysError) {
-  constexpr double kLooseTolerance = 1e-2;
-  auto length = [](bool rescale, double error) {
-    const FloorRun run =
-        RunFloorLoop(0, 0.5, FloorPriorMode::kAuto, true, {}, true, error, rescale, kLooseTolerance, /*line_search=*/false);
-    EXPECT_TRUE(run.summary.floor_prior_used) << run.summary.floor_prior_report;
-    EXPECT_EQ(run.summary.floor_prior_report.find("started at odometry scale") != std::string::npos, rescale)
-        << run.summary.floor_prior_report;
-    return run.summary.odometry_scale * (1 + error);
-  };
-  const double long_with = length(true, +kScaleError), short_with = length(true, -kScaleError);
-  const double long_without = length(false, +kScaleError), short_without = length(false, -kScaleError);
-  std::printf("[ figures  ] 0.5 m camera, function tolerance %g: lambda * (1 + e) with e = +3 %% / -3 %%: "
-              "%.5f / %.5f started at the floor's scale, %.5f / %.5f at the odometry's\n",
-              kLooseTolerance, long_with, short_with, long_without, short_without);
-  EXPECT_LE(std::abs(long_with - short_with), 0.005);
-  EXPECT_GT(std::abs(long_without - short_without), 0.005);  // the leak the start removes
-}
-
 // The line search on the scale (floor_scale_line_search): the same 0.5 m lap, odometry 3 % too long
-// and too short, every solve stopped at a loose function tolerance (1e-2) so that the joint solves
-// leave part of the odometry's error (the test above). lambda (1 + error) is the trajectory's
-// length against the truth (1 is right). Figures protected: with the line search both within 0.003
-// of 1 (observed 0.99872 / 1.00007) and within 0.005 of each other (0.0014); without it the two
-// differ by more (0.0103: 1.00263 / 0.99232) and the short one is off by more than 0.003. Fully
-// converged (1e-6) without the search: 0.99904 / 0.99655.
-// The poses are re-solved in the inner iterations here (inner_iterations_poses, the solver before
-// session 6): with every solve stopped at 1e-2, the search's samples end after one or two
-// iterations, and with the landmarks alone re-solved they are not converged enough for the
-// parabola (0.99604 / 1.00011: the long run's search overshoots). At the pipeline's tolerances
-// the samples converge either way (docs/bundle_adjustment.md, "Solver").
+// and too short, every solve stopped at a loose function tolerance (1e-3) so that the joint solves
+// leave part of the odometry's error. lambda (1 + error) is the trajectory's length against the
+// truth (1 is right). Figures protected: with the line search both within 0.004 of 1 (observed
+// 0.99891 / 0.99701) and within 0.003 of each other (0.0019); without it the two differ by more than
+// 0.005 (0.0062: 1.00068 / 0.99448) and the short one is off by more than 0.004 (0.0055). Fully
+// converged (1e-6) without the search: 0.99908 / 0.99652. At 1e-2 the search's samples, which
+// re-solve only the landmarks in Ceres's inner iterations, stop after one or two iterations, not
+// converged enough for the parabola (0.99604 / 1.00011); at the pipeline's 1e-4 / 1e-6 they are.
 TEST(FloorPriorTest, TheScaleLineSearchFindsTheScaleTheSolvesStopShortOf) {
-  constexpr double kLooseTolerance = 1e-2;
+  constexpr double kLooseTolerance = 1e-3;
   auto run = [](bool line_search, double error, double tolerance) {
-    const FloorRun result = RunFloorLoop(0, 0.5, FloorPriorMode::kAuto, true, {}, true, error,
-                                         /*rescale_start=*/false, tolerance, line_search,
-                                         /*solver_before_session6=*/false, /*inner_iterations_poses=*/true);
+    const FloorRun result =
+        RunFloorLoop(0, 0.5, FloorPriorMode::kAuto, true, {}, true, error, tolerance, line_search);
     EXPECT_TRUE(result.summary.floor_prior_used) << result.summary.floor_prior_report;
     EXPECT_EQ(result.summary.floor_prior_report.find("scale line search") != std::string::npos, line_search)
         << result.summary.floor_prior_report;
@@ -880,11 +820,11 @@ TEST(FloorPriorTest, TheScaleLineSearchFindsTheScaleTheSolvesStopShortOf) {
   std::printf("[ figures  ] 0.5 m camera, function tolerance %g: lambda * (1 + e) with e = +3 %% / -3 %%: "
               "%.5f / %.5f with the line search, %.5f / %.5f without; converged without: %.5f / %.5f\n",
               kLooseTolerance, long_with, short_with, long_without, short_without, long_converged, short_converged);
-  EXPECT_NEAR(long_with, 1.0, 0.003);
-  EXPECT_NEAR(short_with, 1.0, 0.003);
-  EXPECT_LE(std::abs(long_with - short_with), 0.005);
+  EXPECT_NEAR(long_with, 1.0, 0.004);
+  EXPECT_NEAR(short_with, 1.0, 0.004);
+  EXPECT_LE(std::abs(long_with - short_with), 0.003);
   EXPECT_GT(std::abs(long_without - short_without), 0.005);  // what the search removes
-  EXPECT_GT(std::abs(short_without - 1.0), 0.003);
+  EXPECT_GT(std::abs(short_without - 1.0), 0.004);
 }
 
 // ParabolaMinimumStep on hand values: the vertex of the parabola through (-1, c-), (0, c0), (1, c+),
@@ -899,45 +839,6 @@ TEST(FloorPriorTest, ParabolaMinimumStepOnHandValues) {
   EXPECT_DOUBLE_EQ(ParabolaMinimumStep(1, 0.9, 0.7, 2), 1);   // concave: the lowest sample
   EXPECT_DOUBLE_EQ(ParabolaMinimumStep(0.5, 1, 1.2, 2), -1);
   EXPECT_DOUBLE_EQ(ParabolaMinimumStep(1, 1, 1, 2), 0);       // flat
-}
-
-// A floor the noise model does not allow says nothing of the scale: forced on (--floor_prior=on)
-// with the floor 0.5 m below the base origin, the prior is applied but the map is not rescaled
-// to it (the first plane is found at about -0.52 m: a gain of about 0.5 under the camera 0.5 m
-// above the base; without the guard the test fails).
-TEST(FloorPriorTest, NoStartAtTheScaleOfAFloorTheNoiseModelDoesNotAllow) {
-  const FloorRun forced = RunFloorLoop(-0.5, 0.5, FloorPriorMode::kOn, true, {}, true, kScaleError, true);
-  EXPECT_TRUE(forced.summary.floor_prior_used) << forced.summary.floor_prior_report;
-  EXPECT_EQ(forced.summary.floor_prior_report.find("started at odometry scale"), std::string::npos)
-      << forced.summary.floor_prior_report;
-}
-
-// FloorScaleGain and ScaleLandmarksAbout on hand values: a floor found 2 cm below z = 0 under a
-// camera 0.5 m up is a map 1.04 times too large about the camera (the floor at (1 - 1.04) 0.5 m),
-// scaled by 1 / 1.04 = 0.5 / 0.52; a plane not below the camera gives 1.
-TEST(FloorPriorTest, ScaleGainOfTheFloorAndTheMapScaledAboutACamera) {
-  EXPECT_DOUBLE_EQ(FloorScaleGain(0.5, -0.02), 0.5 / 0.52);
-  EXPECT_DOUBLE_EQ(FloorScaleGain(0.5, 0.01), 0.5 / 0.49);
-  EXPECT_DOUBLE_EQ(FloorScaleGain(0.5, 0.5), 1.0);
-  EXPECT_DOUBLE_EQ(FloorScaleGain(0.5, 0.7), 1.0);
-  Landmarks landmarks;
-  PointLandmark point;
-  point.position = Eigen::Vector3d(3, 1, -0.02);
-  landmarks.points.push_back(point);
-  LineLandmark line;
-  line.point = Eigen::Vector3d(1, 2, -0.02);
-  line.direction = Eigen::Vector3d(0, 1, 0);
-  line.end0 = Eigen::Vector3d(1, 2, -0.02);
-  line.end1 = Eigen::Vector3d(1, 4, -0.02);
-  landmarks.lines.push_back(line);
-  const Eigen::Vector3d camera(1, 1, 0.5);
-  ScaleLandmarksAbout(camera, FloorScaleGain(0.5, -0.02), &landmarks);
-  const double gain = 0.5 / 0.52;
-  EXPECT_NEAR(landmarks.points[0].position.z(), 0, 1e-12);  // the floor to z = 0
-  EXPECT_NEAR(landmarks.points[0].position.x(), 1 + 2 * gain, 1e-12);
-  EXPECT_NEAR(landmarks.lines[0].end1.y(), 1 + 3 * gain, 1e-12);
-  EXPECT_NEAR(landmarks.lines[0].point.z(), 0, 1e-12);
-  EXPECT_EQ(landmarks.lines[0].direction, Eigen::Vector3d(0, 1, 0));
 }
 
 // Largest |z| (m) and tilt (rad, the angle of the base's z axis from the world's) of a trajectory.
@@ -1109,87 +1010,6 @@ TEST(FloorPriorTest, ReselectionAroundTheFloorIgnoresAStraySlabBelow) {
   const FloorPlane elsewhere = FindFloorPlane(landmarks, 1.0, 0.03, 10, 0.5);
   EXPECT_FALSE(elsewhere.found);
   EXPECT_NE(elsewhere.why.find("within"), std::string::npos) << elsewhere.why;
-}
-
-// ---- Two-view lines apart (docs/bundle_adjustment.md, "Two-view lines apart") ----
-
-struct TwoViewRun {
-  std::vector<Pose3> refined;
-  BundleAdjustmentSummary summary;
-  int two_view_lines = 0;        // in the result
-  int floor_two_view_lines = 0;  // of them, held by the floor prior
-};
-
-// The 60-frame lap of the room with rugs (3 % too long odometry, 0.004 rad/frame heading drift),
-// every fourth line cut to two of its views (its first and the middle one of its track, a wide
-// baseline) and every fourth but two to three, so that the problem has two-view lines in the open
-// and on the floor, and three-view lines, which must stay in the joint solves.
-TwoViewRun RunTwoViewLoop(bool apart, FloorPriorMode floor_prior) {
-  const Calibration calibration = RoomCalibration(kSmallDriftRad);
-  const std::vector<Pose3> truth = testing::LoopTrajectory(60);
-  const std::vector<Pose3> odometry = MakeOdometry(truth, kScaleError, kSmallDriftRad, kHeadingNoiseRad, 7);
-  Observed observed = Observe(testing::BoxRoomWithRugs(), calibration, truth, odometry, kPixelNoisePx, 11);
-  for (size_t i = 0; i < observed.landmarks.lines.size(); i += 2) {
-    std::vector<LineObservation>& observations = observed.landmarks.lines[i].observations;
-    const size_t n = observations.size();
-    if (i % 4 == 0 && n > 2) observations = {observations[0], observations[n / 2]};
-    if (i % 4 == 2 && n > 3) observations = {observations[0], observations[n / 3], observations[2 * n / 3]};
-  }
-  BundleAdjustmentOptions options;
-  options.two_view_lines_apart = apart;
-  options.floor_prior = floor_prior;
-  TwoViewRun run;
-  const Status status =
-      BundleAdjust(calibration, odometry, options, &observed.landmarks, &run.refined, &run.summary);
-  EXPECT_TRUE(status.ok()) << status.message();
-  for (const LineLandmark& line : observed.landmarks.lines)
-    run.two_view_lines += line.observations.size() == 2;
-  for (int line : run.summary.floor_line_indices) {
-    run.floor_two_view_lines += observed.landmarks.lines[line].observations.size() == 2;
-  }
-  return run;
-}
-
-double LargestPositionDifference(const std::vector<Pose3>& a, const std::vector<Pose3>& b) {
-  EXPECT_EQ(a.size(), b.size());
-  double largest_m = 0;
-  for (size_t f = 0; f < std::min(a.size(), b.size()); ++f) {
-    largest_m = std::max(largest_m, (a[f].translation - b[f].translation).norm());
-  }
-  return largest_m;
-}
-
-// A line in exactly two views fits them on any poses (4 residuals for its 4 degrees of freedom),
-// so solving it apart, on each joint solve's poses, leaves the minimum over the poses where the
-// joint solve has it; the floor prior's two-view lines stay in the joint solves (their prior
-// over-determines them). Figures protected, on the lap above with and without the floor prior:
-// every base position the same with the two-view lines apart to 1e-5 m (observed 1.2e-6 m without
-// the floor prior, 1.7e-7 m with it; the refined camera RMSE is about 3 mm), the same landmarks
-// kept, the odometry's scale factor to 1e-6 (observed 4e-8). The test fails with the three-view
-// lines put apart too (observed 1.2e-3 / 6.3e-4 m) or the floor's two-view lines without their
-// prior (observed 5.8e-4 m, the scale factor 1.8e-5 off).
-TEST(TwoViewLinesTest, SolvedApartTheyLeaveThePosesWhereTheJointSolveHasThem) {
-  for (const FloorPriorMode floor_prior : {FloorPriorMode::kOff, FloorPriorMode::kAuto}) {
-    const TwoViewRun joint = RunTwoViewLoop(false, floor_prior);
-    const TwoViewRun apart = RunTwoViewLoop(true, floor_prior);
-    const double largest_m = LargestPositionDifference(joint.refined, apart.refined);
-    std::printf(
-        "[ figures  ] floor prior %s: %d of %d lines in two views (%d on the floor), largest base position "
-        "difference %.2e m; odometry scale %.8f / %.8f; iterations %d / %d; cost %.6f / %.6f\n",
-        floor_prior == FloorPriorMode::kOff ? "off" : "auto", apart.two_view_lines, apart.summary.lines,
-        apart.floor_two_view_lines, largest_m, joint.summary.odometry_scale, apart.summary.odometry_scale,
-        joint.summary.iterations, apart.summary.iterations, joint.summary.final_cost,
-        apart.summary.final_cost);
-    EXPECT_GE(apart.two_view_lines, 5);
-    if (floor_prior == FloorPriorMode::kAuto) {
-      EXPECT_TRUE(apart.summary.floor_prior_used) << apart.summary.floor_prior_report;
-      EXPECT_GE(apart.floor_two_view_lines, 3);
-    }
-    EXPECT_LT(largest_m, 1e-5);
-    EXPECT_EQ(apart.summary.lines, joint.summary.lines);
-    EXPECT_EQ(apart.two_view_lines, joint.two_view_lines);
-    EXPECT_NEAR(apart.summary.odometry_scale, joint.summary.odometry_scale, 1e-6);
-  }
 }
 
 }  // namespace

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cstdio>
 #include <memory>
 #include <random>
@@ -281,6 +282,25 @@ TEST(LineReprojectionCostTest, GradientCheckOfTheAutomaticReference) {
       });
 }
 
+// The odometry prior's six parameter blocks: the two poses, lambda and b.
+struct OdometryBlocks {
+  OdometryBlocks(const Pose3& est_i, const Pose3& est_j, double lambda = 1,
+                 const Eigen::Vector3d& b = Eigen::Vector3d::Zero())
+      : i(PoseParameters::FromPose(est_i)), j(PoseParameters::FromPose(est_j)), scale(lambda), bias(b) {}
+  PoseParameters i, j;
+  double scale;
+  Eigen::Vector3d bias;
+  std::array<const double*, 6> pointers() const {
+    return {i.rotation.data(), i.translation.data(), j.rotation.data(), j.translation.data(), &scale,
+            bias.data()};
+  }
+};
+
+// Manifolds of the six blocks: the quaternions', the rest Euclidean.
+std::vector<const ceres::Manifold*> OdometryManifolds(const ceres::Manifold* quaternion) {
+  return {quaternion, nullptr, quaternion, nullptr, nullptr, nullptr};
+}
+
 TEST(OdometryPriorCostTest, HandBuiltValues) {
   const Pose3 odom_i(Eigen::Quaterniond(Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitZ())),
                      Eigen::Vector3d(1, 2, 0));
@@ -288,13 +308,11 @@ TEST(OdometryPriorCostTest, HandBuiltValues) {
                      Eigen::Vector3d(0.2, 0, 0));
   const double rotation_sigma = 0.02, translation_sigma = 0.01;
   std::unique_ptr<ceres::CostFunction> cost(
-      OdometryPriorCost::Create(motion, rotation_sigma, translation_sigma));
+      OdometryPriorCost::Create(motion, rotation_sigma, translation_sigma, translation_sigma));
   auto residuals = [&](const Pose3& est_i, const Pose3& est_j) {
-    const PoseParameters i = PoseParameters::FromPose(est_i), j = PoseParameters::FromPose(est_j);
-    const double* parameters[] = {i.rotation.data(), i.translation.data(), j.rotation.data(),
-                                  j.translation.data()};
+    const OdometryBlocks blocks(est_i, est_j);
     Eigen::Matrix<double, 6, 1> r;
-    EXPECT_TRUE(cost->Evaluate(parameters, r.data(), nullptr));
+    EXPECT_TRUE(cost->Evaluate(blocks.pointers().data(), r.data(), nullptr));
     return r;
   };
   // Moving exactly as the odometry says, from anywhere: zero.
@@ -325,22 +343,24 @@ Pose3 MeasurementNear(Random& random, const Pose3& est_i, const Pose3& est_j) {
   return est_i.Inverse() * est_j * perturbation;
 }
 
+// Every block, lambda and b included, at random values: lambda in 0.9-1.1, b from none (the first
+// trial: the angle-axis conversion's small-angle branch, where the solver starts) to 0.1 rad.
 TEST(OdometryPriorCostTest, GradientCheck) {
   Random random;
   ceres::EigenQuaternionManifold quaternion;
-  const std::vector<const ceres::Manifold*> manifolds = {&quaternion, nullptr, &quaternion, nullptr};
+  const std::vector<const ceres::Manifold*> manifolds = OdometryManifolds(&quaternion);
   for (int trial = 0; trial < kRandomTrials; ++trial) {
     const Pose3 est_i = random.Pose(), est_j = random.Pose();
     const Pose3 measured = MeasurementNear(random, est_i, est_j);
     std::unique_ptr<ceres::CostFunction> cost(
         OdometryPriorCost::Create(measured, random.Uniform(0.001, 0.1), random.Uniform(0.001, 0.1),
                                   random.Uniform(0.0001, 0.1)));
-    const PoseParameters i = PoseParameters::FromPose(est_i), j = PoseParameters::FromPose(est_j);
-    const double* parameters[] = {i.rotation.data(), i.translation.data(), j.rotation.data(),
-                                  j.translation.data()};
+    const double scale = random.Uniform(0.9, 1.1);
+    const Eigen::Vector3d bias = trial == 0 ? Eigen::Vector3d::Zero() : random.Vector(-0.1, 0.1);
+    const OdometryBlocks blocks(est_i, est_j, scale, bias);
     ceres::GradientChecker checker(cost.get(), &manifolds, RiddersOptions());
     ceres::GradientChecker::ProbeResults results;
-    EXPECT_TRUE(checker.Probe(parameters, kGradientTolerance, &results))
+    EXPECT_TRUE(checker.Probe(blocks.pointers().data(), kGradientTolerance, &results))
         << "trial " << trial << ": " << results.error_log;
   }
 }
@@ -350,15 +370,13 @@ TEST(OdometryPriorCostTest, GradientCheck) {
 TEST(OdometryPriorCostTest, GradientCheckAtZeroError) {
   Random random;
   ceres::EigenQuaternionManifold quaternion;
-  const std::vector<const ceres::Manifold*> manifolds = {&quaternion, nullptr, &quaternion, nullptr};
+  const std::vector<const ceres::Manifold*> manifolds = OdometryManifolds(&quaternion);
   const Pose3 est_i = random.Pose(), est_j = random.Pose();
   std::unique_ptr<ceres::CostFunction> cost(OdometryPriorCost::Create(est_i.Inverse() * est_j, 0.01, 0.02, 0.001));
-  const PoseParameters i = PoseParameters::FromPose(est_i), j = PoseParameters::FromPose(est_j);
-  const double* parameters[] = {i.rotation.data(), i.translation.data(), j.rotation.data(),
-                                j.translation.data()};
+  const OdometryBlocks blocks(est_i, est_j);
   ceres::GradientChecker checker(cost.get(), &manifolds, RiddersOptions());
   ceres::GradientChecker::ProbeResults results;
-  EXPECT_TRUE(checker.Probe(parameters, kGradientTolerance, &results)) << results.error_log;
+  EXPECT_TRUE(checker.Probe(blocks.pointers().data(), kGradientTolerance, &results)) << results.error_log;
 }
 
 // Along and across the step: a step one along-sigma too long, or one across-sigma to the side (in
@@ -374,10 +392,9 @@ TEST(OdometryPriorCostTest, AlongAndAcrossTheStep) {
   auto translation_residual = [&](const Eigen::Vector3d& offset_in_base_i) {
     const Pose3 est_i = odom_i;
     const Pose3 est_j = odom_i * Pose3(Eigen::Quaterniond::Identity(), offset_in_base_i) * motion;
-    const PoseParameters i = PoseParameters::FromPose(est_i), j = PoseParameters::FromPose(est_j);
-    const double* parameters[] = {i.rotation.data(), i.translation.data(), j.rotation.data(), j.translation.data()};
+    const OdometryBlocks blocks(est_i, est_j);
     Eigen::Matrix<double, 6, 1> r;
-    EXPECT_TRUE(cost->Evaluate(parameters, r.data(), nullptr));
+    EXPECT_TRUE(cost->Evaluate(blocks.pointers().data(), r.data(), nullptr));
     EXPECT_NEAR(r.head<3>().norm(), 0, 1e-12);
     return r.tail<3>().norm();
   };
@@ -388,23 +405,11 @@ TEST(OdometryPriorCostTest, AlongAndAcrossTheStep) {
   EXPECT_NEAR(translation_residual(across_sigma * Eigen::Vector3d::UnitZ()), 1, 1e-9);
   // Both at once: the squares add.
   EXPECT_NEAR(translation_residual(along_sigma * direction + across_sigma * sideways), std::sqrt(2.0), 1e-9);
-  // Equal sigmas: the isotropic prior's numbers.
-  std::unique_ptr<ceres::CostFunction> isotropic(OdometryPriorCost::Create(motion, 0.002, along_sigma));
-  std::unique_ptr<ceres::CostFunction> equal(OdometryPriorCost::Create(motion, 0.002, along_sigma, along_sigma));
-  const PoseParameters i = PoseParameters::FromPose(odom_i);
-  const PoseParameters j = PoseParameters::FromPose(odom_i * Pose3(Eigen::Quaterniond::Identity(),
-                                                                   Eigen::Vector3d(0.003, -0.002, 0.001)) * motion);
-  const double* parameters[] = {i.rotation.data(), i.translation.data(), j.rotation.data(), j.translation.data()};
-  Eigen::Matrix<double, 6, 1> r_isotropic, r_equal;
-  ASSERT_TRUE(isotropic->Evaluate(parameters, r_isotropic.data(), nullptr));
-  ASSERT_TRUE(equal->Evaluate(parameters, r_equal.data(), nullptr));
-  EXPECT_LT((r_isotropic - r_equal).norm(), 1e-12);
 }
 
 // The rule of the sigmas (docs/bundle_adjustment.md, "Odometry prior"): along = translation_sigma
 // * d, across = rotation_sigma * d, d the distance floored at odometry_min_distance_m; a step
-// shorter than the floor gets the larger of the two in every direction; kIsotropic: along in every
-// direction. Exact to 1e-15.
+// shorter than the floor gets the larger of the two in every direction. Exact to 1e-15.
 TEST(OdometryPriorCostTest, StepSigmas) {
   OdometryNoise noise;
   noise.translation_sigma = 0.0224;
@@ -424,56 +429,27 @@ TEST(OdometryPriorCostTest, StepSigmas) {
   sigmas = OdometryStepSigmasFor(0.2, noise, options);
   EXPECT_NEAR(sigmas.along_m, 1e-4 * 0.2, 1e-15);
   EXPECT_NEAR(sigmas.across_m, 0.00224 * 0.2, 1e-15);
-  options.odometry_translation_model = OdometryTranslationModel::kIsotropic;
-  sigmas = OdometryStepSigmasFor(0.2, noise, options);
-  EXPECT_NEAR(sigmas.across_m, 1e-4 * 0.2, 1e-15);
 }
 
-// The odometry prior with the scale factor: at scale 1 the plain prior's numbers; at scale s the
-// prior of the odometry motion with its translation times s.
-TEST(OdometryPriorWithScaleCostTest, HandBuiltValues) {
+// lambda scales the measured translation: at lambda = s the residuals are those of the
+// measurement with its translation times s and lambda = 1. Tolerance 1e-12 relative.
+TEST(OdometryPriorCostTest, ScaleStretchesTheMeasuredStep) {
   Random random;
   for (int trial = 0; trial < 5; ++trial) {
     const Pose3 est_i = random.Pose(), est_j = random.Pose();
     const Pose3 motion(Eigen::Quaterniond(Eigen::AngleAxisd(0.2, Eigen::Vector3d::UnitZ())),
                        Eigen::Vector3d(0.3, 0.05, 0));
-    std::unique_ptr<ceres::CostFunction> plain(OdometryPriorCost::Create(motion, 0.01, 0.02));
-    std::unique_ptr<ceres::CostFunction> scaled(OdometryPriorWithScaleCost::Create(motion, 0.01, 0.02));
     Pose3 stretched = motion;
     stretched.translation *= 0.97;
-    std::unique_ptr<ceres::CostFunction> plain_stretched(OdometryPriorCost::Create(stretched, 0.01, 0.02));
-    const PoseParameters i = PoseParameters::FromPose(est_i), j = PoseParameters::FromPose(est_j);
-    Eigen::Matrix<double, 6, 1> r_plain, r_scaled, r_stretched;
-    const double one = 1, factor = 0.97;
-    const double* p4[] = {i.rotation.data(), i.translation.data(), j.rotation.data(), j.translation.data()};
-    const double* p5[] = {i.rotation.data(), i.translation.data(), j.rotation.data(), j.translation.data(), &one};
-    ASSERT_TRUE(plain->Evaluate(p4, r_plain.data(), nullptr));
-    ASSERT_TRUE(scaled->Evaluate(p5, r_scaled.data(), nullptr));
-    EXPECT_EQ(r_plain, r_scaled);  // bit for bit: 1 * t is t
-    p5[4] = &factor;
-    ASSERT_TRUE(scaled->Evaluate(p5, r_scaled.data(), nullptr));
-    ASSERT_TRUE(plain_stretched->Evaluate(p4, r_stretched.data(), nullptr));
+    std::unique_ptr<ceres::CostFunction> cost(OdometryPriorCost::Create(motion, 0.01, 0.02, 0.02));
+    std::unique_ptr<ceres::CostFunction> stretched_cost(
+        OdometryPriorCost::Create(stretched, 0.01, 0.02, 0.02));
+    Eigen::Matrix<double, 6, 1> r_scaled, r_stretched;
+    ASSERT_TRUE(
+        cost->Evaluate(OdometryBlocks(est_i, est_j, 0.97).pointers().data(), r_scaled.data(), nullptr));
+    ASSERT_TRUE(stretched_cost->Evaluate(OdometryBlocks(est_i, est_j).pointers().data(), r_stretched.data(),
+                                         nullptr));
     EXPECT_LT((r_scaled - r_stretched).norm(), 1e-12 * (1 + r_stretched.norm()));
-  }
-}
-
-TEST(OdometryPriorWithScaleCostTest, GradientCheck) {
-  Random random;
-  ceres::EigenQuaternionManifold quaternion;
-  const std::vector<const ceres::Manifold*> manifolds = {&quaternion, nullptr, &quaternion, nullptr, nullptr};
-  for (int trial = 0; trial < kRandomTrials; ++trial) {
-    const Pose3 est_i = random.Pose(), est_j = random.Pose();
-    const Pose3 measured = MeasurementNear(random, est_i, est_j);
-    std::unique_ptr<ceres::CostFunction> cost(OdometryPriorWithScaleCost::Create(
-        measured, random.Uniform(0.001, 0.1), random.Uniform(0.001, 0.1), random.Uniform(0.0001, 0.1)));
-    const PoseParameters i = PoseParameters::FromPose(est_i), j = PoseParameters::FromPose(est_j);
-    const double scale = random.Uniform(0.9, 1.1);
-    const double* parameters[] = {i.rotation.data(), i.translation.data(), j.rotation.data(), j.translation.data(),
-                                  &scale};
-    ceres::GradientChecker checker(cost.get(), &manifolds, RiddersOptions());
-    ceres::GradientChecker::ProbeResults results;
-    EXPECT_TRUE(checker.Probe(parameters, kGradientTolerance, &results))
-        << "trial " << trial << ": " << results.error_log;
   }
 }
 
@@ -577,10 +553,9 @@ TEST(BaseOnFloorCostTest, GradientCheck) {
   }
 }
 
-// The bias turns the estimated motion before the comparison: an odometry that turned b more than
-// the estimate every step (the generator's R' = Rz(b) R) is matched exactly by that b, and with
-// b = 0 the residuals are OdometryPriorCost's. Tolerance 1e-9.
-TEST(OdometryPriorWithBiasCostTest, HandBuiltValues) {
+// b turns the estimated motion before the comparison: an odometry that turned b more than the
+// estimate every step (the generator's R' = Rz(b) R) is matched exactly by that b. Tolerance 1e-9.
+TEST(OdometryPriorCostTest, BiasTurnsTheEstimatedMotion) {
   const Pose3 est_i(Eigen::Quaterniond(Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitZ())),
                     Eigen::Vector3d(1, 2, 0));
   const Pose3 motion(Eigen::Quaterniond(Eigen::AngleAxisd(0.1, Eigen::Vector3d::UnitZ())),
@@ -590,66 +565,14 @@ TEST(OdometryPriorWithBiasCostTest, HandBuiltValues) {
   const Pose3 measured(Eigen::Quaterniond(Eigen::AngleAxisd(b.norm(), b.normalized())) * motion.rotation,
                        motion.translation);
   const double sigma = 0.002;
-  std::unique_ptr<ceres::CostFunction> with_bias(
-      OdometryPriorWithBiasCost::Create(measured, sigma, 0.004, 0.0005));
-  std::unique_ptr<ceres::CostFunction> plain(OdometryPriorCost::Create(measured, sigma, 0.004, 0.0005));
-  const PoseParameters i = PoseParameters::FromPose(est_i), j = PoseParameters::FromPose(est_j);
-  Eigen::Matrix<double, 6, 1> r, r_plain;
-  const Eigen::Vector3d zero = Eigen::Vector3d::Zero();
-  const double* parameters[] = {i.rotation.data(), i.translation.data(), j.rotation.data(),
-                                j.translation.data(), b.data()};
-  ASSERT_TRUE(with_bias->Evaluate(parameters, r.data(), nullptr));
+  std::unique_ptr<ceres::CostFunction> cost(OdometryPriorCost::Create(measured, sigma, 0.004, 0.0005));
+  Eigen::Matrix<double, 6, 1> r;
+  ASSERT_TRUE(cost->Evaluate(OdometryBlocks(est_i, est_j, 1, b).pointers().data(), r.data(), nullptr));
   EXPECT_NEAR(r.norm(), 0, 1e-9);
-  parameters[4] = zero.data();
-  ASSERT_TRUE(with_bias->Evaluate(parameters, r.data(), nullptr));
-  ASSERT_TRUE(plain->Evaluate(parameters, r_plain.data(), nullptr));
-  EXPECT_NEAR((r - r_plain).norm(), 0, 1e-12);
+  ASSERT_TRUE(cost->Evaluate(OdometryBlocks(est_i, est_j).pointers().data(), r.data(), nullptr));
   // Without the bias the rotation residual is the bias in sigmas (measured minus estimated: -b,
   // expressed in base_j, which for these small angles is b to 1e-4 relative).
   EXPECT_NEAR((r.head<3>() + motion.rotation.conjugate() * b / sigma).norm(), 0, 1e-6);
-
-  std::unique_ptr<ceres::CostFunction> both(
-      OdometryPriorWithScaleAndBiasCost::Create(measured, sigma, 0.004, 0.0005));
-  const double scale = 1;
-  const double* both_parameters[] = {
-      i.rotation.data(), i.translation.data(), j.rotation.data(), j.translation.data(), &scale, b.data()};
-  ASSERT_TRUE(both->Evaluate(both_parameters, r.data(), nullptr));
-  EXPECT_NEAR(r.norm(), 0, 1e-9);
-}
-
-TEST(OdometryPriorWithBiasCostTest, GradientCheck) {
-  Random random;
-  ceres::EigenQuaternionManifold quaternion;
-  const std::vector<const ceres::Manifold*> manifolds = {&quaternion, nullptr, &quaternion, nullptr, nullptr};
-  const std::vector<const ceres::Manifold*> manifolds_with_scale = {&quaternion, nullptr, &quaternion,
-                                                                    nullptr,     nullptr, nullptr};
-  for (int trial = 0; trial < kRandomTrials; ++trial) {
-    const Pose3 est_i = random.Pose(), est_j = random.Pose();
-    const Pose3 measured = MeasurementNear(random, est_i, est_j);
-    const double rotation_sigma = random.Uniform(0.001, 0.1), along = random.Uniform(0.001, 0.1),
-                 across = random.Uniform(0.0001, 0.1);
-    // Biases from none to 0.1 rad, the first trial exactly zero (the angle-axis conversion's
-    // small-angle branch, where the solver starts).
-    const Eigen::Vector3d bias = trial == 0 ? Eigen::Vector3d::Zero() : random.Vector(-0.1, 0.1);
-    const double scale = random.Uniform(0.9, 1.1);
-    const PoseParameters i = PoseParameters::FromPose(est_i), j = PoseParameters::FromPose(est_j);
-    std::unique_ptr<ceres::CostFunction> cost(
-        OdometryPriorWithBiasCost::Create(measured, rotation_sigma, along, across));
-    const double* parameters[] = {i.rotation.data(), i.translation.data(), j.rotation.data(),
-                                  j.translation.data(), bias.data()};
-    ceres::GradientChecker checker(cost.get(), &manifolds, RiddersOptions());
-    ceres::GradientChecker::ProbeResults results;
-    EXPECT_TRUE(checker.Probe(parameters, kGradientTolerance, &results))
-        << "trial " << trial << ": " << results.error_log;
-    std::unique_ptr<ceres::CostFunction> both(
-        OdometryPriorWithScaleAndBiasCost::Create(measured, rotation_sigma, along, across));
-    const double* both_parameters[] = {
-        i.rotation.data(), i.translation.data(), j.rotation.data(), j.translation.data(), &scale,
-        bias.data()};
-    ceres::GradientChecker both_checker(both.get(), &manifolds_with_scale, RiddersOptions());
-    EXPECT_TRUE(both_checker.Probe(both_parameters, kGradientTolerance, &results))
-        << "trial " << trial << " (with scale): " << results.error_log;
-  }
 }
 
 TEST(OdometryRotationBiasPriorCostTest, ValuesAndGradientCheck) {

@@ -33,10 +33,10 @@ Pose3 SomePose(double angle, const Eigen::Vector3d& axis, const Eigen::Vector3d&
 
 ceres::CostFunction* OdometryStep() {
   const Pose3 motion = SomePose(0.05, {0.1, 0.2, 1}, {0.3, 0.02, 0.01});
-  return OdometryPriorWithScaleAndBiasCost::Create(motion, 0.002, 0.01, 0.004);
+  return OdometryPriorCost::Create(motion, 0.002, 0.01, 0.004);
 }
 
-// The odometry prior with scale and bias (6 residuals; blocks 4, 3, 4, 3, 1, 3): as one pose block
+// The odometry prior (6 residuals; blocks 4, 3, 4, 3, 1, 3): as one pose block
 // each, the blocks are 7, 7, 1, 3, and every residual and Jacobian entry equals the wrapped
 // function's, also with the Jacobian of one pose not asked for (a pose Ceres holds constant).
 // Tolerance 0: the entries are copied.

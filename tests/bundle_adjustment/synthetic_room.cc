@@ -9,6 +9,9 @@
 #include <random>
 #include <utility>
 
+#include "backend/bundle_adjustment/bundle_adjuster.h"
+#include "backend/triangulation/reconstruction.h"
+
 namespace sfm::testing {
 namespace {
 
@@ -305,6 +308,19 @@ double RotationRpe(const std::vector<Pose3>& estimated, const std::vector<Pose3>
     sum += angle * angle;
   }
   return std::sqrt(sum / (truth.size() - 1));
+}
+
+Status AdjustFromOdometry(const Calibration& calibration, const std::vector<Pose3>& odometry,
+                          const BundleAdjustmentOptions& options, Landmarks* landmarks,
+                          std::vector<Pose3>* world_T_base_refined, BundleAdjustmentSummary* summary) {
+  Reconstruction reconstruction;
+  reconstruction.calibration = calibration;
+  reconstruction.world_T_base = odometry;
+  reconstruction.landmarks = std::move(*landmarks);
+  const Status status = BundleAdjust(odometry, /*odometry_scale_start=*/1, options, &reconstruction, summary);
+  *landmarks = std::move(reconstruction.landmarks);
+  *world_T_base_refined = std::move(reconstruction.world_T_base);
+  return status;
 }
 
 }  // namespace sfm::testing

@@ -8,9 +8,11 @@
 #include <cstdint>
 #include <vector>
 
+#include "backend/bundle_adjustment/bundle_adjustment_options.h"
 #include "backend/triangulation/landmarks.h"
 #include "frontend/geometry/pose.h"
 #include "frontend/sequence/sequence.h"
+#include "frontend/util/status.h"
 
 namespace sfm::testing {
 
@@ -81,5 +83,12 @@ double PositionRmseAfterScaling(const std::vector<Eigen::Vector3d>& estimated,
 // RMS over consecutive frames of the angle of (truth_i^-1 truth_{i+1})^-1 (est_i^-1 est_{i+1}),
 // radians (Sturm et al. 2012's rotational RPE with a step of one frame).
 double RotationRpe(const std::vector<Pose3>& estimated, const std::vector<Pose3>& truth);
+
+// BundleAdjust of a reconstruction of `calibration` and `landmarks`, the solves starting from the
+// odometry (also the prior): the landmarks refined in place, the refined poses into
+// `world_T_base_refined`.
+Status AdjustFromOdometry(const Calibration& calibration, const std::vector<Pose3>& odometry,
+                          const BundleAdjustmentOptions& options, Landmarks* landmarks,
+                          std::vector<Pose3>* world_T_base_refined, BundleAdjustmentSummary* summary);
 
 }  // namespace sfm::testing

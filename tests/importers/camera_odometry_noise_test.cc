@@ -102,6 +102,42 @@ TEST(CameraOdometryNoiseTest, RotationNoiseHasTheStatedSigmaPerAxis) {
   for (int axis = 0; axis < 3; ++axis) EXPECT_NEAR(sigma[axis], 0.005, 0.005 * 0.05) << axis;
 }
 
+// Scaled(3) triples every term, and with the same seed each step's error triples: the rotation
+// error vector exactly (the same n2..n4, bias and sigma both x3), the length error (1 + s)(1 + d n1) - 1
+// as the model predicts for the same n1. Tolerance 1e-12 (rounding only).
+TEST(CameraOdometryNoiseTest, ScaledMultipliesEveryNoiseTerm) {
+  const CameraOdometryNoiseOptions base;
+  const CameraOdometryNoiseOptions tripled = base.Scaled(3);
+  EXPECT_DOUBLE_EQ(tripled.scale_error, 3 * base.scale_error);
+  EXPECT_DOUBLE_EQ(tripled.distance_sigma, 3 * base.distance_sigma);
+  EXPECT_DOUBLE_EQ(tripled.rotation_sigma, 3 * base.rotation_sigma);
+  EXPECT_DOUBLE_EQ(tripled.rotation_bias, 3 * base.rotation_bias);
+  EXPECT_NEAR(tripled.ForCalibration().translation_sigma, 3 * base.ForCalibration().translation_sigma, 1e-15);
+  EXPECT_NEAR(tripled.ForCalibration().rotation_sigma, 3 * base.ForCalibration().rotation_sigma, 1e-15);
+  EXPECT_TRUE(tripled.Check().ok());
+
+  const std::vector<Pose3> truth = TruePath(20);
+  const std::vector<Pose3> once = SimulateCameraOdometry(truth, base, 4);
+  const std::vector<Pose3> thrice = SimulateCameraOdometry(truth, tripled, 4);
+  for (size_t i = 1; i < truth.size(); ++i) {
+    const Pose3 true_step = truth[i - 1].Inverse() * truth[i];
+    const Pose3 step_once = once[i - 1].Inverse() * once[i];
+    const Pose3 step_thrice = thrice[i - 1].Inverse() * thrice[i];
+    const Eigen::AngleAxisd error_once(step_once.rotation * true_step.rotation.inverse());
+    const Eigen::AngleAxisd error_thrice(step_thrice.rotation * true_step.rotation.inverse());
+    EXPECT_LT(
+        (error_thrice.angle() * error_thrice.axis() - 3 * error_once.angle() * error_once.axis()).norm(),
+        1e-12)
+        << i;
+    const double ratio_once = step_once.translation.norm() / true_step.translation.norm();
+    const double n1 = (ratio_once / (1 + base.scale_error) - 1) / base.distance_sigma;
+    const double ratio_thrice = step_thrice.translation.norm() / true_step.translation.norm();
+    EXPECT_NEAR(ratio_thrice, (1 + tripled.scale_error) * (1 + tripled.distance_sigma * n1), 1e-12) << i;
+  }
+  const std::vector<Pose3> none = SimulateCameraOdometry(truth, base.Scaled(0), 4);
+  EXPECT_LT(MaxDifference(none, truth), 1e-12);
+}
+
 TEST(CameraOdometryNoiseTest, CalibrationStatesTheModelAndChecksRejectBadValues) {
   CameraOdometryNoiseOptions options;
   const OdometryNoise noise = options.ForCalibration();

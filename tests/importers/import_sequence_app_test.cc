@@ -14,6 +14,8 @@
 #include <string>
 
 #include "frontend/sequence/sequence.h"
+#include "frontend/util/number_text.h"
+#include "sequences/importers/camera_odometry_noise.h"
 #include "sequences/importers/imported_sequence.h"
 #include "tests/test_data.h"
 
@@ -170,6 +172,48 @@ TEST(ImportSequenceAppTest, ImportsAndRefusesToOverwriteUnlessAsked) {
     const std::string name = entry.path().filename().string();
     EXPECT_TRUE(name == "out" || name == "strecha" || name == "stderr.txt") << "left behind: " << name;
   }
+}
+
+// --odometry_noise_scale 3 writes what the four noise flags at three times their defaults write:
+// the same odometry.txt and sequence.yaml, byte for byte (the tripled values passed as their shortest
+// text, so both runs hold the same doubles); its sigmas in sequence.yaml are 3x the default run's
+// (1e-15); a negative scale is a bad flag (exit 2, one line).
+TEST(ImportSequenceAppTest, OdometryNoiseScaleMultipliesEveryNoiseTerm) {
+  const fs::path scratch = testing::MakeScratchDir("import_app_noise_scale");
+  const fs::path strecha = WriteStrechaFolder(scratch);
+  const std::string base = "--format strecha --seed 5 --input " + strecha.string() + " --output ";
+  AppRun run = RunImport(scratch, base + (scratch / "scaled").string() + " --odometry_noise_scale 3");
+  ASSERT_EQ(run.exit_status, 0) << run.stderr_text;
+  const CameraOdometryNoiseOptions tripled = CameraOdometryNoiseOptions().Scaled(3);
+  run = RunImport(scratch, base + (scratch / "flags").string() + " --odometry_scale_error " +
+                               ShortestNumberText(tripled.scale_error) + " --odometry_distance_sigma " +
+                               ShortestNumberText(tripled.distance_sigma) + " --odometry_rotation_sigma " +
+                               ShortestNumberText(tripled.rotation_sigma) + " --odometry_rotation_bias " +
+                               ShortestNumberText(tripled.rotation_bias));
+  ASSERT_EQ(run.exit_status, 0) << run.stderr_text;
+  run = RunImport(scratch, base + (scratch / "default").string());
+  ASSERT_EQ(run.exit_status, 0) << run.stderr_text;
+  const auto read = [](const fs::path& path) {
+    std::ifstream in(path);
+    return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  };
+  for (const char* file : {"odometry.txt", "sequence.yaml"}) {
+    EXPECT_EQ(read(scratch / "scaled" / file), read(scratch / "flags" / file)) << file;
+  }
+  EXPECT_NE(read(scratch / "scaled" / "odometry.txt"), read(scratch / "default" / "odometry.txt"));
+  Sequence scaled, plain;
+  ASSERT_TRUE(ReadSequence((scratch / "scaled").string(), &scaled).ok());
+  ASSERT_TRUE(ReadSequence((scratch / "default").string(), &plain).ok());
+  EXPECT_NEAR(scaled.calibration.odometry_noise.translation_sigma,
+              3 * plain.calibration.odometry_noise.translation_sigma, 1e-15);
+  EXPECT_NEAR(scaled.calibration.odometry_noise.rotation_sigma,
+              3 * plain.calibration.odometry_noise.rotation_sigma, 1e-15);
+
+  run = RunImport(scratch, base + (scratch / "negative").string() + " --odometry_noise_scale=-1");
+  EXPECT_EQ(run.exit_status, 2);
+  EXPECT_EQ(CountLines(ErrorLines(run.stderr_text)), 1) << run.stderr_text;
+  EXPECT_THAT(run.stderr_text, HasSubstr("--odometry_noise_scale"));
+  EXPECT_FALSE(fs::exists(scratch / "negative"));
 }
 
 // image_warps.txt through the library's reader (failing the test on a read error).

@@ -76,10 +76,30 @@ LineLandmark Line(const JunctionTrack& track, int s, int point, const std::vecto
   return line;
 }
 
+// ExtendTracks on the cameras (the base frame at the camera: base_T_camera identity, so that
+// world_T_base is world_T_camera) with K = kK and the default options; tracks and landmarks changed
+// in place.
+void Extend(const Eigen::Vector2d& seen_min, const Eigen::Vector2d& seen_max,
+            const std::vector<Pose3>& cameras, const std::vector<Junctions>& frames,
+            std::vector<JunctionTrack>* tracks, Landmarks* landmarks, TrackExtensionReport* report) {
+  Reconstruction reconstruction;
+  reconstruction.calibration.camera.fx = kK(0, 0);
+  reconstruction.calibration.camera.fy = kK(1, 1);
+  reconstruction.calibration.camera.cx = kK(0, 2);
+  reconstruction.calibration.camera.cy = kK(1, 2);
+  reconstruction.world_T_base = cameras;
+  reconstruction.junctions = frames;
+  reconstruction.tracks = std::move(*tracks);
+  reconstruction.landmarks = std::move(*landmarks);
+  ExtendTracks(TrackExtensionOptions(), seen_min, seen_max, &reconstruction, report);
+  *tracks = std::move(reconstruction.tracks);
+  *landmarks = std::move(reconstruction.landmarks);
+}
+
 // Junctions found on a full-view canvas (--undistort_full_view) lie beyond the image. With an
-// image only 300 px wide, frame 3's corner (at x = 311) is outside it: the image-box overload
-// leaves it (0 observations added, the projection counted outside), the box overload with a canvas
-// box (-100, -100) .. (399, 579) joins it (1 added).
+// image only 300 px wide, frame 3's corner (at x = 311) is outside it: the image's box leaves it
+// (0 observations added, the projection counted outside), a canvas box (-100, -100) .. (399, 579) joins it (1
+// added).
 TEST(TrackExtension, AProjectionBeyondTheImageJoinsWhenTheCanvasBoxHoldsIt) {
   const std::vector<Pose3> cameras = Cameras(4);
   std::vector<Junctions> frames(4);
@@ -92,10 +112,10 @@ TEST(TrackExtension, AProjectionBeyondTheImageJoinsWhenTheCanvasBoxHoldsIt) {
     landmarks.lines = {Line(tracks[0], 0, 0, frames)};
     TrackExtensionReport report;
     if (canvas) {
-      ExtendTracks(kK, Eigen::Vector2d(-100, -100), Eigen::Vector2d(399, 579), cameras, frames,
-                   TrackExtensionOptions(), &tracks, &landmarks, &report);
+      Extend(Eigen::Vector2d(-100, -100), Eigen::Vector2d(399, 579), cameras, frames, &tracks, &landmarks,
+             &report);
     } else {
-      ExtendTracks(kK, 300, 480, cameras, frames, TrackExtensionOptions(), &tracks, &landmarks, &report);
+      Extend(Eigen::Vector2d(0, 0), Eigen::Vector2d(299, 479), cameras, frames, &tracks, &landmarks, &report);
     }
     EXPECT_EQ(report.observations_added, canvas ? 1 : 0) << (canvas ? "canvas box" : "image box");
   }
@@ -124,7 +144,7 @@ TEST(TrackExtension, AProjectionFindsTheOnlyCompatibleJunctionAndRejectsAnAmbigu
   landmarks.lines = {Line(tracks[0], 0, 0, frames)};
 
   TrackExtensionReport report;
-  ExtendTracks(kK, 640, 480, cameras, frames, TrackExtensionOptions(), &tracks, &landmarks, &report);
+  Extend(Eigen::Vector2d(0, 0), Eigen::Vector2d(639, 479), cameras, frames, &tracks, &landmarks, &report);
   EXPECT_EQ(report.observations_added, 1);
   EXPECT_EQ(report.ambiguous, 1);
   EXPECT_EQ(report.incompatible, 1);
@@ -160,7 +180,7 @@ TEST(TrackExtension, TwoTracksOfOneCornerMergeUnlessTheirPointsDisagree) {
     landmarks.lines = {Line(tracks[0], 0, 0, frames), Line(tracks[1], 0, 1, frames)};
 
     TrackExtensionReport report;
-    ExtendTracks(kK, 640, 480, cameras, frames, TrackExtensionOptions(), &tracks, &landmarks, &report);
+    Extend(Eigen::Vector2d(0, 0), Eigen::Vector2d(639, 479), cameras, frames, &tracks, &landmarks, &report);
     if (offset_m > 0.1) {
       EXPECT_EQ(report.tracks_merged, 0);
       EXPECT_GE(report.merge_disagree, 1);
@@ -202,7 +222,7 @@ TEST(TrackExtension, ATrackWithoutPointMergesOnlyWhenThePointExplainsEveryView) 
     Landmarks landmarks;
     landmarks.points = {Point(tracks[0], frames, kCorner)};
     TrackExtensionReport report;
-    ExtendTracks(kK, 640, 480, cameras, frames, TrackExtensionOptions(), &tracks, &landmarks, &report);
+    Extend(Eigen::Vector2d(0, 0), Eigen::Vector2d(639, 479), cameras, frames, &tracks, &landmarks, &report);
     if (miss_px > 0) {
       EXPECT_EQ(report.tracks_merged, 0);
       EXPECT_GE(report.merge_unexplained, 1);

@@ -429,9 +429,8 @@ TEST_F(WireframeSelectionTest, AnAccuracyAskedDropsTheLeastDeterminedVerticesOnl
 // WireframeOptions::far_end_at_point_px. A vertical edge from a drawn corner (point 0) to another
 // drawn corner (point 1) 0.8 m below, its observed image segments overshooting the lower corner by
 // 0.02 m (3 px at 3 m, f 450): off, end1 is the median back-projected far end, 0.02 m beyond the
-// corner (to 1e-9 m); on (1 px across, 5 px along), end1 is point 1 itself and the edge shares its
-// vertex (end1_point_landmark 1), or with far_end_shares_vertex false has a vertex of its own there.
-// A corner 0.02 m (3 px) beside the edge's image lines is not taken.
+// corner (to 1e-9 m); on (1 px across, 5 px along), end1 is point 1's position. A corner 0.02 m
+// (3 px) beside the edge's image lines is not taken.
 TEST_F(WireframeSelectionTest, AFarEndAtADrawnPointIsThatPoint) {
   const Eigen::Vector3d top(0.5, 0.2, 3), bottom(0.5, -0.6, 3), overshoot(0.5, -0.62, 3);
   Landmarks landmarks;
@@ -444,31 +443,21 @@ TEST_F(WireframeSelectionTest, AFarEndAtADrawnPointIsThatPoint) {
   Landmarks kept = SelectWireframeLandmarks(K_, cameras_, landmarks, options, &report);
   ASSERT_EQ(kept.lines.size(), 1u);
   EXPECT_LT((kept.lines[0].end1 - overshoot).norm(), 1e-9);
-  EXPECT_EQ(kept.lines[0].end1_point_landmark, -1);
   EXPECT_EQ(report.lines_far_end_at_point, 0);
   options.far_end_at_point_px = 1;
-  options.far_end_shares_vertex = true;
   kept = SelectWireframeLandmarks(K_, cameras_, landmarks, options, &report);
   ASSERT_EQ(kept.lines.size(), 1u);
   EXPECT_EQ(kept.lines[0].end1, bottom);
-  EXPECT_EQ(kept.lines[0].end1_point_landmark, 1);
   EXPECT_EQ(report.lines_far_end_at_point, 1);
-  options.far_end_shares_vertex = false;
-  kept = SelectWireframeLandmarks(K_, cameras_, landmarks, options, &report);
-  ASSERT_EQ(kept.lines.size(), 1u);
-  EXPECT_EQ(kept.lines[0].end1, bottom);
-  EXPECT_EQ(kept.lines[0].end1_point_landmark, -1);
   // Beside the image lines: not the edge's end.
-  options.far_end_shares_vertex = true;
   landmarks.points[1] = Point({0.52, -0.6, 3});
   kept = SelectWireframeLandmarks(K_, cameras_, landmarks, options, &report);
   ASSERT_EQ(kept.lines.size(), 1u);
   EXPECT_LT((kept.lines[0].end1 - overshoot).norm(), 1e-9);
-  EXPECT_EQ(kept.lines[0].end1_point_landmark, -1);
   EXPECT_EQ(report.lines_far_end_at_point, 0);
 }
 
-// WireframeOptions::line_variance_factor. Eight vertical edges from drawn corners 3 m ahead whose
+// A line's own variance factor (rule 2). Eight vertical edges from drawn corners 3 m ahead whose
 // far end-points are observed 0.1 px across their image lines, alternately to either side in the
 // five views: chi-square 5 x (0.1 / 0.3)^2 = 0.556 on 6 degrees of freedom, 0.104 of the median of
 // chi-square(6) (5.35): the lines' variance of unit weight. A ninth edge from a corner 3 m ahead, 40
@@ -524,12 +513,7 @@ TEST_F(WireframeSelectionTest, ALineNoisierThanTheOthersGetsALargerSigma) {
   EXPECT_NEAR(sigma / MaxVertexSigma(options, 450, end1.z()), 0.81, 0.03);
 
   WireframeSelectionReport report;
-  options.line_variance_factor = false;
-  options.point_variance_factor = false;
-  Landmarks kept = SelectWireframeLandmarks(K_, cameras_, landmarks, options, &report);  // off
-  EXPECT_EQ(kept.lines.size(), 9u);
-  options.line_variance_factor = true;
-  kept = SelectWireframeLandmarks(K_, cameras_, landmarks, options, &report);
+  Landmarks kept = SelectWireframeLandmarks(K_, cameras_, landmarks, options, &report);
   EXPECT_EQ(kept.lines.size(), 8u);  // the eight vertical edges: factor 1
   EXPECT_EQ(report.lines_uncertain_end1, 1);
   EXPECT_EQ(kept.points.size(), 9u);
@@ -540,13 +524,13 @@ TEST_F(WireframeSelectionTest, ALineNoisierThanTheOthersGetsALargerSigma) {
   EXPECT_EQ(kept.lines.size(), 9u);
 }
 
-// WireframeOptions::point_variance_factor. Eight corners 3 m ahead observed 0.1 px off in x,
+// A point's own variance factor (rule 2). Eight corners 3 m ahead observed 0.1 px off in x,
 // alternately to either side in the five views: chi-square 5 x (0.1 / 0.3)^2 = 0.556 on 7 degrees
 // of freedom, 0.0875 of chi-square(7)'s median (6.35): the points' variance of unit weight. A ninth
 // corner at a depth where its sigma is 0.82 of the bound (31 m, low parallax over the 1 m path),
 // observed 0.3 px off alternately: chi-square 5, chi2 / dof 0.71 (passes, and below 1), 8.2 times
-// the unit variance, so its sigma times 2.9 is over the bound: drawn off, not drawn on. Observed
-// like the others it is drawn on.
+// the unit variance, so its sigma times 2.9 is over the bound: not drawn (its first-order sigma
+// alone would be). Observed like the others it is drawn.
 TEST_F(WireframeSelectionTest, APointNoisierThanTheOthersGetsALargerSigma) {
   auto shift_pixels = [](PointLandmark* point, double shift) {
     for (PointObservation& observation : point->observations) {
@@ -575,11 +559,7 @@ TEST_F(WireframeSelectionTest, APointNoisierThanTheOthersGetsALargerSigma) {
   EXPECT_NEAR(ChiSquareQuantile(0.5, 7), 6.35, 0.02);
 
   WireframeSelectionReport report;
-  options.point_variance_factor = false;
-  Landmarks kept = SelectWireframeLandmarks(K_, cameras_, landmarks, options, &report);  // off
-  EXPECT_EQ(kept.points.size(), 9u);
-  options.point_variance_factor = true;
-  kept = SelectWireframeLandmarks(K_, cameras_, landmarks, options, &report);
+  Landmarks kept = SelectWireframeLandmarks(K_, cameras_, landmarks, options, &report);
   EXPECT_EQ(kept.points.size(), 8u);
   EXPECT_EQ(report.points_uncertain, 1);
 
