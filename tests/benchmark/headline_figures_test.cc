@@ -152,7 +152,7 @@ namespace {
 // Issue 17: the images lead when the odometry is poor. A room loop with every odometry noise term
 // 6x the generator's default (12 % scale error, 6 % distance noise, 0.012 rad heading noise and
 // 0.006 rad heading bias per frame); asserted: refined ATE at most 0.3 of the odometry's (the
-// issue's figure). Measured when the test was written: OBSERVED_6X.
+// issue's figure). Measured when the test was written: 0.031 (0.0041 / 0.1331 m).
 TEST(HeadlineFiguresTest, RoomLoopWithSixTimesTheOdometryNoise) {
   const HeadlineFigures f =
       Measure("benchmark_room_loop_6x", SceneType::kRoom, TrajectoryType::kLoop, /*seed=*/1, /*scale=*/6);
