@@ -8,8 +8,8 @@
 // - matching precision: of the pipeline's matches whose two junctions each lie within 3 px of a
 //   visible true vertex, the share at one same vertex (benchmark_matching's generated precision,
 //   ScoreVertexMatches' same_vertex / associated); README 99.3-99.7 %; asserted >= 0.98.
-// Measured when the test was written (ratio / wireframe share / matching precision): room loop
-// 0.107 / 0.987 / 0.9947, corridor 0.035 / 0.972 / 0.9923; about 5 s of processor time in all.
+// Measured with the initial trajectory from the images (ratio / wireframe share / matching
+// precision): room loop 0.079 / 0.986 / 0.9947, corridor 0.037 / 0.974 / 0.9923; about 5 s of processor time in all.
 #include <gtest/gtest.h>
 
 #include <algorithm>
