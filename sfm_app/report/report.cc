@@ -1,14 +1,15 @@
 #include "sfm_app/report/report.h"
 
+#include <glog/logging.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
 #include <numeric>
-
-#include <glog/logging.h>
 #include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
 
 #include "backend/metrics/alignment.h"
 #include "frontend/geometry/image_undistorter.h"
@@ -284,6 +285,35 @@ std::string MatchSection(const Context& c) {
   return html;
 }
 
+// Match pictures of larger frames are drawn on the frames shrunk to this width (pixels), so the
+// page stays a few megabytes and quick to write whatever the camera (8000x6000 frames gave a
+// 60 MB page that took most of the run to encode), and the junction numbers stay readable.
+constexpr int kMaxPictureWidth = 960;
+
+double ShrinkFactor(int width) { return static_cast<double>(kMaxPictureWidth) / width; }
+
+cv::Mat Shrunk(const cv::Mat& image) {
+  const double f = ShrinkFactor(image.cols);
+  cv::Mat small;
+  cv::resize(image, small,
+             cv::Size(kMaxPictureWidth, std::max(1, static_cast<int>(std::lround(image.rows * f)))), 0, 0,
+             cv::INTER_AREA);
+  return small;
+}
+
+// Junctions in the pixels of Shrunk(image): pixel centres scale about the image's corner (the
+// centre of the top-left pixel is at (0, 0), conventions.md).
+Junctions Shrunk(const Junctions& junctions, int width) {
+  const double f = ShrinkFactor(width);
+  auto shrink = [f](const Eigen::Vector2d& p) { return Eigen::Vector2d((p.array() + 0.5) * f - 0.5); };
+  Junctions shrunk = junctions;
+  for (Junction& junction : shrunk) {
+    junction.location = shrink(junction.location);
+    for (JunctionSegment& segment : junction.segments) segment.end = shrink(segment.end);
+  }
+  return shrunk;
+}
+
 std::string MatchPictureSection(const Context& c, const std::vector<cv::Mat>& images) {
   std::string html = "<h2 id=\"match-images\">Match pictures</h2>\n";
   std::vector<const FramePairMatches*> consecutive;
@@ -326,7 +356,10 @@ std::string MatchPictureSection(const Context& c, const std::vector<cv::Mat>& im
     const Junctions& a = c.result.junctions.at(pair->frame_a);
     const Junctions& b = c.result.junctions.at(pair->frame_b);
     const int scale = image_a.cols < 400 ? 2 : 1;  // small images enlarged so that the numbers stay readable
-    const cv::Mat picture = DrawMatchOverlay(image_a, a, image_b, b, pair->matches, scale);
+    const cv::Mat picture = image_a.cols > kMaxPictureWidth
+                                ? DrawMatchOverlay(Shrunk(image_a), Shrunk(a, image_a.cols), Shrunk(image_b),
+                                                   Shrunk(b, image_b.cols), pair->matches, 1)
+                                : DrawMatchOverlay(image_a, a, image_b, b, pair->matches, scale);
     html += Figure(picture, "matches between frames " + std::to_string(pair->frame_a) + " and " + std::to_string(pair->frame_b),
                    "Frames " + std::to_string(pair->frame_a) + " (left) and " + std::to_string(pair->frame_b) +
                        " (right): " + std::to_string(pair->matches.size()) + " matches of " + std::to_string(a.size()) +
