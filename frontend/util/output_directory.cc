@@ -304,7 +304,11 @@ void OutputDirectory::RemoveOnSignals() {
   action.sa_handler = OnSignal;
   sigemptyset(&action.sa_mask);
   for (const int s : kSignals) sigaddset(&action.sa_mask, s);  // one cleanup, not one per signal
-  for (int i = 0; i < 3; ++i) sigaction(kSignals[i], &action, &g_previous[i]);
+  for (int i = 0; i < 3; ++i) {
+    sigaction(kSignals[i], nullptr, &g_previous[i]);
+    // An ignored signal stays ignored (a background job of a script ignores SIGINT, nohup SIGHUP).
+    if (g_previous[i].sa_handler != SIG_IGN) sigaction(kSignals[i], &action, nullptr);
+  }
 }
 
 void OutputDirectory::EmergencyCleanup() {

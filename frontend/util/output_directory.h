@@ -44,7 +44,8 @@ class OutputDirectory {
   // does nothing.
   Status Commit();
 
-  // From now until Commit returns or this object is destroyed, SIGINT, SIGTERM and SIGHUP remove
+  // From now until Commit returns or this object is destroyed, SIGINT, SIGTERM and SIGHUP (those
+  // not ignored when it is called: a script's background job ignores SIGINT) remove
   // the staging directory, the created parents and the lock, print one line on stderr and end the
   // process with status 128 + signal. The handler runs only async-signal-safe system calls
   // (rename, openat, getdents64, unlinkat, write, _exit); a signal that arrives on another

@@ -12,6 +12,7 @@
 #      staging directory.
 # Usage: interruption_test.sh <junction_sfm binary> <repository> <scratch dir>
 set -u
+set -m  # job control: background runs do not ignore SIGINT, as they would in a plain script
 binary=$1; repository=$2; scratch=$3
 rm -rf "$scratch"; mkdir -p "$scratch"
 failures=0
