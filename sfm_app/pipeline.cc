@@ -525,11 +525,12 @@ Status RunPipeline(const PipelineOptions& options, PipelineResult* result_out) {
     }
   }
 
-  // 3. Outputs. The report first, so the total time counts its writing (the largest output); the
-  // small files and metrics.json take milliseconds.
+  // 3. Outputs. The report shows the time up to here; metrics.json's total also counts the
+  // report's writing (the largest output; the small files after it take milliseconds).
   LOG(INFO) << "writing the outputs in " << options.output_dir;
-  SFM_RETURN_IF_ERROR(WriteReport(sequence, result, /*undistorted_images_or_empty=*/{}, options.output_dir,
-                                  /*stored_images=*/images));
+  result.times.total = SecondsSince(start);
+  SFM_RETURN_IF_ERROR(
+      WriteReport(sequence, result, /*undistorted_images_or_empty=*/{}, options.output_dir, /*stored_images=*/images));
   result.times.total = SecondsSince(start);
   SFM_RETURN_IF_ERROR(WriteOutputs(sequence, result, options.output_dir));
   LOG(INFO) << "time: frontend " << result.times.frontend << " s, matching " << result.times.matching
