@@ -287,8 +287,9 @@ std::string MatchSection(const Context& c) {
 }
 
 // Match pictures of larger frames are drawn on the frames shrunk to this width (pixels), so the
-// page stays a few megabytes and quick to write whatever the camera (8000x6000 frames gave a
-// 60 MB page that took most of the run to encode), and the junction numbers stay readable.
+// page stays a few megabytes and quick to write whatever the camera (8000x6000 frames at full
+// size make a 60 MB page whose encoding takes longer than the rest of the run), and the junction
+// numbers stay readable.
 constexpr int kMaxPictureWidth = 960;
 
 // The factor a frame of this width is shrunk by for its picture (1: not shrunk).
