@@ -30,11 +30,6 @@ struct PairRefinementSettings {
   double gate_sigmas = 2.576;
   // Fewer supporting matches than this: no estimate (PairRefinement::Outcome::kTooFewInliers).
   int min_inliers = 15;
-  // When the lowest truncated objective lies beyond the prior's 99 % ellipsoid, search again for
-  // the lowest one inside it (the MAP pose among the poses the prior admits) instead of falling
-  // back at once (docs/matching.md, "Refinement fall-backs"). The estimate still has to pass the
-  // same tests. (The struct's default is off, the function as it was; MatchingOptions turns it on.)
-  bool constrain_to_prior_gate = false;
 };
 
 struct PairRefinement {
@@ -60,7 +55,7 @@ struct PairRefinement {
   double prior_gate = 0;
   int iterations = 0;  // Gauss-Newton steps taken, over all rounds
   // The unconstrained estimate lay beyond the prior's ellipsoid and the search inside it ran
-  // (PairRefinementSettings::constrain_to_prior_gate); the estimate is its result.
+  // (docs/matching.md, "Refinement fall-backs"); the estimate is its result.
   bool constrained = false;
   // For each correspondence: within the gate at the estimate (empty unless an estimate was made).
   std::vector<bool> inlier;

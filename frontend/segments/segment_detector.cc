@@ -36,8 +36,6 @@ Status SegmentDetectorOptions::Check() const {
   SFM_RETURN_IF_ERROR(Require(Finite(max_gap) && max_gap >= 1.5, "max_gap", max_gap, ">= 1.5 pixels"));
   SFM_RETURN_IF_ERROR(Require(Finite(border_margin) && border_margin >= 0, "border_margin", border_margin,
                               ">= 0 pixels"));
-  SFM_RETURN_IF_ERROR(Require(Finite(fast.min_contact_length) && fast.min_contact_length >= 2,
-                              "fast.min_contact_length", fast.min_contact_length, ">= 2 pixels"));
   const ReferenceSegmentOptions& r = reference;
   SFM_RETURN_IF_ERROR(Require(Finite(r.edge_sigma) && r.edge_sigma >= 0.5 && r.edge_sigma <= 10,
                               "reference.edge_sigma", r.edge_sigma, "in [0.5, 10] pixels"));
