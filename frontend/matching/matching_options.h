@@ -29,7 +29,8 @@ struct MatchingOptions {
   Rho1Kind rho1_kind = Rho1Kind::kLinear;
   // true: rule (38) on sigma (section 4.2, junction topology); false: on plain rho (34).
   bool use_topology = true;
-  // f(t) of eq. (5), 1/pixels: use the model junction detection uses.
+  // f(t) of eq. (5), 1/pixels: the model junction detection uses (the pipeline hands it down,
+  // PipelineOptions::Matching).
   EndpointModel endpoint_model;
   // The epipolar line of an end-point counts as parallel to the partner segment (section 3.2, last
   // paragraph) when, along the partner's length, it departs from the partner's line by at most
@@ -46,8 +47,8 @@ struct MatchingOptions {
   bool use_pose_band = true;
   double band_sigmas = 3.0;  // unitless, > 0: a two-sided 99.7 % Gaussian gate
   // Standard deviation of a junction location the band, cheirality and refinement gates assume,
-  // pixels, >= 0: half a pixel, the detector's error on rendered images (0.3 px, docs/junctions.md)
-  // with room for real images (docs/matching.md, "Pose uncertainty and cheirality").
+  // pixels, >= 0: half a pixel, the detector's error on rendered images (kJunctionLocationErrorPx,
+  // 0.3 px) with room for real images (docs/matching.md, "Pose uncertainty and cheirality").
   double location_sigma_px = 0.5;
   // Reject pairs whose triangulation lies behind camera 1 or 2 by more than band_sigmas of the
   // parallax's uncertainty (PassesCheirality).

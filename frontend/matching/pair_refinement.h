@@ -12,6 +12,7 @@
 
 #include <Eigen/Core>
 
+#include "frontend/matching/matching_options.h"
 #include "frontend/matching/pair_geometry.h"
 
 namespace sfm {
@@ -22,14 +23,15 @@ namespace sfm {
 // where both lines vanish (both points at the epipoles).
 double SampsonDistance(const Eigen::Matrix3d& F, const Eigen::Vector2d& x1, const Eigen::Vector2d& x2);
 
+// MatchJunctions fills these from its MatchingOptions; the defaults are that struct's.
 struct PairRefinementSettings {
   // Standard deviation of a junction location per image axis, pixels, > 0.
-  double location_sigma_px = 0.5;
+  double location_sigma_px = MatchingOptions().location_sigma_px;
   // A match supports the estimate when |Sampson distance| <= gate_sigmas times its predicted
   // sigma (location noise and the estimate's own uncertainty). > 0.
-  double gate_sigmas = 2.576;
+  double gate_sigmas = MatchingOptions().refine_gate_sigmas;
   // Fewer supporting matches than this: no estimate (PairRefinement::Outcome::kTooFewInliers).
-  int min_inliers = 15;
+  int min_inliers = MatchingOptions().refine_min_inliers;
 };
 
 struct PairRefinement {
