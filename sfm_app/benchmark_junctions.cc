@@ -1073,12 +1073,8 @@ int main(int argc, char** argv) {
     method.options.fast.log10_nfa_max = FLAGS_log10_nfa_max;
     method.options.fast.line_tolerance = FLAGS_line_tolerance;
     method.options.fast.presmooth_sigma = FLAGS_presmooth_sigma;
-    if (name == "fast") {
-      method.options.method = SegmentMethod::kFast;
-    } else if (name == "reference") {
-      method.options.method = SegmentMethod::kReference;
-    } else {
-      return fail(2, "--segments lists fast and reference, not '" + name + "'");
+    if (const Status status = FromString(name, &method.options.method); !status.ok()) {
+      return fail(2, "--segments: " + status.message());
     }
     methods.push_back(method);
   }

@@ -894,7 +894,7 @@ int main(int argc, char** argv) {
   std::ostringstream report;
   report << "Settings: " << FLAGS_segments << " segments; R = " << matching.max_epipolar_distance_px
          << " px, tau1 = " << matching.tau1 << ", tau2 = " << matching.tau2 << ", rho1 "
-         << (matching.rho1_kind == Rho1Kind::kLinear ? "linear" : "exponential") << ", " << (matching.use_topology ? "sigma (topology)" : "rho")
+         << ToString(matching.rho1_kind) << ", " << (matching.use_topology ? "sigma (topology)" : "rho")
          << ", lambda = " << matching.endpoint_model.lambda << ", mu = " << matching.endpoint_model.mu
          << " /px. Radius " << FLAGS_radius << " px, epipolar tolerance " << FLAGS_epipolar_tolerance
          << " px. Single thread.\n";
@@ -1148,7 +1148,7 @@ int main(int argc, char** argv) {
 
   // ---- c. Table 2 ----
   report << "\n## c. The paper's Table 2: rho against sigma over tau2 and R\n\n"
-         << "F from the odometry; tau1 = " << matching.tau1 << ", rho1 " << (matching.rho1_kind == Rho1Kind::kLinear ? "linear" : "exponential")
+         << "F from the odometry; tau1 = " << matching.tau1 << ", rho1 " << ToString(matching.rho1_kind)
          << "; correct as in b (true epipolar geometry within " << FLAGS_epipolar_tolerance
          << " px, and the same true vertex / ground-truth junction where known); mismatches = matches - "
             "correct.\n";

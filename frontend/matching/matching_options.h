@@ -15,6 +15,19 @@ enum class Rho1Kind {
   kLinear,       // footnote 10: 0.5*(2 - (d + d')/R), more tolerant of a poor epipolar geometry
 };
 
+// "exponential" or "linear".
+inline const char* ToString(Rho1Kind kind) { return kind == Rho1Kind::kLinear ? "linear" : "exponential"; }
+// The kind named `name` (as ToString writes it), or an error naming the choices.
+inline Status FromString(const std::string& name, Rho1Kind* kind) {
+  for (const Rho1Kind k : {Rho1Kind::kExponential, Rho1Kind::kLinear}) {
+    if (name == ToString(k)) {
+      *kind = k;
+      return Status::Ok();
+    }
+  }
+  return Status::Error("'" + name + "' is not a rho1 kind ('exponential' or 'linear')");
+}
+
 struct MatchingOptions {
   // R of section 4.1: largest distance of a junction location from the epipolar line of its
   // partner's location, pixels; a pair farther either way is unmatched. Used where no pair pose is

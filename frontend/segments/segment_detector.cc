@@ -26,6 +26,18 @@ bool Finite(double v) { return std::isfinite(v); }
 
 }  // namespace
 
+const char* ToString(SegmentMethod method) { return method == SegmentMethod::kFast ? "fast" : "reference"; }
+
+Status FromString(const std::string& name, SegmentMethod* method) {
+  for (const SegmentMethod m : {SegmentMethod::kFast, SegmentMethod::kReference}) {
+    if (name == ToString(m)) {
+      *method = m;
+      return Status::Ok();
+    }
+  }
+  return Status::Error("'" + name + "' is not a segment method ('fast' or 'reference')");
+}
+
 Status SegmentDetectorOptions::Check() const {
   SFM_RETURN_IF_ERROR(Require(Finite(edge_contrast_low) && edge_contrast_low > 0, "edge_contrast_low",
                               edge_contrast_low, "> 0"));

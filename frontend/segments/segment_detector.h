@@ -13,6 +13,8 @@
 // the mean image gradient (dark to bright) has a positive component along Normal().
 #pragma once
 
+#include <string>
+
 #include <opencv2/core.hpp>
 
 #include "frontend/segments/line_segment.h"
@@ -21,6 +23,11 @@
 namespace sfm {
 
 enum class SegmentMethod { kReference, kFast };
+
+// "reference" or "fast".
+const char* ToString(SegmentMethod method);
+// The method named `name` (as ToString writes it), or an error naming the choices.
+Status FromString(const std::string& name, SegmentMethod* method);
 
 // Options of the reference path (Canny-type edge filter + Hough transform).
 struct ReferenceSegmentOptions {

@@ -326,5 +326,20 @@ TEST(SegmentDetectorOptionsTest, DefaultsPassAndBadValuesAreNamed) {
   EXPECT_NE(options.Check().message().find("line_tolerance"), std::string::npos);
 }
 
+// ToString / FromString (the --segments flag): every method's name parses back to it; another
+// name is an error naming the choices, and leaves the method as it was.
+TEST(SegmentMethodTest, NamesParseBackAndOthersAreRefused) {
+  for (const SegmentMethod method : {SegmentMethod::kFast, SegmentMethod::kReference}) {
+    SegmentMethod parsed = method == SegmentMethod::kFast ? SegmentMethod::kReference : SegmentMethod::kFast;
+    ASSERT_TRUE(FromString(ToString(method), &parsed).ok()) << ToString(method);
+    EXPECT_EQ(parsed, method);
+  }
+  SegmentMethod parsed = SegmentMethod::kFast;
+  const Status status = FromString("lsd", &parsed);
+  EXPECT_FALSE(status.ok());
+  EXPECT_NE(status.message().find("'fast' or 'reference'"), std::string::npos) << status.message();
+  EXPECT_EQ(parsed, SegmentMethod::kFast);
+}
+
 }  // namespace
 }  // namespace sfm
