@@ -144,8 +144,6 @@ bool OptionsFromFlags(sfm::PipelineOptions* options, std::string* error) {
   if (!sfm::UndistortInterpolationFromFlags(&options->undistort_interpolation, error)) return false;
   options->undistort_full_view = sfm::UndistortViewFromFlags() == sfm::UndistortView::kFullView;
   if (!sfm::SegmentMethodFromFlags(&options->segments, error)) return false;
-  sfm::SegmentBranchesFromFlags(&options->segments.fast);
-  sfm::JunctionChoiceFromFlags(&options->junctions);
   if (!sfm::MatchingFromFlags(&options->junctions, &options->matching, error)) return false;
   sfm::MatchingRefineFromFlags(&options->matching);
   options->bundle_adjustment = FLAGS_bundle_adjustment;

@@ -112,6 +112,7 @@ Status OdometryPairGeometries(const Sequence& sequence, const std::string& seque
 void MatchFramePairs(const std::vector<std::pair<int, int>>& pairs,
                      const std::vector<PairGeometry>& geometries, const PipelineOptions& options,
                      Progress* progress, PipelineResult* result) {
+  const MatchingOptions matching = options.Matching();
   for (size_t p = 0; p < pairs.size(); ++p) {
     progress->Update("matching", "pair", static_cast<int>(p) + 1, static_cast<int>(pairs.size()));
     const auto [a, b] = pairs[p];
@@ -119,7 +120,7 @@ void MatchFramePairs(const std::vector<std::pair<int, int>>& pairs,
     matches.frame_a = a;
     matches.frame_b = b;
     matches.matches = MatchJunctions(result->junctions[a], result->graphs[a], result->junctions[b],
-                                     result->graphs[b], geometries[p], options.matching);
+                                     result->graphs[b], geometries[p], matching);
     result->pairs.push_back(std::move(matches));
   }
   progress->Finish();
@@ -305,11 +306,17 @@ void SelectWireframe(const Sequence& sequence, const PipelineOptions& options, P
 
 }  // namespace
 
+MatchingOptions PipelineOptions::Matching() const {
+  MatchingOptions options = matching;
+  options.endpoint_model = junctions.endpoint_model;
+  return options;
+}
+
 Status PipelineOptions::Check() const {
   if (output_dir.empty()) return Status::Error("--output must name a directory");
   SFM_RETURN_IF_ERROR(segments.Check());
   SFM_RETURN_IF_ERROR(junctions.Check());
-  SFM_RETURN_IF_ERROR(matching.Check());
+  SFM_RETURN_IF_ERROR(Matching().Check());
   SFM_RETURN_IF_ERROR(triangulation.Check());
   if (extend_tracks) SFM_RETURN_IF_ERROR(track_extension.Check());
   return bundle_adjustment_options.Check();
