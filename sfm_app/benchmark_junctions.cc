@@ -69,11 +69,8 @@ DEFINE_double(edge_contrast_high, sfm::SegmentDetectorOptions().edge_contrast_hi
 DEFINE_double(log10_nfa_max, sfm::SegmentDetectorOptions().fast.log10_nfa_max, "Fast segments: NFA threshold, log10.");
 DEFINE_double(presmooth_sigma, sfm::SegmentDetectorOptions().fast.presmooth_sigma,
               "Fast segments: Gaussian pre-smoothing before the Sobel pass, px.");
-DEFINE_bool(corners_between_chains, sfm::SegmentDetectorOptions().fast.corners_between_chains,
-            "Fast segments: short pieces meeting a long piece of another chain at a corner are measured from "
-            "the corner.");
 DEFINE_double(line_tolerance, sfm::SegmentDetectorOptions().fast.line_tolerance, "Fast segments: splitting tolerance, px.");
-// --branches_at_free_ends ... and the junction flags (--lambda, --mu, --min_probability, ...) are
+// The junction flags (--lambda, --mu, --min_probability, ...) are
 // shared with the other apps: sfm_app/flags/detector_flags.h.
 DEFINE_string(overlay_dir, "", "If set, write overlays there (every 10th generated frame, every VGG image), "
                                "with missed true junctions circled in white.");
@@ -1075,15 +1072,9 @@ int main(int argc, char** argv) {
     method.options.edge_contrast_high = FLAGS_edge_contrast_high;
     method.options.fast.log10_nfa_max = FLAGS_log10_nfa_max;
     method.options.fast.line_tolerance = FLAGS_line_tolerance;
-    method.options.fast.corners_between_chains = FLAGS_corners_between_chains;
-    SegmentBranchesFromFlags(&method.options.fast);
     method.options.fast.presmooth_sigma = FLAGS_presmooth_sigma;
-    if (name == "fast") {
-      method.options.method = SegmentMethod::kFast;
-    } else if (name == "reference") {
-      method.options.method = SegmentMethod::kReference;
-    } else {
-      return fail(2, "--segments lists fast and reference, not '" + name + "'");
+    if (const Status status = FromString(name, &method.options.method); !status.ok()) {
+      return fail(2, "--segments: " + status.message());
     }
     methods.push_back(method);
   }
@@ -1100,7 +1091,6 @@ int main(int argc, char** argv) {
   if (contacts.empty()) return fail(2, "--gt_contact_px is empty");
   JunctionDetectorOptions junction_options;
   JunctionDetectorFromFlags(&junction_options);
-  JunctionChoiceFromFlags(&junction_options);
   if (const Status check = junction_options.Check(); !check.ok()) return fail(2, check.message());
   for (const std::string& directory : {FLAGS_overlay_dir, FLAGS_miss_dir}) {
     if (directory.empty()) continue;

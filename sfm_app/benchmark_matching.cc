@@ -76,12 +76,6 @@ DEFINE_bool(match_pose, true,
 DEFINE_double(match_location_sigma, kMatchingDefaults.location_sigma_px, "Junction location sigma, px (band, cheirality).");
 DEFINE_int32(match_depth_range_neighbours, kMatchingDefaults.depth_range_neighbours,
              "With --match_refine: the local depth range test's neighbours (0: off).");
-DEFINE_bool(match_depth_range_screen, kMatchingDefaults.depth_range_screen_verified,
-            "With the local depth range test: screen the verified matches by the same test first.");
-DEFINE_bool(match_partial_rule_b, kMatchingDefaults.partial_rule_same_lines,
-            "With --match_partial: rule (b), the kept segments have as many lines through the junction as "
-            "the smaller "
-            "junction.");
 DEFINE_string(
     vgg_matches_csv, "",
     "If set, write every match of the consecutive VGG pairs (odometry) with its diagnosis there: verdict, "
@@ -557,7 +551,6 @@ RefinementCase VggRefinementCase(const VggData& d, int i, int j, const PairGeome
   settings.location_sigma_px = matching.location_sigma_px;
   settings.gate_sigmas = matching.refine_gate_sigmas;
   settings.min_inliers = matching.refine_min_inliers;
-  settings.constrain_to_prior_gate = matching.refine_constrain_to_prior_gate;
   const PairRefinement from_truth = RefinePairGeometry(odometry, x1, x2, settings);
   c.true_matches = static_cast<int>(x1.size());
   c.true_match_distance = from_truth.prior_distance_squared;
@@ -861,15 +854,11 @@ int main(int argc, char** argv) {
   std::string error;
   if (!SegmentMethodFromFlags(&settings.segments, &error)) return fail(2, error);
   if (!UndistortInterpolationFromFlags(&settings.undistort_interpolation, &error)) return fail(2, error);
-  SegmentBranchesFromFlags(&settings.segments.fast);
-  JunctionChoiceFromFlags(&settings.junctions);
   MatchingOptions& matching = settings.matching;
   if (!MatchingFromFlags(&settings.junctions, &matching, &error)) return fail(2, error);
   MatchingRefineFromFlags(&matching);
   matching.location_sigma_px = FLAGS_match_location_sigma;
-  matching.partial_rule_same_lines = FLAGS_match_partial_rule_b;
   matching.depth_range_neighbours = FLAGS_match_depth_range_neighbours;
-  matching.depth_range_screen_verified = FLAGS_match_depth_range_screen;
   for (const Status& check : {settings.segments.Check(), settings.junctions.Check(), matching.Check()}) {
     if (!check.ok()) return fail(2, check.message());
   }
@@ -905,8 +894,7 @@ int main(int argc, char** argv) {
   std::ostringstream report;
   report << "Settings: " << FLAGS_segments << " segments; R = " << matching.max_epipolar_distance_px
          << " px, tau1 = " << matching.tau1 << ", tau2 = " << matching.tau2 << ", rho1 "
-         << (matching.rho1_kind == Rho1Kind::kLinear ? "linear" : "exponential") << ", "
-         << (matching.use_topology ? "sigma (topology)" : "rho")
+         << ToString(matching.rho1_kind) << ", " << (matching.use_topology ? "sigma (topology)" : "rho")
          << ", lambda = " << matching.endpoint_model.lambda << ", mu = " << matching.endpoint_model.mu
          << " /px. Radius " << FLAGS_radius << " px, epipolar tolerance " << FLAGS_epipolar_tolerance
          << " px. Single thread.\n";
@@ -933,7 +921,7 @@ int main(int argc, char** argv) {
            "as the "
         << "paper's rule requires); \"matched partially\": vertices joined by partial matches only "
            "(junctions of "
-        << "k and k + 1 segments, --match_partial), part of \"matched\". F error: for the vertices visible "
+        << "k and k + 1 segments), part of \"matched\". F error: for the vertices visible "
            "in both frames, the larger distance of the "
         << "true pixels from the other's epipolar line under the F used, median / 95 %.\n\n"
         << "| sequence | F from | pairs | matches | both at vertices | same vertex | **precision** | goal | "
@@ -1160,10 +1148,10 @@ int main(int argc, char** argv) {
 
   // ---- c. Table 2 ----
   report << "\n## c. The paper's Table 2: rho against sigma over tau2 and R\n\n"
-         << "F from the odometry; tau1 = " << matching.tau1 << ", rho1 "
-         << (matching.rho1_kind == Rho1Kind::kLinear ? "linear" : "exponential")
+         << "F from the odometry; tau1 = " << matching.tau1 << ", rho1 " << ToString(matching.rho1_kind)
          << "; correct as in b (true epipolar geometry within " << FLAGS_epipolar_tolerance
-         << " px, and the same true vertex / ground-truth junction where known); mismatches = matches - correct.\n";
+         << " px, and the same true vertex / ground-truth junction where known); mismatches = matches - "
+            "correct.\n";
   if (have_vgg) {
     if (vgg_a >= static_cast<int>(vgg.frames.size()) || vgg_b >= static_cast<int>(vgg.frames.size())) {
       return fail(2, "--table2_vgg_pair names a frame the VGG sequence does not have");

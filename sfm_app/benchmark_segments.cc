@@ -42,10 +42,6 @@ DEFINE_int32(repetitions, 7, "Runs of each method per image, taken in turns; the
 DEFINE_string(output, "", "Also write the markdown report to this file.");
 DEFINE_double(min_segment_length, sfm::SegmentDetectorOptions().min_length,
               "Our detectors: shortest segment kept, px (to measure another value beside the default).");
-DEFINE_bool(corners_between_chains, sfm::SegmentDetectorOptions().fast.corners_between_chains,
-            "Fast path: short pieces meeting a long piece of another chain at a corner are measured from the "
-            "corner.");
-// --branches_at_free_ends, --branches_to_far_corners, --bridges_past_corners: sfm_app/flags/detector_flags.h.
 DEFINE_string(overlay_dir, "", "If set, write <method>_<image>.png overlays of the segments found there.");
 
 namespace sfm {
@@ -87,13 +83,10 @@ std::vector<Method> Methods() {
   SegmentDetectorOptions fast;
   fast.method = SegmentMethod::kFast;
   fast.min_length = FLAGS_min_segment_length;
-  fast.fast.corners_between_chains = FLAGS_corners_between_chains;
-  SegmentBranchesFromFlags(&fast.fast);
   methods.push_back(
       {"ours: fast (Sobel + chaining)", [fast](const cv::Mat& grey) { return DetectLineSegments(grey, fast); }});
   // The issue's speed goal is for segments and junctions together, in the same run as cv::Canny.
   JunctionDetectorOptions junction_options;
-  JunctionChoiceFromFlags(&junction_options);  // the same junction options as junction_sfm's flags
   methods.push_back({"ours: fast segments + junctions",
                      [fast, junction_options](const cv::Mat& grey) {
                        LineSegments segments = DetectLineSegments(grey, fast);

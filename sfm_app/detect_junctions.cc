@@ -83,10 +83,8 @@ int main(int argc, char** argv) {
   sfm::UndistortInterpolation interpolation;
   if (!sfm::UndistortInterpolationFromFlags(&interpolation, &flag_error)) return Fail(2, flag_error);
   segment_options.min_length = FLAGS_min_segment_length;
-  sfm::SegmentBranchesFromFlags(&segment_options.fast);
   sfm::JunctionDetectorOptions junction_options;
   sfm::JunctionDetectorFromFlags(&junction_options);
-  sfm::JunctionChoiceFromFlags(&junction_options);
   for (const sfm::Status& check : {segment_options.Check(), junction_options.Check()}) {
     if (!check.ok()) return Fail(2, check.message());
   }

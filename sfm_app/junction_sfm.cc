@@ -5,14 +5,17 @@
 // Without --sequence it runs the default sequence shipped under sequences/default. Flag defaults
 // are taken from the option structs, so --help always shows the values the code uses; docs/ says
 // how each was chosen.
-#include <cstdio>
-#include <string>
-
 #include <gflags/gflags.h>
 #include <glog/logging.h>
 
+#include <cstdio>
+#include <string>
+#include <utility>
+#include <vector>
+
 #include "sfm_app/flags/detector_flags.h"
 #include "sfm_app/pipeline.h"
+#include "sfm_app/run_junction_sfm.h"
 
 namespace {
 const sfm::PipelineOptions kDefaults;
@@ -31,7 +34,10 @@ const char* FloorPriorName(sfm::FloorPriorMode mode) {
 DEFINE_string(sequence, SFM_DEFAULT_SEQUENCE,
               "Sequence directory (SPEC section 1: sequence.yaml, images.txt, odometry.txt, optional "
               "groundtruth.txt). Default: the sequence shipped in sequences/default.");
-DEFINE_string(output, "output", "Output directory; created if missing, files of the same names replaced.");
+DEFINE_string(output, "output",
+              "Output directory, replaced whole by a run that succeeds (written beside it, then swapped in); "
+              "an existing directory must be empty or an earlier run's output. The run's log is "
+              "junction_sfm.log in it.");
 DEFINE_bool(progress, true, "Show a progress line on stderr (only when stderr is a terminal).");
 // The detector and matching flags (--segments, --endpoint_lambda, --match_*, ...) are shared with the other
 // apps: sfm_app/flags/detector_flags.h.
@@ -98,6 +104,38 @@ DEFINE_int32(wireframe_line_end_along_sigma, kDefaults.triangulation.wireframe.l
 
 namespace {
 
+// The option fields the flags set, with their flags, so that a Check() message names the flag
+// (FlagMessage): "--threads=0: must be >= 1", not the option struct's field.
+const std::vector<std::pair<std::string, std::string>> kOptionFlags = {
+    {"num_threads", "threads"},
+    {"robust_loss_scale_px", "ba_loss_scale"},
+    {"outlier_threshold_px", "ba_outlier_threshold"},
+    {"pixel_sigma_px", "extend_tracks_pixel_sigma"},
+    {"rotation_step_rad", "extend_tracks_rotation_step"},
+    {"max_gate_px", "extend_tracks_max_gate_px"},
+    {"max_angle_deg", "extend_tracks_max_angle_deg"},
+    {"tolerance_m", "wireframe_tolerance_m"},
+    {"tolerance_share", "wireframe_tolerance_share"},
+    {"far_end_at_point_px", "wireframe_far_end_at_point_px"},
+    {"far_end_along_px", "wireframe_far_end_along_px"},
+    {"line_end_along_sigma", "wireframe_line_end_along_sigma"},
+    {"max_epipolar_distance_px", "match_max_distance"},
+    {"tau1", "match_tau1"},
+    {"tau2", "match_tau2"},
+    {"band_sigmas", "match_band_sigmas"},
+    {"refine_gate_sigmas", "match_refine_gate"},
+    {"refine_min_inliers", "match_refine_min_inliers"},
+    {"min_probability", "junction_min_probability"},
+    {"lambda", "endpoint_lambda"},
+    {"mu", "endpoint_mu"},
+    {"acute_shortfall_px", "acute_shortfall_px"},
+    {"min_contact_length", "min_contact_length"},
+};
+
+// More threads than this are refused: each is a Ceres worker with its own stack, and beyond the
+// cores they only slow the solve.
+constexpr int kMaxThreads = 256;
+
 // Flags -> options; a one-line message for a flag value that is not one of the choices.
 bool OptionsFromFlags(sfm::PipelineOptions* options, std::string* error) {
   options->sequence_dir = FLAGS_sequence;
@@ -106,8 +144,6 @@ bool OptionsFromFlags(sfm::PipelineOptions* options, std::string* error) {
   if (!sfm::UndistortInterpolationFromFlags(&options->undistort_interpolation, error)) return false;
   options->undistort_full_view = sfm::UndistortViewFromFlags() == sfm::UndistortView::kFullView;
   if (!sfm::SegmentMethodFromFlags(&options->segments, error)) return false;
-  sfm::SegmentBranchesFromFlags(&options->segments.fast);
-  sfm::JunctionChoiceFromFlags(&options->junctions);
   if (!sfm::MatchingFromFlags(&options->junctions, &options->matching, error)) return false;
   sfm::MatchingRefineFromFlags(&options->matching);
   options->bundle_adjustment = FLAGS_bundle_adjustment;
@@ -119,6 +155,11 @@ bool OptionsFromFlags(sfm::PipelineOptions* options, std::string* error) {
   options->track_extension.max_angle_deg = FLAGS_extend_tracks_max_angle_deg;
   options->bundle_adjustment_options.outlier_threshold_px = FLAGS_ba_outlier_threshold;
   options->bundle_adjustment_options.robust_loss_scale_px = FLAGS_ba_loss_scale;
+  if (FLAGS_threads < 1 || FLAGS_threads > kMaxThreads) {
+    *error = "--threads=" + std::to_string(FLAGS_threads) + ": must be between 1 and " +
+             std::to_string(kMaxThreads);
+    return false;
+  }
   options->bundle_adjustment_options.num_threads = FLAGS_threads;
   options->triangulation.wireframe.line_sigma_subtracts_plane_noise = FLAGS_wireframe_plane_noise;
   options->triangulation.wireframe.tolerance_m = FLAGS_wireframe_tolerance_m;
@@ -159,8 +200,8 @@ int main(int argc, char** argv) {
       "  junction_sfm --sequence <sequence dir> --output <output dir> [flags]");
   gflags::SetVersionString("0.1.0");
   gflags::ParseCommandLineFlags(&argc, &argv, true);
-  FLAGS_logtostderr = true;
   google::InitGoogleLogging(argv[0]);
+  sfm::ConfigureLogging();
 
   if (argc > 1) {
     std::fprintf(stderr, "junction_sfm: unexpected argument '%s' (flags are --name=value; see --help)\n", argv[1]);
@@ -173,13 +214,8 @@ int main(int argc, char** argv) {
     return 2;
   }
   if (const sfm::Status check = options.Check(); !check.ok()) {
-    std::fprintf(stderr, "junction_sfm: %s\n", check.message().c_str());
+    std::fprintf(stderr, "junction_sfm: %s\n", sfm::FlagMessage(check.message(), kOptionFlags).c_str());
     return 2;
   }
-  const sfm::Status status = sfm::RunPipeline(options);
-  if (!status.ok()) {
-    std::fprintf(stderr, "junction_sfm: %s\n", status.message().c_str());
-    return 1;
-  }
-  return 0;
+  return sfm::RunIntoOutputDirectory(options);
 }

@@ -75,7 +75,6 @@ std::string ParentOf(const std::string& path) {
 bool OptionsFromFlags(sfm::SegmentDetectorOptions* segments, sfm::JunctionDetectorOptions* junctions,
                       sfm::MatchingOptions* matching, std::string* error) {
   if (!sfm::SegmentMethodFromFlags(segments, error)) return false;
-  sfm::SegmentBranchesFromFlags(&segments->fast);
   if (!sfm::MatchingFromFlags(junctions, matching, error)) return false;
   matching->location_sigma_px = FLAGS_match_location_sigma;
   for (const sfm::Status& check : {segments->Check(), junctions->Check(), matching->Check()}) {

@@ -128,6 +128,7 @@ constexpr double kRematchNoiseFactor = 1.5;
 void MatchFramePairs(const std::vector<std::pair<int, int>>& pairs,
                      const std::vector<PairGeometry>& geometries, const PipelineOptions& options,
                      Progress* progress, PipelineResult* result, std::vector<MatchingDiagnostics>* diagnostics) {
+  const MatchingOptions matching = options.Matching();
   result->pairs.clear();
   diagnostics->assign(pairs.size(), MatchingDiagnostics());
   for (size_t p = 0; p < pairs.size(); ++p) {
@@ -137,7 +138,7 @@ void MatchFramePairs(const std::vector<std::pair<int, int>>& pairs,
     matches.frame_a = a;
     matches.frame_b = b;
     matches.matches = MatchJunctions(result->junctions[a], result->graphs[a], result->junctions[b],
-                                     result->graphs[b], geometries[p], options.matching, &(*diagnostics)[p]);
+                                     result->graphs[b], geometries[p], matching, &(*diagnostics)[p]);
     result->pairs.push_back(std::move(matches));
   }
   progress->Finish();
@@ -159,7 +160,7 @@ Status MeasureOdometryNoise(const Sequence& sequence, const PipelineOptions& opt
   const Pose3& base_T_camera = sequence.calibration.base_T_camera;
   const std::vector<Pose3> odometry = OdometryBasePoses(sequence);
   summary.rotation = EstimateOdometryRotationNoise(
-      odometry, base_T_camera, VisualRotationSamples(pairs, *diagnostics, options.matching.refine_min_inliers));
+      odometry, base_T_camera, VisualRotationSamples(pairs, *diagnostics, options.Matching().refine_min_inliers));
   if (!summary.rotation.valid) {
     LOG(INFO) << "odometry noise: too few image pairs with a relative pose (" << summary.rotation.steps
               << ") to measure it; the declared noise is used";
@@ -192,7 +193,7 @@ Status InitialTrajectory(const Sequence& sequence, const PipelineOptions& option
   const Clock::time_point start = Clock::now();
   InitializationSummary& summary = result->initialization;
   const std::vector<RelativePoseConstraint> constraints = VisualConstraints(
-      result->pairs, result->junctions, diagnostics, RefinementSettings(options.matching), &summary.pairs);
+      result->pairs, result->junctions, diagnostics, RefinementSettings(options.Matching()), &summary.pairs);
   // The pose graph solves for the odometry's rotation bias: its odometry factors are weighted by
   // the spread about the bias.
   OdometryNoise noise = summary.used;
@@ -457,11 +458,17 @@ void SelectWireframe(const Sequence& sequence, const PipelineOptions& options, P
 
 }  // namespace
 
+MatchingOptions PipelineOptions::Matching() const {
+  MatchingOptions options = matching;
+  options.endpoint_model = junctions.endpoint_model;
+  return options;
+}
+
 Status PipelineOptions::Check() const {
   if (output_dir.empty()) return Status::Error("--output must name a directory");
   SFM_RETURN_IF_ERROR(segments.Check());
   SFM_RETURN_IF_ERROR(junctions.Check());
-  SFM_RETURN_IF_ERROR(matching.Check());
+  SFM_RETURN_IF_ERROR(Matching().Check());
   SFM_RETURN_IF_ERROR(triangulation.Check());
   if (extend_tracks) SFM_RETURN_IF_ERROR(track_extension.Check());
   return bundle_adjustment_options.Check();
@@ -474,6 +481,7 @@ Status RunPipeline(const PipelineOptions& options, PipelineResult* result_out) {
   // 1. Read and validate all input before anything is written.
   Sequence sequence;
   SFM_RETURN_IF_ERROR(ReadSequence(options.sequence_dir, &sequence));
+  SFM_RETURN_IF_ERROR(CheckOutputNames(sequence));
   LOG(INFO) << "sequence " << options.sequence_dir << ": " << sequence.frames.size() << " frames, "
             << sequence.calibration.camera.width << "x" << sequence.calibration.camera.height
             << (sequence.has_groundtruth ? ", with ground truth" : ", no ground truth");
@@ -518,10 +526,14 @@ Status RunPipeline(const PipelineOptions& options, PipelineResult* result_out) {
     }
   }
 
-  // 3. Outputs.
+  // 3. Outputs. The report shows the time up to here; metrics.json's total also counts the
+  // report's writing (the largest output; the small files after it take milliseconds).
+  LOG(INFO) << "writing the outputs in " << options.output_dir;
+  result.times.total = SecondsSince(start);
+  SFM_RETURN_IF_ERROR(
+      WriteReport(sequence, result, /*undistorted_images_or_empty=*/{}, options.output_dir, /*stored_images=*/images));
   result.times.total = SecondsSince(start);
   SFM_RETURN_IF_ERROR(WriteOutputs(sequence, result, options.output_dir));
-  SFM_RETURN_IF_ERROR(WriteReport(sequence, result, /*undistorted_images_or_empty=*/{}, options.output_dir));
   LOG(INFO) << "time: frontend " << result.times.frontend << " s, matching " << result.times.matching
             << " s, backend " << result.times.backend << " s, total " << result.times.total << " s";
   if (result_out) *result_out = std::move(result);

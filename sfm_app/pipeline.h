@@ -30,6 +30,7 @@ struct PipelineOptions {
   bool undistort_full_view = kDetectionView == UndistortView::kFullView;
   SegmentDetectorOptions segments;
   JunctionDetectorOptions junctions;
+  // Its endpoint_model is not read: Matching() hands down junctions.endpoint_model.
   MatchingOptions matching;
   TriangulationOptions triangulation;
   bool bundle_adjustment = true;  // false: the outputs use the odometry poses and the first triangulation
@@ -40,6 +41,9 @@ struct PipelineOptions {
   bool extend_tracks = true;
   TrackExtensionOptions track_extension;
 
+  // `matching` with the end-point model of junction detection: eq. (5) models the detected
+  // end-points once, for both stages.
+  MatchingOptions Matching() const;
   // OK, or a message naming the first bad setting.
   Status Check() const;
 };

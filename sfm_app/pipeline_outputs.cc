@@ -197,6 +197,38 @@ std::string EvidenceJson(const PipelineResult& result) {
 
 }  // namespace
 
+std::vector<std::string> OutputEntryNames() {
+  return {"junctions",
+          "matches",
+          "tracks.csv",
+          "trajectory_odometry.txt",
+          "trajectory_refined.txt",
+          "trajectory_groundtruth.txt",
+          "wireframe.ply",
+          "colmap",
+          "metrics.json",
+          "report.html",
+          kLogFileName};
+}
+
+Status CheckOutputNames(const Sequence& sequence) {
+  const std::string images_txt = (fs::path(sequence.directory) / "images.txt").string();
+  for (const Frame& frame : sequence.frames) {
+    const std::string which =
+        images_txt + ": frame " + std::to_string(frame.index) + " ('" + frame.image_path + "')";
+    if (!IsColmapImageName(frame.image_path)) {
+      return Status::Error(which +
+                           ": the image path holds white space, which colmap/images.txt cannot hold "
+                           "(COLMAP splits its lines at spaces); rename the image");
+    }
+    if (!IsValidUtf8(frame.image_path)) {
+      return Status::Error(images_txt + ": frame " + std::to_string(frame.index) +
+                           ": the image path is not valid UTF-8, which the junction JSON cannot hold");
+    }
+  }
+  return Status::Ok();
+}
+
 std::string MetricsJson(const Sequence& sequence, const PipelineResult& result) {
   const StageTimes& times = result.times;
   const bool refined = !result.world_T_camera_refined.empty();

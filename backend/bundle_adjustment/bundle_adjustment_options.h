@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "backend/triangulation/triangulation_options.h"
 #include "frontend/util/status.h"
 
 namespace sfm {
@@ -62,11 +63,10 @@ struct BundleAdjustmentOptions {
   double min_line_triangulation_angle_deg = 2.0;   // deg, lines with less are dropped (unobservable)
   // m, a point less deep than this in a camera that observes it, or a line whose points seen at
   // an observation's p0 or p1 are (ObservedLineDepth), is dropped as unobservable, on the refined
-  // poses and landmarks (not before the first solve, see DropUnobservableLandmarks). As the triangulation's
-  // min_depth_m: twice the generator's 0.05 m near plane. A landmark of a view pair without
-  // baseline is intersected next to the camera centre, where the triangulation angles above see
-  // any baseline as large.
-  double min_depth_m = 0.1;
+  // poses and landmarks (not before the first solve, see DropUnobservableLandmarks). A landmark of
+  // a view pair without baseline is intersected next to the camera centre, where the triangulation
+  // angles above see any baseline as large.
+  double min_depth_m = kMinDepthM;
   FloorPriorMode floor_prior = FloorPriorMode::kAuto;
   // m, sigma of a floor landmark's world z about 0: how far a junction the floor prior selects
   // may be from the plane of the base origin (floor flatness, wheels sinking in), also the unit

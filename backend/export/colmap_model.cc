@@ -2,14 +2,15 @@
 
 #include <glog/logging.h>
 
+#include <algorithm>
 #include <cctype>
 #include <filesystem>
 #include <initializer_list>
 #include <string>
 #include <vector>
 
-#include "frontend/util/number_text.h"
 #include "frontend/util/atomic_file.h"
+#include "frontend/util/number_text.h"
 
 namespace sfm {
 namespace {
@@ -57,10 +58,8 @@ Status Validate(const std::string& directory, const ColmapModel& model) {
     const std::string which = images_file + ": image " + std::to_string(i) + " ('" + image.name + "')";
     if (image.name.empty())
       return Status::Error(images_file + ": image " + std::to_string(i) + " has no name");
-    for (const char c : image.name) {
-      if (std::isspace(static_cast<unsigned char>(c))) {
-        return Status::Error(which + ": the name holds whitespace, which COLMAP cannot read back");
-      }
+    if (!IsColmapImageName(image.name)) {
+      return Status::Error(which + ": the name holds whitespace, which COLMAP cannot read back");
     }
     if (!image.world_T_camera.rotation.coeffs().allFinite() ||
         !image.world_T_camera.translation.allFinite()) {
@@ -158,6 +157,11 @@ std::string Points3DText(const ColmapModel& model, const std::vector<std::vector
 }
 
 }  // namespace
+
+bool IsColmapImageName(const std::string& name) {
+  return !name.empty() && std::none_of(name.begin(), name.end(),
+                                       [](char c) { return std::isspace(static_cast<unsigned char>(c)); });
+}
 
 Status WriteColmapModel(const std::string& directory, const ColmapModel& model) {
   SFM_RETURN_IF_ERROR(Validate(directory, model));

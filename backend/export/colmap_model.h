@@ -51,4 +51,7 @@ struct ColmapModel {
 // or when the directory or a file cannot be written.
 Status WriteColmapModel(const std::string& directory, const ColmapModel& model);
 
+// Whether COLMAP's images.txt can hold `name` as an image's NAME: not empty, no white space.
+bool IsColmapImageName(const std::string& name);
+
 }  // namespace sfm

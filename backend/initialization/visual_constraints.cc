@@ -100,10 +100,8 @@ PairRefinement RelativePoseFromMatches(const PairRefinement& refinement, const s
     }
   }
   wide.covariance = WidenedPrior(map.covariance, wide.camera2_T_camera1.translation);
-  PairRefinementSettings unconstrained = settings;
-  unconstrained.constrain_to_prior_gate = false;
   if (prior_used != nullptr) *prior_used = wide;
-  return RefinePairGeometry(wide, inliers1, inliers2, unconstrained);
+  return RefinePairGeometry(wide, inliers1, inliers2, settings);
 }
 
 Matrix6 InformationFromMatches(const PairGeometry& prior, const PairGeometry& posterior) {

@@ -13,6 +13,7 @@
 
 #include "backend/triangulation/landmarks.h"
 #include "backend/triangulation/reconstruction.h"
+#include "backend/triangulation/triangulation_options.h"
 #include "frontend/geometry/pose.h"
 #include "frontend/junctions/junction.h"
 #include "frontend/tracks/tracks.h"
@@ -21,9 +22,8 @@
 namespace sfm {
 
 struct TrackExtensionOptions {
-  // Pixel noise of a junction location, pixels, > 0: the wireframe's 0.3 px (the detector's
-  // location error on rendered images, docs/junctions.md).
-  double pixel_sigma_px = 0.3;
+  // Pixel noise of a junction location, pixels, > 0: the detector's location error.
+  double pixel_sigma_px = kJunctionLocationErrorPx;
   // The refined poses' rotation error as a random walk per frame, radians, >= 0: the wireframe's
   // 0.0002 (what bundle adjustment leaves of the odometry's drift, docs/tracks_and_triangulation.md).
   // A frame d frames from the nearest view of the track adds (fx * step)^2 d to the gate's variance.
@@ -40,7 +40,7 @@ struct TrackExtensionOptions {
   // Merge two tracks when a projection finds the other's junction (else only unassigned junctions join).
   bool merge_tracks = true;
   // Depth below which a projection is not used, metres (the triangulation's depth floor).
-  double min_depth_m = 0.1;
+  double min_depth_m = kMinDepthM;
 
   Status Check() const;
 };

@@ -5,9 +5,16 @@
 #include <cmath>
 #include <string>
 
+#include "frontend/junctions/junction.h"
 #include "frontend/util/status.h"
 
 namespace sfm {
+
+// Least depth of a landmark in a view that observes it, metres: twice the generator's near
+// clipping plane (0.05 m); nothing a robot's camera sees sharply is closer, and a track whose views
+// share one centre (no motion, odometry noise of a millimetre) is intersected next to that centre.
+// The default of every stage's depth floor (triangulation, track extension, bundle adjustment).
+inline constexpr double kMinDepthM = 0.1;
 
 struct PointTriangulationOptions {
   // A track's largest angle between two of its viewing rays must exceed this; below it the depth
@@ -18,10 +25,8 @@ struct PointTriangulationOptions {
   // Gauss-Newton iterations after the linear solve; 0 keeps the linear solution. >= 0.
   int refinement_iterations = 10;
   // The point must be at least this deep (z in the camera frame) in every view, else kTooClose.
-  // Metres, >= 0. 0.1 m: twice the generator's near clipping plane (0.05 m); nothing a robot's
-  // camera sees sharply is closer, and a track whose views share one centre (no motion, odometry
-  // noise of a millimetre) is intersected next to that centre.
-  double min_depth_m = 0.1;
+  // Metres, >= 0.
+  double min_depth_m = kMinDepthM;
 
   Status Check() const {
     auto bad = [](const std::string& what) { return Status::Error("PointTriangulationOptions: " + what); };
@@ -52,9 +57,8 @@ struct LineTriangulationOptions {
   // from the projected 3D line. Pixels, > 0.
   double max_reprojection_error_px = 4.0;
   // The line must pass at least this far from every camera centre, and both ends of the bounded
-  // segment must be at least this deep in every view, else kTooClose. Metres, >= 0; as
-  // PointTriangulationOptions::min_depth_m.
-  double min_depth_m = 0.1;
+  // segment must be at least this deep in every view, else kTooClose. Metres, >= 0.
+  double min_depth_m = kMinDepthM;
 
   Status Check() const {
     auto bad = [](const std::string& what) { return Status::Error("LineTriangulationOptions: " + what); };
@@ -73,10 +77,9 @@ struct LineTriangulationOptions {
 // Which landmarks the wireframe shows (SelectWireframeLandmarks, wireframe_selection.h), judged on
 // the final poses. docs/tracks_and_triangulation.md, "Wireframe vertices", says why each default.
 struct WireframeOptions {
-  // Pixel noise of a junction location and across an image segment's end. Pixels, > 0. 0.3 px: the
-  // junction detector's location error on rendered images (docs/junctions.md: median 0.16 px,
-  // 90th percentile 0.27 px).
-  double pixel_sigma_px = 0.3;
+  // Pixel noise of a junction location and across an image segment's end. Pixels, > 0: the
+  // junction detector's location error on rendered images.
+  double pixel_sigma_px = kJunctionLocationErrorPx;
   // Real images are noisier than rendered ones, and the detector's error there is not known in
   // advance: when true, the noise of the chi-square test is the larger of pixel_sigma_px and the
   // robust scale of the points' own reprojection residuals on the final poses (EstimatePixelSigma),

@@ -9,6 +9,11 @@
 
 namespace sfm {
 
+// The junction detector's location error on rendered images, pixels: its 90th percentile (0.27 px;
+// median 0.16 px; docs/junctions.md, "Checks against rendered images"). The pixel noise of a
+// junction location where the back end tests observations against it.
+inline constexpr double kJunctionLocationErrorPx = 0.3;
+
 enum class JunctionType { kL, kY, kArrow, kT, kX, kN };
 
 // "L", "Y", "ARROW", "T", "X", "N" as SPEC section 3 writes them.

@@ -142,18 +142,18 @@ Junction MakeJunction(const Group& group, const std::vector<SegmentLine>& lines,
   return junction;
 }
 
-// The weight of a candidate for ChooseJunctions with options.choose_by_end_likelihood: the
-// log-likelihood ratio of the end-points it explains. An assignment of end-points to junctions has
-// the likelihood prod f(t) over the assigned end-points (eq. 5, t at the junction's location), so
-// its log is a sum over end-points, each counted once, where the paper's score (the sum of pairwise
-// probabilities) counts an end-point once per pair it is in (N - 1 times in an N-junction) and
-// favours large junctions of weak pairs over one probable pair. Each end-point adds
-// ln f(t) - ln sqrt(min_probability) (the per-end-point share of the pair threshold: a pair of two
-// equal end-points at the threshold adds 0) when positive, else 0 (an end-point explained no
-// better than the threshold allows counts as free). An interior (a T's bar, an X's crossing) moves
-// nothing and adds nothing. A tiny floor keeps every weight positive (the branch and bound's
-// bound needs it); a floor, not an addition, so that two junctions explaining the same end-points
-// as one (two L's where four ends meet, against the X) do not outweigh it by the floor twice.
+// The weight of a candidate for ChooseJunctions: the log-likelihood ratio of the end-points it
+// explains. An assignment of end-points to junctions has the likelihood prod f(t) over the assigned
+// end-points (eq. 5, t at the junction's location), so its log is a sum over end-points, each
+// counted once, where the paper's score (the sum of pairwise probabilities) counts an end-point
+// once per pair it is in (N - 1 times in an N-junction) and favours large junctions of weak pairs
+// over one probable pair. Each end-point adds ln f(t) - ln sqrt(min_probability) (the per-end-point
+// share of the pair threshold: a pair of two equal end-points at the threshold adds 0) when
+// positive, else 0 (an end-point explained no better than the threshold allows counts as free). An
+// interior (a T's bar, an X's crossing) moves nothing and adds nothing. A tiny floor keeps every
+// weight positive (the branch and bound's bound needs it); a floor, not an addition, so that two
+// junctions explaining the same end-points as one (two L's where four ends meet, against the X) do
+// not outweigh it by the floor twice.
 double EndLikelihoodWeight(const Group& group, const std::vector<SegmentLine>& lines,
                            const JunctionDetectorOptions& options) {
   const double baseline = 0.5 * std::log(options.min_probability);
@@ -170,10 +170,10 @@ double EndLikelihoodWeight(const Group& group, const std::vector<SegmentLine>& l
 // Candidates conflict when they share an end-point node (an end-point belongs to one junction) or a
 // pair (a pairing belongs to one junction); interiors may be shared (a bar holding several T's).
 // Returns the indices, in candidate order, of the conflict-free set with the largest total score
-// (the paper's junction score, the sum of pair probabilities): among readings that all pass the
-// pair test, the one that explains the most end-points with the most probable pairs. Solved
-// exactly per connected group of conflicting candidates by branch and bound (a vertex's conflicts
-// involve a handful of candidates); a group larger than kMaxExact falls back to greedy by score.
+// (EndLikelihoodWeight): among readings that all pass the pair test, the one that explains the most
+// end-points best. Solved exactly per connected group of conflicting candidates by branch and bound
+// (a vertex's conflicts involve a handful of candidates); a group larger than kMaxExact falls back
+// to greedy by score.
 std::vector<int> ChooseJunctions(const std::vector<Group>& candidates, size_t num_hits, int num_nodes) {
   constexpr int kMaxExact = 20;
   const int m = static_cast<int>(candidates.size());
@@ -340,8 +340,8 @@ void MergeCoincidingJunctions(const std::vector<Group>& candidates, double max_g
   // merge tested; and after a merge at (i, j) retests only what the merge can have changed: the
   // rows before i failed, and stay failed except with the new junction at i, as long as no pair
   // lost a holder (the union holds every pair its parts held, the usual case); otherwise it starts
-  // again from row 0. (With fast.short_pieces_at_contacts a cluttered image has 400 junctions, and
-  // the repeated quadratic scan was half of the junction step.)
+  // again from row 0 (a cluttered image has hundreds of junctions, where a repeated quadratic
+  // scan would dominate the junction step).
   const double reach = 2 * max_gap;
   std::vector<Eigen::Vector2d> location;
   std::vector<int> by_x, near;
@@ -440,22 +440,20 @@ void MergeCoincidingJunctions(const std::vector<Group>& candidates, double max_g
   std::sort(chosen->begin(), chosen->end());
 }
 
-// JunctionDetectorOptions::corner_beyond_taken_end and corner_beyond_taken_end_free
-// (docs/junctions.md, step 3). Where two true vertices lie a few pixels apart on one line (a segment
-// A ends at the vertex W where a third edge X leaves it, and A's line goes on for a short stub, of
-// another contrast, to the vertex V where a segment B ends), A's end-point belongs to W's junction,
-// so B's end-point goes to the next line its ray meets (a T on X's interior just past X's end at W)
-// or to none, and V gets no junction. This lets A's line serve V as well. B's end-point moves to
-// the pair (A, B), at its eq. (6) point v, when
+// Corners beyond taken end-points (docs/junctions.md, step 3). Where two true vertices lie a few
+// pixels apart on one line (a segment A ends at the vertex W where a third edge X leaves it, and
+// A's line goes on for a short stub, of another contrast, to the vertex V where a segment B ends),
+// A's end-point belongs to W's junction, so B's end-point goes to the next line its ray meets (a T
+// on X's interior just past X's end at W) or to none, and V gets no junction. This lets A's line
+// serve V as well. B's end-point moves to the pair (A, B), at its eq. (6) point v, when
 //   - A's end-point is held by another chosen junction W, v lies beyond W along A's line (A stops
 //     shorter of v than of W: W stays the explanation of A's end-point), at least min_arm_px from
 //     W (a shorter stub cannot be told from an end-point overshoot: the rule of the T against the
 //     L) and from every other chosen junction (closer, it is not told apart from that one), and
 //   - v explains B's end-point better than where it is: the per-end-point term of
-//     EndLikelihoodWeight (the choice's own criterion) is larger at v than at B's T
-//     (corner_beyond_taken_end: the T is replaced, the number of junctions is unchanged), or
-//     positive when B's end-point is in no junction (corner_beyond_taken_end_free: the corner is
-//     added). A's end-point is not counted again: W already explains it.
+//     EndLikelihoodWeight (the choice's own criterion) is larger at v than at B's T (the T is
+//     replaced, the number of junctions is unchanged), or positive when B's end-point is in no
+//     junction (the corner is added). A's end-point is not counted again: W already explains it.
 // This is an end-point in two junctions, which in general was measured and rejected (precision
 // 72 %, docs/junctions.md "Ambiguous cases"); here only on A's line beyond its junction, and only
 // for an end-point that no junction explains better.
@@ -516,7 +514,7 @@ void CornersBeyondTakenEnds(const std::vector<Group>& candidates, const PairGrap
     }
     return best;
   };
-  for (int k = 0; k < num_chosen && options.corner_beyond_taken_end; ++k) {
+  for (int k = 0; k < num_chosen; ++k) {
     const Group& junction = candidates[(*chosen)[k]];
     if (junction.nodes.size() != 2) continue;
     int b = -1, interior = 0;
@@ -530,19 +528,17 @@ void CornersBeyondTakenEnds(const std::vector<Group>& candidates, const PairGrap
     const int best = try_end(b, k, end_term(b, junction.Location()).second);
     if (best >= 0) (*chosen)[k] = best;
   }
-  if (options.corner_beyond_taken_end_free) {
-    // End-points in no junction: explained by nothing (0), so any corner beyond with a positive
-    // term is an improvement; the corner is added.
-    std::vector<int> added;
-    for (int b = 0; b < graph_nodes; ++b) {
-      if (ContactOf(b) == Contact::kThrough || holder[b] >= 0 || graph.degree(b) == 0) continue;
-      const int best = try_end(b, -1, 0.0);
-      if (best >= 0) added.push_back(best);
-    }
-    std::sort(added.begin(), added.end());
-    added.erase(std::unique(added.begin(), added.end()), added.end());
-    chosen->insert(chosen->end(), added.begin(), added.end());
+  // End-points in no junction: explained by nothing (0), so any corner beyond with a positive
+  // term is an improvement; the corner is added.
+  std::vector<int> added;
+  for (int b = 0; b < graph_nodes; ++b) {
+    if (ContactOf(b) == Contact::kThrough || holder[b] >= 0 || graph.degree(b) == 0) continue;
+    const int best = try_end(b, -1, 0.0);
+    if (best >= 0) added.push_back(best);
   }
+  std::sort(added.begin(), added.end());
+  added.erase(std::unique(added.begin(), added.end()), added.end());
+  chosen->insert(chosen->end(), added.begin(), added.end());
   std::sort(chosen->begin(), chosen->end());
 }
 
@@ -618,18 +614,13 @@ Junctions DetectJunctions(const LineSegments& segments, const JunctionDetectorOp
     candidates.push_back(std::move(pair));
   }
 
-  std::vector<int> chosen;
-  if (options.choose_by_end_likelihood) {
-    std::vector<Group> weighted = candidates;
-    for (Group& group : weighted) group.score = EndLikelihoodWeight(group, lines, options);
-    chosen = ChooseJunctions(weighted, graph.hits().size(), 3 * n);
-    MergeCoincidingJunctions(candidates, options.max_gap_px, &chosen);
-    if (options.corner_beyond_taken_end || options.corner_beyond_taken_end_free) {
-      CornersBeyondTakenEnds(candidates, graph, lines, options, &chosen);
-    }
-  } else {
-    chosen = ChooseJunctions(candidates, graph.hits().size(), 3 * n);
-  }
+  // The choice weighs each candidate by the end-points it explains (EndLikelihoodWeight); the
+  // junctions keep the paper's score (the sum of their pair probabilities).
+  std::vector<Group> weighted = candidates;
+  for (Group& group : weighted) group.score = EndLikelihoodWeight(group, lines, options);
+  std::vector<int> chosen = ChooseJunctions(weighted, graph.hits().size(), 3 * n);
+  MergeCoincidingJunctions(candidates, options.max_gap_px, &chosen);
+  CornersBeyondTakenEnds(candidates, graph, lines, options, &chosen);
   const double collinear_tolerance_rad = options.collinear_tolerance_deg * M_PI / 180.0;
   Junctions junctions;
   junctions.reserve(chosen.size());

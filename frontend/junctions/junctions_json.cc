@@ -1,5 +1,7 @@
 #include "frontend/junctions/junctions_json.h"
 
+#include <glog/logging.h>
+
 #include <charconv>
 #include <cmath>
 #include <cstdio>
@@ -7,7 +9,7 @@
 #include <utility>
 #include <vector>
 
-#include <glog/logging.h>
+#include "frontend/util/json_format.h"
 
 namespace sfm {
 namespace {
@@ -28,22 +30,8 @@ void AppendGeneral(double value, std::string* out) {
   out->append(buffer, result.ptr);
 }
 
-void AppendString(const std::string& value, std::string* out) {
-  out->push_back('"');
-  for (const char c : value) {
-    if (c == '"' || c == '\\') {
-      out->push_back('\\');
-      out->push_back(c);
-    } else if (static_cast<unsigned char>(c) < 0x20) {
-      char escaped[8];
-      std::snprintf(escaped, sizeof(escaped), "\\u%04x", static_cast<unsigned>(c));
-      out->append(escaped);
-    } else {
-      out->push_back(c);
-    }
-  }
-  out->push_back('"');
-}
+// JsonString keeps the file valid JSON for any bytes (an image path that is not UTF-8 included).
+void AppendString(const std::string& value, std::string* out) { out->append(JsonString(value)); }
 
 // ---- Reading: a small JSON parser (RFC 8259 values), enough for this file's fixed shape ----------
 

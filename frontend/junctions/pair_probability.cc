@@ -74,14 +74,6 @@ EndChange NearEndChange(const SegmentLine& segment, const Eigen::Vector2d& p0) {
   return change;
 }
 
-double AcuteCornerT(double t, const SegmentLine& a, const SegmentLine& b, double scale) {
-  if (!(t < 0)) return t;
-  // n_a . q_b is the sine of the angle between the lines (as in IntersectLinesMinSine).
-  const double sine = std::abs(a.n.dot(b.q));
-  if (!(sine > 0)) return t;
-  return std::min(0.0, t + scale * (1 / sine - 1));
-}
-
 double PairProbability(const SegmentLine& a, const SegmentLine& b, const Eigen::Vector2d& p0,
                        const EndpointModel& model) {
   return model.F(NearEndChange(a, p0).t) * model.F(NearEndChange(b, p0).t);
@@ -106,13 +98,8 @@ std::optional<PairHit> TestPair(const std::vector<SegmentLine>& lines, int a, in
   const SegmentContact ca = ContactAt(la, *p0, options.min_arm_px);
   const SegmentContact cb = ContactAt(lb, *p0, options.min_arm_px);
   if (std::abs(ca.t) > options.max_gap_px || std::abs(cb.t) > options.max_gap_px) return std::nullopt;
-  double ta = ca.t, tb = cb.t;
-  if (options.acute_shortfall_px > 0 && ca.contact != Contact::kThrough && cb.contact != Contact::kThrough) {
-    ta = AcuteCornerT(ta, la, lb, options.acute_shortfall_px);
-    tb = AcuteCornerT(tb, la, lb, options.acute_shortfall_px);
-  }
   // f(0) = 1 for a segment whose interior holds p0: nothing of it moves.
-  const double probability = options.endpoint_model.F(ta) * options.endpoint_model.F(tb);
+  const double probability = options.endpoint_model.F(ca.t) * options.endpoint_model.F(cb.t);
   if (probability < options.min_probability) return std::nullopt;
   PairHit hit;
   hit.segment_a = a;

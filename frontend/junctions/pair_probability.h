@@ -23,14 +23,6 @@ struct EndChange {
 // The near end-point of `segment` (the one closer to p0 along the line) and its t.
 EndChange NearEndChange(const SegmentLine& segment, const Eigen::Vector2d& p0);
 
-// The shortfall t of an end-point at an L corner of the lines of a and b, as eq. (5)'s f should see
-// it: an edge filter of scale `scale` px loses about scale / sin(theta) px of each side of a corner
-// of angle theta (there the other edge comes within `scale` of the line), about `scale` at a right
-// angle, which the fitted f already holds; so t < 0 is reduced by scale (1 / sin(theta) - 1),
-// never past 0. t >= 0 (a segment running past the corner) is returned as it is.
-// JunctionDetectorOptions::acute_shortfall_px.
-double AcuteCornerT(double t, const SegmentLine& a, const SegmentLine& b, double scale);
-
 // Section 2.2: the junction probability of two segments meeting at p0, the product over both of
 // f(t) (eq. 5) for the change of the near end-point needed to reach p0.
 double PairProbability(const SegmentLine& a, const SegmentLine& b, const Eigen::Vector2d& p0,

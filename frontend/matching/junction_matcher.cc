@@ -27,7 +27,7 @@ int PairedSegmentOfA(const JunctionMatch& match, int segment_b, int num_a, int n
   return -1;
 }
 
-// MatchingOptions::match_rivals_on_one_arm: junctions p and q of one image (rivals for one partner)
+// Rivals on one arm (docs/matching.md): junctions p and q of one image (rivals for one partner)
 // are two readings of one arm's end when they hold one detected line segment pointing the same
 // way from both (one lies on the other's arm, or on its line beyond the end: a corner beyond a
 // taken end-point and the junction holding that end, docs/junctions.md step 3), and both
@@ -72,10 +72,8 @@ AlliedRivals RivalsOnOneArm(const Junctions& a, const Junctions& b) {
   };
 }
 
-// The allied-rivals test rule (38) uses with these options: RivalsOnOneArm, or none.
-AlliedRivals AlliedRivalsFor(const MatchingOptions& options, const Junctions& a, const Junctions& b) {
-  return options.match_rivals_on_one_arm ? RivalsOnOneArm(a, b) : AlliedRivals();
-}
+// The allied-rivals test rule (38) uses: RivalsOnOneArm.
+AlliedRivals AlliedRivalsFor(const Junctions& a, const Junctions& b) { return RivalsOnOneArm(a, b); }
 
 // depth_range (may be null): a pair it rejects is unmatched, for rule (38) and for sigma's
 // topology support alike.
@@ -106,8 +104,7 @@ std::vector<JunctionMatch> Match(const Junctions& a, const TopologyGraph& graph_
     }
   }
   // Step 2: the mutual test of (38).
-  return SelectMatches(candidates, num_a, num_b, options.tau1, options.tau2,
-                       AlliedRivalsFor(options, a, b));
+  return SelectMatches(candidates, num_a, num_b, options.tau1, options.tau2, AlliedRivalsFor(a, b));
 }
 
 // Partial correspondence among the junctions `full` left unmatched (docs/matching.md, "Partial
@@ -189,7 +186,7 @@ std::vector<JunctionMatch> MatchPartial(const Junctions& a, const TopologyGraph&
         // missing_a = missing_b = -1 and the flag below: a competitor only.
         if (passes_depth(rho)) {
           candidates.push_back({i, j, rho.rho, -1, -1, -1});
-        } else if (options.match_one_common && !rho.Matched() && n_a == 2) {
+        } else if (!rho.Matched() && n_a == 2) {
           // Two L's with no admissible shift: perhaps two corners of one vertex sharing a segment.
           const PairSimilarity one = similarity.OneCommonRho(i, j);
           if (passes_depth(one) && SharedSegmentSupported(i, 1 - one.missing_a, j, 1 - one.missing_b, a,
@@ -206,7 +203,7 @@ std::vector<JunctionMatch> MatchPartial(const Junctions& a, const TopologyGraph&
   std::vector<JunctionMatch> partial;
   for (const JunctionMatch& match :
        SelectMatches(candidates, static_cast<int>(a.size()), static_cast<int>(b.size()), options.tau1,
-                     options.tau2, AlliedRivalsFor(options, a, b))) {
+                     options.tau2, AlliedRivalsFor(a, b))) {
     if (match.Partial()) partial.push_back(match);
   }
   return partial;
@@ -270,12 +267,11 @@ std::vector<JunctionMatch> MatchJunctions(const Junctions& a, const TopologyGrap
     locations_a.reserve(a.size());
     for (const Junction& junction : a) locations_a.push_back(junction.location);
     depth_range.emplace(report.refinement.geometry, x1_verified, x2_verified, source_a, locations_a,
-                        options.depth_range_neighbours, options.refine_gate_sigmas, options.location_sigma_px,
-                        options.depth_range_screen_verified);
+                        options.depth_range_neighbours, options.refine_gate_sigmas,
+                        options.location_sigma_px);
   }
   std::vector<JunctionMatch> matches =
       Match(a, graph_a, b, graph_b, similarity, guided, depth_range ? &*depth_range : nullptr);
-  if (!options.match_partial) return matches;
   // Only here: in the refined band (about 1.8 px) a partial pair has few rivals; in the odometry's
   // band the weaker, k/(k+1)-scaled support would compete with many wrong full-count partners.
   const LocalDepthRange* range = depth_range ? &*depth_range : nullptr;
@@ -284,7 +280,7 @@ std::vector<JunctionMatch> MatchJunctions(const Junctions& a, const TopologyGrap
   // One common segment: a pair's support may also be a partial match (a chain of corners along one
   // edge); again with the full and partial matches of the round before as neighbours, until the
   // partial matches stop changing (a few rounds; capped, as a selection by (38) need not be monotone).
-  for (int round = 0; options.match_one_common && round < kOneCommonRounds; ++round) {
+  for (int round = 0; round < kOneCommonRounds; ++round) {
     std::vector<JunctionMatch> supporting = matches;
     supporting.insert(supporting.end(), partial.begin(), partial.end());
     std::vector<JunctionMatch> next =
@@ -309,7 +305,6 @@ PairRefinementSettings RefinementSettings(const MatchingOptions& options) {
   settings.location_sigma_px = options.location_sigma_px;
   settings.gate_sigmas = options.refine_gate_sigmas;
   settings.min_inliers = options.refine_min_inliers;
-  settings.constrain_to_prior_gate = options.refine_constrain_to_prior_gate;
   return settings;
 }
 

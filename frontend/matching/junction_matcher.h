@@ -27,7 +27,7 @@ struct MatchingDiagnostics {
   int first_pass_matches = 0;
   // Filled when options.refine_geometry; refinement.Refined() says whether the guided pass ran.
   PairRefinement refinement;
-  // Partial matches (options.match_partial) the guided pass added.
+  // Partial matches the guided pass added.
   int partial_matches = 0;
 };
 
@@ -38,7 +38,7 @@ struct MatchingDiagnostics {
 // With options.refine_geometry, the pose is then refined from these matches (RefinePairGeometry,
 // the odometry as prior) and the matching runs again with the refined pose and its covariance in a
 // band of options.refine_gate_sigmas: the result of that guided pass is returned, or the first
-// pass's when the refinement falls back. With options.match_partial the guided pass then adds
+// pass's when the refinement falls back. The guided pass then adds
 // partial matches (JunctionMatch::Partial, k against k + 1 segments) among the junctions it left
 // unmatched. diagnostics may be null.
 std::vector<JunctionMatch> MatchJunctions(const Junctions& a, const TopologyGraph& graph_a, const Junctions& b,

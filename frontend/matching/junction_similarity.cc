@@ -350,27 +350,14 @@ PairSimilarity JunctionSimilarity::PartialRho(int index_a, int index_b) const {
   double best = 0;
   for (int missing = 0; missing <= k; ++missing) {
     // Partial correspondence stands for a junction segment that detection missed in one frame.
-    // (a) A segment that continues another one straight through the location (half of a T's bar,
-    // of an X's line) is not missed alone: its line was detected; where the line stops at the
-    // junction in the other frame, the junction has moved along it, which is what an occluding
-    // edge does (the two image junctions are then not one 3D point).
-    bool continues_another = false;
-    for (int i = 0; i <= k; ++i) {
-      continues_another = continues_another ||
-                          (i != missing && OneLine(larger_directions, larger_lines, missing, i, min_sin_));
-    }
-    if (continues_another && options_.partial_rule_not_line_half) continue;
     // The larger junction's segments without `missing`, in their (clockwise) order.
     for (int i = 0, j = 0; i <= k; ++i) {
       if (i != missing) subset[j++] = i;
     }
-    // (b) Without its missed segment the larger junction is what detection reads in the other
-    // frame, so the kept segments must have the smaller junction's lines through the location: a
-    // T without its stem is a straight line, not an L (and an X without a half-line a T, not a Y).
-    if (options_.partial_rule_same_lines &&
-        LinesThrough(larger_directions, larger_lines, subset, k, min_sin_) != smaller_lines_through) {
-      continue;
-    }
+    // Without its missed segment the larger junction is what detection reads in the other frame,
+    // so the kept segments must have the smaller junction's lines through the location: a T
+    // without its stem is a straight line, not an L (and an X without a half-line a T, not a Y).
+    if (LinesThrough(larger_directions, larger_lines, subset, k, min_sin_) != smaller_lines_through) continue;
     for (int shift = 0; shift < k; ++shift) {
       const std::optional<double> sum = a_larger ? SubsetSupport(index_a, index_b, subset, all, k, shift, bands)
                                                  : SubsetSupport(index_a, index_b, all, subset, k, shift, bands);

@@ -60,7 +60,7 @@ class JunctionSimilarity {
   // Unmatched (shift -1) for other segment counts or when no segment may be left out.
   PairSimilarity PartialRho(int index_a, int index_b) const;
 
-  // Two L's sharing one segment (MatchingOptions::match_one_common; not in the paper): two corners
+  // Two L's sharing one segment (not in the paper; docs/matching.md, "One common segment"): two corners
   // of one 3-edge vertex, segments (1, 2) detected in one frame and (2, 3) in the other. Over every
   // pairing of one segment of a with one of b, (37) and (17) for that pair, and M = H H' / 3, the
   // mean over the three segments of the union with the two unshared ones' terms 0 (as PartialRho

@@ -15,108 +15,71 @@ enum class Rho1Kind {
   kLinear,       // footnote 10: 0.5*(2 - (d + d')/R), more tolerant of a poor epipolar geometry
 };
 
+// "exponential" or "linear".
+inline const char* ToString(Rho1Kind kind) { return kind == Rho1Kind::kLinear ? "linear" : "exponential"; }
+// The kind named `name` (as ToString writes it), or an error naming the choices.
+inline Status FromString(const std::string& name, Rho1Kind* kind) {
+  for (const Rho1Kind k : {Rho1Kind::kExponential, Rho1Kind::kLinear}) {
+    if (name == ToString(k)) {
+      *kind = k;
+      return Status::Ok();
+    }
+  }
+  return Status::Error("'" + name + "' is not a rho1 kind ('exponential' or 'linear')");
+}
+
 struct MatchingOptions {
   // R of section 4.1: largest distance of a junction location from the epipolar line of its
-  // partner's location; a pair farther than this either way is unmatched. Pixels.
+  // partner's location, pixels; a pair farther either way is unmatched. Used where no pair pose is
+  // given (or use_pose_band is false); the paper's corridor value (docs/matching.md, "Defaults").
   double max_epipolar_distance_px = 10.0;
-  // tau1 of (38): a candidate pair needs a similarity above this. Unitless, >= 0.
+  // tau1 of (38): a candidate pair needs a similarity above this. Unitless, >= 0; the paper's 0.
   double tau1 = 0.0;
-  // tau2 of (38): the chosen partner must beat every other candidate, both ways, by more than
-  // this. Unitless, >= 0.
+  // tau2 of (38): the chosen partner must beat every other candidate, both ways, by more than this.
+  // Unitless, >= 0; the paper's 0.1.
   double tau2 = 0.1;
+  // rho1 of section 4.1; linear (footnote 10) for an odometry-made epipolar geometry.
   Rho1Kind rho1_kind = Rho1Kind::kLinear;
   // true: rule (38) on sigma (section 4.2, junction topology); false: on plain rho (34).
   bool use_topology = true;
-  // f(t) of eq. (5), t = detected minus true end-point along the outward direction (eq. 8),
-  // pixels. Use the model junction detection uses.
+  // f(t) of eq. (5), 1/pixels: the model junction detection uses (the pipeline hands it down,
+  // PipelineOptions::Matching).
   EndpointModel endpoint_model;
   // The epipolar line of an end-point counts as parallel to the partner segment (section 3.2, last
   // paragraph) when, along the partner's length, it departs from the partner's line by at most
-  // this; nearer parallel than that the intersection p'e is set by noise. Pixels, > 0.
+  // this: nearer parallel, the intersection p'e is set by noise. Pixels, > 0.
   double parallel_tolerance_px = 1.0;
-  // (36) compares the turn from segment i to segment i+1 in both junctions; a pair of segments
-  // closer than this to collinear (the two halves of a T's bar) has no reliable turn and is not
-  // tested. Degrees, in [0, 45).
+  // (36) is not tested on two consecutive segments closer than this to collinear (a T's bar has no
+  // reliable turn): JunctionDetectorOptions::collinear_tolerance_deg. Degrees, in [0, 45).
   double cyclic_order_min_angle_deg = 5.0;
 
-  // Used only when MatchJunctions is given the pair's pose and its uncertainty (PairGeometry).
-  // use_pose_band: the search band of each pair replaces R (false: R as without the pose): band_sigmas * sqrt(sigma_pose^2 + 2
-  // location_sigma_px^2) in each image, sigma_pose the spread of that epipolar distance under the
-  // pose covariance at the two locations (and rho1 uses d / band in place of d / R). Unitless, > 0.
+  // With a pair pose and its covariance (PairGeometry; docs/matching.md, "Pose uncertainty and
+  // cheirality"), not in the paper:
+  // true: each pair's search band, band_sigmas * sqrt(sigma_pose^2 + 2 location_sigma_px^2) in each
+  // image, replaces R; false: R, as the paper.
   bool use_pose_band = true;
-  double band_sigmas = 3.0;
-  // Standard deviation of a junction location, pixels, >= 0 (band and cheirality tolerance).
+  double band_sigmas = 3.0;  // unitless, > 0: a two-sided 99.7 % Gaussian gate
+  // Standard deviation of a junction location the band, cheirality and refinement gates assume,
+  // pixels, >= 0: half a pixel, the detector's error on rendered images (kJunctionLocationErrorPx,
+  // 0.3 px) with room for real images (docs/matching.md, "Pose uncertainty and cheirality").
   double location_sigma_px = 0.5;
   // Reject pairs whose triangulation lies behind camera 1 or 2 by more than band_sigmas of the
   // parallax's uncertainty (PassesCheirality).
   bool use_cheirality = true;
 
-  // Geometric verification and the guided second pass (PairGeometry overload only; docs/matching.md,
-  // "Geometric verification and the guided pass"): the pair's pose is re-estimated from the first
-  // pass's matches with the odometry as its prior (RefinePairGeometry), then rule (38) runs again
-  // with the refined pose and its posterior covariance, in a band of refine_gate_sigmas (in place of
-  // band_sigmas). Falls back to the first pass when fewer than refine_min_inliers matches lie within
-  // that gate at the estimate, or the estimate is outside the prior's chi-square 99 % ellipsoid.
+  // Geometric verification and the guided second pass (docs/matching.md, "Geometric verification
+  // and the guided pass"): the pair's pose re-estimated from the first pass's matches with the
+  // odometry as prior (RefinePairGeometry), then rule (38) again in its band of refine_gate_sigmas,
+  // then the partial, one-common-segment matches of the leftovers.
   bool refine_geometry = true;
-  // sqrt of the chi-square 99 % quantile with one degree of freedom: a 99 % gate on one distance.
+  // Unitless, > 0: the two-sided 99 % Gaussian point, the level of the prior's consistency test.
   double refine_gate_sigmas = 2.576;
-  // Three matches per degree of freedom of an epipolar geometry (5).
+  // Fewest matches within the gate for a refined pose: three per degree of freedom of (5).
   int refine_min_inliers = 15;
-  // When the refined pose lies beyond the prior's 99 % ellipsoid, take the MAP pose inside it before
-  // falling back (PairRefinementSettings::constrain_to_prior_gate; docs/matching.md, "Refinement
-  // fall-backs"; it changes nothing where the unconstrained estimate passes, i.e. on every pair of
-  // the default benchmarks, and refines the VGG pairs that fell back after a change of the junctions).
-  bool refine_constrain_to_prior_gate = true;
-  // The local depth range test in the guided pass (docs/matching.md, "The local depth range"): a
-  // candidate partner's depth along the epipolar line must lie within the range of inverse depths of
-  // the depth_range_neighbours verified matches (refinement inliers) nearest to the junction in
-  // image 1, widened by the cheirality tolerance at refine_gate_sigmas. 0: off.
+  // Verified matches nearest to a junction whose inverse-depth range its partner's depth must lie
+  // in (docs/matching.md, "The local depth range"; 0: no test). 12: the fewest for which a point
+  // lies in its neighbours' hull with probability >= 99 %.
   int depth_range_neighbours = 12;
-  // Before that, drop the verified matches that fail the same test against the other verified ones
-  // (a wrong verified match at a near depth would widen its neighbours' range).
-  bool depth_range_screen_verified = true;
-  // Partial junction correspondence in the guided pass only (not in the paper; docs/matching.md,
-  // "Partial correspondence"): a junction of k >= 2 segments left unmatched may match one of k + 1
-  // (a segment missed in one frame) through its best common subset, rho2 counting the missing
-  // segment's term as 0, by rule (38) among the junctions the full pass left unmatched, under the
-  // same local depth range test as the full pass. Tracks (PartnerSegment) and the match overlay take
-  // partial matches; BuildTracks does not join a partial match with a T or an X on either side (an
-  // occlusion seen with one arm hidden: most partial L-T matches are off any true vertex). On by
-  // default: it meets the matching goals (generated recall 80.6 -> 91.3 % with the odometry at
-  // 99.4 % precision, VGG consecutive precision 98.5 -> 97.7 %), and with the T/X rule in the
-  // tracks the reconstruction is about as good as without partial matches (docs/matching_results.md,
-  // "Partial correspondence under the local depth range", and docs/backend_results.md).
-  bool match_partial = true;
-  // The two rules on the segment a partial pair leaves out (docs/matching.md, "Partial
-  // correspondence"; JunctionSimilarity::PartialRho). (a) It is not half of a straight line through
-  // the location (against occlusion T's read as L's). Off by default: the depth range test now
-  // rejects most of those (without rule (a), VGG 96.0 -> 97.7 %), and turning the rule on costs far
-  // more recall than it buys precision: VGG 97.7 -> 98.3 % precision for 91.3 -> 80.3 % recall,
-  // generated 99.4 % either way for 91.3 -> 87.7 %, held out 99.0 -> 99.2 % for 89.3 -> 81.1 %.
-  bool partial_rule_not_line_half = false;
-  // (b) The kept segments have as many straight lines through the location as the smaller junction
-  // (a T without its stem is a line, not an L). Kept: without it VGG precision 97.7 -> 97.4 % for
-  // +0.2 point of generated recall.
-  bool partial_rule_same_lines = true;
-  // One-common-segment matches in the partial pass (not in the paper; docs/matching.md, "One
-  // common segment"): two L's left unmatched that share one segment (two corners of one 3-edge
-  // vertex, edges 1-2 in one frame and 2-3 in the other; JunctionSimilarity::OneCommonRho) are a
-  // candidate only with topology support: a topology edge from the shared segment to a junction the
-  // guided pass matched, and in the other image the partner's shared segment's edge to that
-  // junction's partner, through the segment that match pairs. On by default since session 8, with
-  // the junction options that add corners beyond taken end-points (JunctionDetectorOptions): with
-  // those on, the generated corridor's recall is 89.9 % without it and 91.1 % with it, precision
-  // 99.7 % (docs/matching_results.md, "Session 7, part 2" and "Session 8"; docs/junction_results.md,
-  // "Session 8, the lead's decision", for the end-to-end cost).
-  bool match_one_common = true;
-  // Rule (38)'s margin between rivals on one arm (not in the paper; docs/matching.md, "Rivals on
-  // one arm"): two candidates for one junction whose other junctions hold one detected line segment
-  // pointing the same way and pair it with the same segment of the shared partner (a corner beyond
-  // a taken end-point and the junction holding that end) do not count against each other; the
-  // larger must still beat every other rival by tau2. On by default: with the default junctions
-  // the generated corridor's recall 90.0 -> 90.4 % at the same precision, VGG consecutive 98.2 %
-  // either way, every held-out wireframe still >= 0.90 (docs/matching_results.md, "Session 8").
-  bool match_rivals_on_one_arm = true;
 
   Status Check() const {
     auto bad = [](const std::string& what) { return Status::Error("MatchingOptions: " + what); };

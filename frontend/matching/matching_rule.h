@@ -9,10 +9,11 @@ namespace sfm {
 // A matched (or candidate) pair: junction index_a of image 1 and index_b of image 2; segment i of
 // the first corresponds to segment (i + shift) mod N of the second (eq. 32-33).
 //
-// A partial match (MatchingOptions::match_partial; not in the paper) pairs a junction of k segments
-// with one of k + 1: missing_a (or missing_b) is the segment of the larger junction left without a
-// partner, and shift applies to the larger junction's segments with that one removed (cyclic order
-// kept), renumbered 0..k-1. PartnerSegment does the bookkeeping. Both are -1 for a full match.
+// A partial match (not in the paper; docs/matching.md, "Partial correspondence") pairs a junction
+// of k segments with one of k + 1: missing_a (or missing_b) is the segment of the larger junction
+// left without a partner, and shift applies to the larger junction's segments with that one removed
+// (cyclic order kept), renumbered 0..k-1. PartnerSegment does the bookkeeping. Both are -1 for a
+// full match.
 struct JunctionMatch {
   int index_a = -1;
   int index_b = -1;
@@ -33,8 +34,8 @@ int PartnerSegment(const JunctionMatch& match, int segment_a, int num_a, int num
 // and the same among J''s candidates. At most one candidate per pair; O(candidates).
 //
 // allied (may be empty): called with two candidates that share one junction (both index_a or both
-// index_b); true when the other two junctions are two readings of one arm's end (MatchingOptions::
-// match_rivals_on_one_arm), which then do not count against each other in the margin: the larger
+// index_b); true when the other two junctions are two readings of one arm's end (docs/matching.md,
+// "Rivals on one arm"), which then do not count against each other in the margin: the larger
 // still has to beat every other candidate by more than tau2.
 using AlliedRivals = std::function<bool(const JunctionMatch&, const JunctionMatch&)>;
 std::vector<JunctionMatch> SelectMatches(const std::vector<JunctionMatch>& candidates, int num_a, int num_b,

@@ -221,7 +221,7 @@ struct Fit {
 // Consensus: with a finite `radius_squared` the steps are kept inside the ball |z|^2 <= radius_squared (the
 // prior's 99 % ellipsoid in whitened coordinates): a step that would leave it is halved until it
 // does not, so from a start inside, the result is a local minimum of the truncated objective over
-// the poses the prior admits (PairRefinementSettings::constrain_to_prior_gate).
+// the poses the prior admits (step 3 of RefinePairGeometry).
 Fit Consensus(const PoseModel& model, const std::vector<Eigen::Vector2d>& x1, const std::vector<Eigen::Vector2d>& x2,
               const Vector6& start, double sigma, double gate,
               double radius_squared = std::numeric_limits<double>::infinity()) {
@@ -428,7 +428,7 @@ PairRefinement RefinePairGeometry(const PairGeometry& prior, const std::vector<E
   //    agree with a pose inside (the odometry's covariance covers its error), still can. The
   //    result must pass the same tests below, so a pair whose matches fit nothing inside the
   //    ellipsoid still falls back.
-  if (settings.constrain_to_prior_gate && best.z.squaredNorm() > prior_gate) {
+  if (best.z.squaredNorm() > prior_gate) {
     const auto into_ellipsoid = [&](const Vector6& start) -> Vector6 {
       const double norm_squared = start.squaredNorm();
       // A start on the surface would leave no room for the first step, so just inside it (0.99 of

@@ -12,6 +12,7 @@
 
 #include <Eigen/Core>
 
+#include "frontend/matching/matching_options.h"
 #include "frontend/matching/pair_geometry.h"
 
 namespace sfm {
@@ -22,19 +23,15 @@ namespace sfm {
 // where both lines vanish (both points at the epipoles).
 double SampsonDistance(const Eigen::Matrix3d& F, const Eigen::Vector2d& x1, const Eigen::Vector2d& x2);
 
+// MatchJunctions fills these from its MatchingOptions; the defaults are that struct's.
 struct PairRefinementSettings {
   // Standard deviation of a junction location per image axis, pixels, > 0.
-  double location_sigma_px = 0.5;
+  double location_sigma_px = MatchingOptions().location_sigma_px;
   // A match supports the estimate when |Sampson distance| <= gate_sigmas times its predicted
   // sigma (location noise and the estimate's own uncertainty). > 0.
-  double gate_sigmas = 2.576;
+  double gate_sigmas = MatchingOptions().refine_gate_sigmas;
   // Fewer supporting matches than this: no estimate (PairRefinement::Outcome::kTooFewInliers).
-  int min_inliers = 15;
-  // When the lowest truncated objective lies beyond the prior's 99 % ellipsoid, search again for
-  // the lowest one inside it (the MAP pose among the poses the prior admits) instead of falling
-  // back at once (docs/matching.md, "Refinement fall-backs"). The estimate still has to pass the
-  // same tests. (The struct's default is off, the function as it was; MatchingOptions turns it on.)
-  bool constrain_to_prior_gate = false;
+  int min_inliers = MatchingOptions().refine_min_inliers;
 };
 
 struct PairRefinement {
@@ -60,7 +57,7 @@ struct PairRefinement {
   double prior_gate = 0;
   int iterations = 0;  // Gauss-Newton steps taken, over all rounds
   // The unconstrained estimate lay beyond the prior's ellipsoid and the search inside it ran
-  // (PairRefinementSettings::constrain_to_prior_gate); the estimate is its result.
+  // (docs/matching.md, "Refinement fall-backs"); the estimate is its result.
   bool constrained = false;
   // For each correspondence: within the gate at the estimate (empty unless an estimate was made).
   std::vector<bool> inlier;

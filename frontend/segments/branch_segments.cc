@@ -259,8 +259,7 @@ class BranchSearch {
         ++stats.accepted;
       }
     }
-    if (options_.fast.bridges_past_corners)
-      stats.bridges = AppendBridges(grid, free_ends, is_free, branch_angles, segments);
+    stats.bridges = AppendBridges(grid, free_ends, is_free, branch_angles, segments);
     CHECK_GE(static_cast<int>(segments->size()), n);
     return stats;
   }
@@ -300,7 +299,7 @@ class BranchSearch {
     }
   }
 
-  // Bridges (fast.bridges_past_corners; docs/segments.md, step 8): a segment A often stops at a
+  // Bridges (docs/segments.md, step 8): a segment A often stops at a
   // corner W with a third edge while its line goes on, as an edge between other faces (often of the
   // other polarity), for a few pixels more to the vertex V where a free end of a segment B stops.
   // That piece, shorter than min_length, is no chain piece and no branch (a branch must reach
@@ -619,7 +618,7 @@ class BranchSearch {
     return c->log10_nfa <= options_.fast.log10_nfa_max;
   }
 
-  // A branch whose far end stops at another corner (fast.branches_to_far_corners): how far beyond
+  // A branch whose far end stops at another corner: how far beyond
   // its far end-point `far` (direction d) its line meets the line of another segment (not
   // `exclude`, the segment it starts from) at a corner, or 0. As the short sides between two corners
   // (docs/segments.md, step 7): a rounded corner takes 1-2 px off each end of a side, so a side of
@@ -727,8 +726,7 @@ class BranchSearch {
     *branch = SegmentOnLine(line, kept.front(), kept.back(), fit.count());
     const Eigen::Vector2d far = line.Project(kept.back());
     double length = (far - corner).dot(line.direction);
-    if (length < options_.min_length && options_.fast.branches_to_far_corners)
-      length += FarCornerBeyond(far, line.direction, segment_index);
+    if (length < options_.min_length) length += FarCornerBeyond(far, line.direction, segment_index);
     if (length < options_.min_length) return false;
     // Brighter side along Normal() (segment_detector.h): the gradient's polarity across the ray.
     if (branch->Normal().dot(c.polarity * normal) < 0) std::swap(branch->p0, branch->p1);

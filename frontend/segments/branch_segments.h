@@ -1,8 +1,7 @@
-// Branches at free segment ends (fast path, `fast.branches_at_free_ends`): the short side of a
-// corner that the chains lost is looked for directly in the gradient field, by an a-contrario test
-// of the gradient's orientation along rays from the end-point of a segment that has no other
-// segment's end-point near it (docs/segments.md, step 8; measured in docs/junction_results.md,
-// "Session 4").
+// Branches at free segment ends (fast path): the short side of a corner that the chains lost is
+// looked for directly in the gradient field, by an a-contrario test of the gradient's orientation
+// along rays from the end-point of a segment that has no other segment's end-point near it
+// (docs/segments.md, step 8).
 #pragma once
 
 #include <opencv2/core.hpp>
@@ -17,7 +16,7 @@ struct BranchSearchStats {
   int free_ends = 0;       // end-points searched
   double log10_tests = 0;  // log10 of the number of candidate rays the NFA counts
   int accepted = 0;        // branches appended
-  int bridges = 0;         // bridges appended (fast.bridges_past_corners)
+  int bridges = 0;         // bridges appended (a segment's line continued to a free end)
 };
 
 // Appends to `segments` the branches found at their free end-points. gx, gy: the CV_16S Sobel

@@ -19,14 +19,9 @@ struct LinePiece {
   Eigen::Vector2d gradient_sum = Eigen::Vector2d::Zero();  // sum of the image gradient over its points
   bool merged_away = false;                               // true once joined into another piece
   // For a piece between two long pieces of the same chain (a short side between two corners): its
-  // length between the intersections of its line with theirs; for a short piece meeting the end of
-  // a long piece of any chain at a corner (the fast path's corners between chains): from that
-  // corner (or between two such corners) to its far end-point. Pixels; 0 otherwise (and for a
+  // length between the intersections of its line with theirs. Pixels; 0 otherwise (and for a
   // joined piece).
   double corner_length = 0;
-  // From the fast path's second splitting of the chain points no regular piece holds (seed
-  // window under min_length / sqrt 2; fast.short_pieces_at_contacts).
-  bool short_pass = false;
 };
 
 // Joins pairs of pieces of the same polarity with end-points at most `max_gap` pixels apart when

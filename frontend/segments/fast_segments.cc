@@ -50,9 +50,7 @@ struct Workspace {
   std::vector<Eigen::Vector2d> points;                 // sub-pixel points of chain
   std::vector<LinePiece> pieces;                       // straight pieces of all chains
   std::vector<std::pair<size_t, size_t>> ranges;       // chain points [begin, end) of the current chain's pieces
-  std::vector<FittedLine> lines;      // their fitted lines (MarkCornerLengths, MarkContactCorners)
-  std::vector<Eigen::Vector2d> ends;  // pieces' end-points (MarkContactCorners)
-  std::vector<int> short_pieces, cell_begin, cell_fill, cell_ends;  // MarkContactCorners' pieces and grid
+  std::vector<FittedLine> lines;                       // their fitted lines (MarkCornerLengths)
   // Log10BinomialTail(n, k, kAlignedProbability) at [n][k], NaN until first needed (Validate): the
   // same few (n, k) recur in every image, and each evaluation costs three lgamma and a series.
   std::vector<std::vector<double>> binomial_tails;
@@ -78,11 +76,6 @@ class FastDetector {
         pieces_(workspace->pieces),
         ranges_(workspace->ranges),
         lines_(workspace->lines),
-        ends_(workspace->ends),
-        short_pieces_(workspace->short_pieces),
-        cell_begin_(workspace->cell_begin),
-        cell_fill_(workspace->cell_fill),
-        cell_ends_(workspace->cell_ends),
         binomial_tails_(workspace->binomial_tails) {
     pieces_.clear();
     const cv::Mat* smoothed = &grey;
@@ -105,7 +98,6 @@ class FastDetector {
   }
 
   LineSegments Run() {
-    const bool short_pieces = options_.fast.short_pieces_at_contacts;
     FindAnchors();
     const int16_t* mag = magnitude_.ptr<int16_t>();
     uint8_t* dir = direction_.ptr<uint8_t>();
@@ -115,19 +107,10 @@ class FastDetector {
       dir[anchor] |= kOnChain;
       const size_t backward = Walk(anchor, along_x ? -1 : 0, along_x ? 0 : -1, mag, dir, backward_.data());
       const size_t forward = Walk(anchor, along_x ? +1 : 0, along_x ? 0 : +1, mag, dir, forward_.data());
-      const bool short_chain = backward + forward + 1 < static_cast<size_t>(min_pixels_);
-      if (short_chain && (!short_pieces || backward + forward + 1 < kShortWindow)) continue;
+      if (backward + forward + 1 < static_cast<size_t>(min_pixels_)) continue;
       chain_.assign(std::make_reverse_iterator(backward_.begin() + backward), backward_.rend());
       chain_.push_back(anchor);
       chain_.insert(chain_.end(), forward_.begin(), forward_.begin() + forward);
-      if (short_chain) {
-        // Too short for a segment of its own: only its pieces that meet a segment can be kept
-        // (MarkPiecesAtContacts). It is no candidate of the chains' family, so num_tests_ is unchanged.
-        ranges_.clear();
-        ComputePoints();
-        SplitRange(0, chain_.size(), kShortWindow);
-        continue;
-      }
       // Every sub-run of the chain is a candidate segment: L (L + 1) / 2 tests.
       const double length = static_cast<double>(chain_.size());
       num_tests_ += 0.5 * length * (length + 1);
@@ -144,12 +127,9 @@ class FastDetector {
         SplitChain();
       }
       MarkCornerLengths(first_piece, closed);
-      if (short_pieces) SplitGaps(first_piece);
     }
-    if (options_.fast.corners_between_chains) MarkContactCorners();
-    // A piece joined across chains is one more candidate: count every piece once more (the short
-    // pieces of SplitGaps are candidates of their own family, MarkPiecesAtContacts).
-    num_tests_ += static_cast<double>(short_pieces ? CountRegularPieces() : pieces_.size());
+    // A piece joined across chains is one more candidate: count every piece once more.
+    num_tests_ += static_cast<double>(pieces_.size());
     // Short sides between two corners are a family of candidates of their own (see Validate).
     double short_sides = 0;
     for (const LinePiece& piece : pieces_) {
@@ -158,14 +138,11 @@ class FastDetector {
     log10_short_side_tests_ = std::log10(std::max(short_sides, 1.0));
     MergeCollinearPieces(options_.max_gap, options_.fast.line_tolerance, &pieces_);
     log10_tests_ = std::log10(std::max(num_tests_, 1.0));
-    at_contact_.assign(pieces_.size(), 0);
-    if (short_pieces) MarkPiecesAtContacts();
     LineSegments segments;
-    for (size_t k = 0; k < pieces_.size(); ++k) {
-      if (!pieces_[k].merged_away) Validate(pieces_[k], at_contact_[k] != 0, &segments);
+    for (const LinePiece& piece : pieces_) {
+      if (!piece.merged_away) Validate(piece, &segments);
     }
-    if (options_.fast.branches_at_free_ends)
-      AppendBranchSegments(gx_, gy_, magnitude_, low_, high_, options_, &segments);
+    AppendBranchSegments(gx_, gy_, magnitude_, low_, high_, options_, &segments);
     return segments;
   }
 
@@ -287,11 +264,9 @@ class FastDetector {
     for (size_t i = 0; i < chain_.size(); ++i) points_[i] = SubpixelPoint(chain_[i]);
   }
 
-  // The splitting of SplitChain over chain points [begin, n) with seed windows of `window` points;
-  // pieces from a window shorter than min_pixels_ are marked short (SplitGaps).
+  // The splitting of SplitChain over chain points [begin, n) with seed windows of `window` points.
   size_t SplitRange(size_t begin, size_t n, size_t window) {
     const double tolerance = options_.fast.line_tolerance, seed_tolerance = SeedTolerance(tolerance);
-    const bool short_pass = window < static_cast<size_t>(min_pixels_);
     size_t start = begin, previous_end = begin, first_break = n;
     while (start + window <= n) {
       LineFitAccumulator fit;
@@ -332,7 +307,6 @@ class FastDetector {
         line = fit.FitWithoutRms();
       }
       AddPiece(start, end, fit);
-      pieces_.back().short_pass = short_pass;
       if (first_break == n) first_break = end;
       start = previous_end = end;
     }
@@ -354,9 +328,6 @@ class FastDetector {
   // Lines closer to parallel than about 11.5 degrees give no corner: a line error of 0.2 px would
   // move their intersection by more than 1 px.
   static constexpr double kMinCornerSine = 0.2;
-  // Seed window of SplitGaps (points): the fewest points whose fitted line has a direction at all
-  // after the seed test (three points of a rounded corner pass it); shorter runs stay unsplit.
-  static constexpr size_t kShortWindow = 4;
 
   // A side of a polygon-like chain shorter than min_length: rounded corners shorten every detected
   // side by 1-2 px at each end (more at acute corners), so a true side of 10-12 px comes out as a
@@ -395,196 +366,6 @@ class FastDetector {
     }
   }
 
-  // Corners between chains: a chain ends where it runs into another chain, so the short side of a
-  // box often forms a chain of its own whose end touches the long side's chain at the corner, and
-  // the within-chain rule of MarkCornerLengths never sees it. A piece shorter than min_length whose
-  // line meets the line of a piece at least min_length long (lines at least kMinCornerSine from
-  // parallel) at a point within max_gap of its own end-point and of one of that piece's end-points
-  // (an L corner: the two ends meet) has a corner at that end. Its corner_length is the distance
-  // between its corners, or from its one corner to its far end-point: the side's length before
-  // the corners rounded it off. Validate then tests it against the family of such pieces, like a
-  // short side between two corners. Long pieces' end-points are bucketed in cells of 2 max_gap.
-  void MarkContactCorners() {
-    const size_t m = pieces_.size();
-    std::vector<FittedLine>& lines = lines_;
-    lines.resize(m);
-    std::vector<Eigen::Vector2d>& ends = ends_;
-    ends.resize(2 * m);
-    std::vector<int>& short_pieces = short_pieces_;
-    short_pieces.clear();
-    const double cell = std::ceil(2 * options_.max_gap);
-    const int grid_cols = static_cast<int>(cols_ / cell) + 1, grid_rows = static_cast<int>(rows_ / cell) + 1;
-    auto cell_of = [&](const Eigen::Vector2d& p) {
-      const int cx = std::clamp(static_cast<int>(p.x() / cell), 0, grid_cols - 1);
-      const int cy = std::clamp(static_cast<int>(p.y() / cell), 0, grid_rows - 1);
-      return cy * grid_cols + cx;
-    };
-    // Counting sort of the long pieces' end-points by cell: cell c holds
-    // cell_ends_[cell_begin_[c] .. cell_begin_[c + 1]) (indices into ends).
-    cell_begin_.assign(static_cast<size_t>(grid_cols) * grid_rows + 1, 0);
-    for (size_t k = 0; k < m; ++k) {
-      lines[k] = pieces_[k].fit.FitWithoutRms();
-      ends[2 * k] = lines[k].Project(pieces_[k].first);
-      ends[2 * k + 1] = lines[k].Project(pieces_[k].last);
-      const double length = (ends[2 * k + 1] - ends[2 * k]).norm();
-      if (length >= options_.min_length) {
-        ++cell_begin_[cell_of(ends[2 * k]) + 1];
-        ++cell_begin_[cell_of(ends[2 * k + 1]) + 1];
-      } else if (length > 0 && pieces_[k].corner_length < options_.min_length) {
-        short_pieces.push_back(static_cast<int>(k));
-      }
-    }
-    if (short_pieces.empty()) return;
-    for (size_t c = 1; c < cell_begin_.size(); ++c) cell_begin_[c] += cell_begin_[c - 1];
-    cell_ends_.resize(cell_begin_.back());
-    cell_fill_.assign(cell_begin_.begin(), cell_begin_.end() - 1);
-    for (size_t k = 0; k < m; ++k) {
-      if ((ends[2 * k + 1] - ends[2 * k]).norm() < options_.min_length) continue;
-      for (int e = 0; e < 2; ++e)
-        cell_ends_[cell_fill_[cell_of(ends[2 * k + e])]++] = static_cast<int>(2 * k + e);
-    }
-    const double gap = options_.max_gap, reach2 = 4 * gap * gap;
-    for (const int s : short_pieces) {
-      Eigen::Vector2d corners[2] = {ends[2 * s], ends[2 * s + 1]};
-      bool any = false;
-      for (int e = 0; e < 2; ++e) {
-        const Eigen::Vector2d& end = ends[2 * s + e];
-        // The meeting point is within max_gap of both end-points, so they are within 2 max_gap of
-        // each other: the 3 x 3 cells around this end hold them.
-        const int cx = cell_of(end) % grid_cols, cy = cell_of(end) / grid_cols;
-        double best = gap;
-        for (int y = std::max(cy - 1, 0); y <= std::min(cy + 1, grid_rows - 1); ++y) {
-          for (int x = std::max(cx - 1, 0); x <= std::min(cx + 1, grid_cols - 1); ++x) {
-            const int c = y * grid_cols + x;
-            for (int i = cell_begin_[c]; i < cell_begin_[c + 1]; ++i) {
-              const Eigen::Vector2d& other_end = ends[cell_ends_[i]];
-              if ((other_end - end).squaredNorm() > reach2) continue;
-              Eigen::Vector2d corner;
-              if (!Intersect(lines[s], lines[cell_ends_[i] / 2], &corner)) continue;
-              const double to_end = (corner - end).norm();
-              if (to_end <= best && (corner - other_end).norm() <= gap) {
-                best = to_end;
-                corners[e] = corner;
-                any = true;
-              }
-            }
-          }
-        }
-      }
-      if (any)
-        pieces_[s].corner_length = std::max(pieces_[s].corner_length, (corners[1] - corners[0]).norm());
-    }
-  }
-
-  // Short pieces at contacts (fast.short_pieces_at_contacts), step 1: the runs of a chain's points
-  // that no piece of its regular splitting holds (ranges_, in chain order; before its first piece,
-  // between two, after its last), at least kShortWindow points long, are split again with seed
-  // windows of kShortWindow points. A short side cut by a third edge, or whose first pixels the
-  // long side's chain took, leaves such a run of 4-6 points, under the regular window of
-  // min_length / sqrt 2 points. The regular pieces are not changed.
-  void SplitGaps(size_t first_piece) {
-    const size_t regular = pieces_.size() - first_piece, n = chain_.size();
-    if (regular == 0) {
-      SplitRange(0, n, kShortWindow);
-      return;
-    }
-    // ranges_ is overwritten by AddPiece: copy the regular pieces' ranges first.
-    gaps_.clear();
-    size_t previous = 0;
-    for (size_t k = 0; k < regular; ++k) {
-      if (ranges_[k].first >= previous + kShortWindow) gaps_.emplace_back(previous, ranges_[k].first);
-      previous = ranges_[k].second;
-    }
-    if (n >= previous + kShortWindow) gaps_.emplace_back(previous, n);
-    for (const auto& [begin, end] : gaps_) SplitRange(begin, end, kShortWindow);
-  }
-
-  size_t CountRegularPieces() const {
-    return static_cast<size_t>(std::count_if(pieces_.begin(), pieces_.end(), [](const LinePiece& p) { return !p.short_pass; }));
-  }
-
-  // Short pieces at contacts, step 2 (after the joining): a piece shorter than min_length (and no
-  // short side measured between corners) is a candidate when its line meets the line of a segment
-  // at least min_length long, lines at least kMinCornerSine from parallel, at a point within
-  // max_gap of one of its own end-points and on that segment or within max_gap beyond one of its
-  // end-points: an L (the two ends meet) or a T (the short piece stops on the long one's
-  // interior), the contact a junction needs. Validate tests each candidate a-contrario against
-  // the family of candidates (their count per image), not against every sub-run of every chain:
-  // a short piece that does not meet a segment can form no junction and is not tested at all.
-  // In noise there are few long segments to meet, so the family stays small. The long pieces
-  // are entered in a grid of cells of 2 max_gap along their length, so each end looks at 3 x 3 cells.
-  void MarkPiecesAtContacts() {
-    const size_t m = pieces_.size();
-    std::vector<FittedLine>& lines = lines_;
-    lines.resize(m);
-    std::vector<Eigen::Vector2d>& ends = ends_;
-    ends.resize(2 * m);
-    std::vector<int>& candidates = short_pieces_;
-    candidates.clear();
-    const double gap = options_.max_gap, cell = std::ceil(2 * gap);
-    const int grid_cols = static_cast<int>(cols_ / cell) + 1, grid_rows = static_cast<int>(rows_ / cell) + 1;
-    auto cell_of = [&](const Eigen::Vector2d& p) {
-      const int cx = std::clamp(static_cast<int>(p.x() / cell), 0, grid_cols - 1);
-      const int cy = std::clamp(static_cast<int>(p.y() / cell), 0, grid_rows - 1);
-      return cy * grid_cols + cx;
-    };
-    // (cell, piece) entries of the long pieces, sampled every half cell along each.
-    cell_entries_.clear();
-    for (size_t k = 0; k < m; ++k) {
-      if (pieces_[k].merged_away) continue;
-      lines[k] = pieces_[k].fit.FitWithoutRms();
-      ends[2 * k] = lines[k].Project(pieces_[k].first);
-      ends[2 * k + 1] = lines[k].Project(pieces_[k].last);
-      const double length = (ends[2 * k + 1] - ends[2 * k]).norm();
-      if (length >= options_.min_length) {
-        const int steps = static_cast<int>(std::ceil(length / (0.5 * cell)));
-        int last = -1;
-        for (int i = 0; i <= steps; ++i) {
-          const int c = cell_of(ends[2 * k] + (ends[2 * k + 1] - ends[2 * k]) * (static_cast<double>(i) / steps));
-          if (c != last) cell_entries_.emplace_back(c, static_cast<int>(k));
-          last = c;
-        }
-      } else if (length > 0 && pieces_[k].corner_length < options_.min_length) {
-        candidates.push_back(static_cast<int>(k));
-      }
-    }
-    if (candidates.empty()) return;
-    // Counting sort of the entries by cell: cell c holds cell_ends_[cell_begin_[c] .. cell_begin_[c + 1]).
-    cell_begin_.assign(static_cast<size_t>(grid_cols) * grid_rows + 1, 0);
-    for (const auto& entry : cell_entries_) ++cell_begin_[entry.first + 1];
-    for (size_t c = 1; c < cell_begin_.size(); ++c) cell_begin_[c] += cell_begin_[c - 1];
-    cell_ends_.resize(cell_begin_.back());
-    cell_fill_.assign(cell_begin_.begin(), cell_begin_.end() - 1);
-    for (const auto& entry : cell_entries_) cell_ends_[cell_fill_[entry.first]++] = entry.second;
-    double family = 0;
-    for (const int s : candidates) {
-      bool meets = false;
-      for (int e = 0; e < 2 && !meets; ++e) {
-        const Eigen::Vector2d& end = ends[2 * s + e];
-        const int cx = cell_of(end) % grid_cols, cy = cell_of(end) / grid_cols;
-        for (int y = std::max(cy - 1, 0); y <= std::min(cy + 1, grid_rows - 1) && !meets; ++y) {
-          for (int x = std::max(cx - 1, 0); x <= std::min(cx + 1, grid_cols - 1) && !meets; ++x) {
-            const int c = y * grid_cols + x;
-            for (int i = cell_begin_[c]; i < cell_begin_[c + 1] && !meets; ++i) {
-              const int k = cell_ends_[i];
-              Eigen::Vector2d corner;
-              if (!Intersect(lines[s], lines[k], &corner) || (corner - end).norm() > gap) continue;
-              const Eigen::Vector2d along = ends[2 * k + 1] - ends[2 * k];
-              const double length = along.norm();
-              const double t = (corner - ends[2 * k]).dot(along) / length;
-              meets = t >= -gap && t <= length + gap;
-            }
-          }
-        }
-      }
-      if (meets) {
-        at_contact_[s] = 1;
-        ++family;
-      }
-    }
-    log10_contact_tests_ = std::log10(std::max(family, 1.0));
-  }
-
   // The common point of two lines, if they are at least kMinCornerSine from parallel.
   static bool Intersect(const FittedLine& a, const FittedLine& b, Eigen::Vector2d* point) {
     const double sine = a.direction.x() * b.direction.y() - a.direction.y() * b.direction.x();
@@ -621,17 +402,14 @@ class FastDetector {
   // sides of boxes, bevels and frames (10-15 px, a corner at each end) lost up to 4 of their ~12
   // samples that way and were rejected. In noise a sample is aligned with probability 1/8 wherever
   // it lies, so leaving the end samples out keeps the test's bound on false alarms.
-  void Validate(const LinePiece& piece, bool at_contact, LineSegments* segments) const {
+  void Validate(const LinePiece& piece, LineSegments* segments) const {
     LineSegment segment = SegmentOnLine(piece.fit.Fit(), piece.first, piece.last, piece.fit.count());
     const double length = segment.Length();
-    // A short piece at a contact with a long segment (MarkPiecesAtContacts) is tested against the
-    // family of such pieces.
-    const bool contact = at_contact && length < options_.min_length && length >= options_.fast.min_contact_length;
     // A short side between two corners (MarkCornerLengths) counts by its corner-to-corner length,
     // and is tested against the family of such sides only: its number of tests is their count,
     // tens to hundreds per image, not the chains' sub-runs.
     const bool short_side = length < options_.min_length && piece.corner_length >= options_.min_length;
-    if ((length < options_.min_length && !short_side && !contact) || !(length > 0)) return;
+    if ((length < options_.min_length && !short_side) || !(length > 0)) return;
     Eigen::Vector2d normal = segment.Normal();
     if (normal.dot(piece.gradient_sum) < 0) {
       std::swap(segment.p0, segment.p1);
@@ -644,8 +422,7 @@ class FastDetector {
     const Eigen::Vector2d direction = (segment.p1 - segment.p0) / length;
     const Eigen::Vector2d first = segment.p0 + (0.5 * (length - sampled)) * direction;
     const Eigen::Vector2d step = samples > 1 ? Eigen::Vector2d(direction * (sampled / (samples - 1))) : Eigen::Vector2d::Zero();
-    int aligned = 0, strong = 0;
-    const int16_t* mag = magnitude_.ptr<int16_t>();
+    int aligned = 0;
     for (int i = 0; i < samples; ++i) {
       const Eigen::Vector2d p = first + i * step;
       // Rounding as truncation of p + 0.5 (p >= -0.5 here; a point farther out is clamped anyway).
@@ -654,15 +431,8 @@ class FastDetector {
       const double g_x = gx[y * cols_ + x], g_y = gy[y * cols_ + x];
       const double along = g_x * normal.x() + g_y * normal.y();
       if (along > 0 && along * along >= kAlignedCos2 * (g_x * g_x + g_y * g_y)) ++aligned;
-      if (contact && mag[y * cols_ + x] >= high_) ++strong;
     }
-    // A short piece at a contact must be an edge by the chains' own start rule at every sample (the
-    // high threshold, where a chain may start; the minimum contrast along the curve, as in
-    // a-contrario meaningful boundaries): its few samples are chosen by the routing, which follows
-    // the magnitude ridge, so their alignment alone says little in noise (pure noise of sigma 4:
-    // 1.5 false segments per image without this rule, 0.98 with it, 0.88 with the rule off).
-    if (contact && strong < samples) return;
-    const double log10_tests = short_side ? log10_short_side_tests_ : contact ? log10_contact_tests_ : log10_tests_;
+    const double log10_tests = short_side ? log10_short_side_tests_ : log10_tests_;
     // Log10Nfa(samples, aligned, kAlignedProbability, log10_tests), its tail looked up.
     if (log10_tests + BinomialTail(samples, aligned) > options_.fast.log10_nfa_max) return;
     segments->push_back(segment);
@@ -683,10 +453,6 @@ class FastDetector {
   int low_ = 0, high_ = 0, min_pixels_ = 0;
   double num_tests_ = 0, log10_tests_ = 0;  // candidate segments tested by the NFA (see Run)
   double log10_short_side_tests_ = 0;       // log10 of the number of short sides between corners
-  double log10_contact_tests_ = 0;          // log10 of the number of short pieces at contacts
-  std::vector<uint8_t> at_contact_;         // per piece: 1 if a short piece at a contact
-  std::vector<std::pair<size_t, size_t>> gaps_;   // SplitGaps' runs of chain points
-  std::vector<std::pair<int, int>> cell_entries_;  // MarkPiecesAtContacts' (cell, long piece)
   // Views of the workspace's buffers (see Workspace for their contents).
   cv::Mat& gx_;
   cv::Mat& gy_;
@@ -701,11 +467,6 @@ class FastDetector {
   std::vector<LinePiece>& pieces_;
   std::vector<std::pair<size_t, size_t>>& ranges_;
   std::vector<FittedLine>& lines_;
-  std::vector<Eigen::Vector2d>& ends_;
-  std::vector<int>& short_pieces_;
-  std::vector<int>& cell_begin_;
-  std::vector<int>& cell_fill_;
-  std::vector<int>& cell_ends_;
   std::vector<std::vector<double>>& binomial_tails_;
 };
 

@@ -26,6 +26,18 @@ bool Finite(double v) { return std::isfinite(v); }
 
 }  // namespace
 
+const char* ToString(SegmentMethod method) { return method == SegmentMethod::kFast ? "fast" : "reference"; }
+
+Status FromString(const std::string& name, SegmentMethod* method) {
+  for (const SegmentMethod m : {SegmentMethod::kFast, SegmentMethod::kReference}) {
+    if (name == ToString(m)) {
+      *method = m;
+      return Status::Ok();
+    }
+  }
+  return Status::Error("'" + name + "' is not a segment method ('fast' or 'reference')");
+}
+
 Status SegmentDetectorOptions::Check() const {
   SFM_RETURN_IF_ERROR(Require(Finite(edge_contrast_low) && edge_contrast_low > 0, "edge_contrast_low",
                               edge_contrast_low, "> 0"));
@@ -36,8 +48,6 @@ Status SegmentDetectorOptions::Check() const {
   SFM_RETURN_IF_ERROR(Require(Finite(max_gap) && max_gap >= 1.5, "max_gap", max_gap, ">= 1.5 pixels"));
   SFM_RETURN_IF_ERROR(Require(Finite(border_margin) && border_margin >= 0, "border_margin", border_margin,
                               ">= 0 pixels"));
-  SFM_RETURN_IF_ERROR(Require(Finite(fast.min_contact_length) && fast.min_contact_length >= 2,
-                              "fast.min_contact_length", fast.min_contact_length, ">= 2 pixels"));
   const ReferenceSegmentOptions& r = reference;
   SFM_RETURN_IF_ERROR(Require(Finite(r.edge_sigma) && r.edge_sigma >= 0.5 && r.edge_sigma <= 10,
                               "reference.edge_sigma", r.edge_sigma, "in [0.5, 10] pixels"));

@@ -13,6 +13,8 @@
 // the mean image gradient (dark to bright) has a positive component along Normal().
 #pragma once
 
+#include <string>
+
 #include <opencv2/core.hpp>
 
 #include "frontend/segments/line_segment.h"
@@ -21,6 +23,11 @@
 namespace sfm {
 
 enum class SegmentMethod { kReference, kFast };
+
+// "reference" or "fast".
+const char* ToString(SegmentMethod method);
+// The method named `name` (as ToString writes it), or an error naming the choices.
+Status FromString(const std::string& name, SegmentMethod* method);
 
 // Options of the reference path (Canny-type edge filter + Hough transform).
 struct ReferenceSegmentOptions {
@@ -34,47 +41,12 @@ struct ReferenceSegmentOptions {
   double angle_tolerance_deg = 30.0;  // degrees: largest angle between an edge point's gradient and the line normal
 };
 
-// Options of the fast path (Sobel + anchored chaining + incremental splitting).
+// Options of the fast path (Sobel + anchored chaining + incremental splitting). Its short sides
+// between corners and its branches at free ends are steps 7 and 8 of docs/segments.md.
 struct FastSegmentOptions {
-  double presmooth_sigma = 0.7;     // pixels: Gaussian pre-smoothing before the Sobel pass (0: none)
-  double line_tolerance = 1.0;      // pixels: a chain pixel farther than this from the growing line ends it
-  double log10_nfa_max = 0.0;       // a piece is kept if log10(number of false alarms) <= this (NFA <= 1)
-  // A piece shorter than min_length whose end meets the end of a piece at least min_length long
-  // (of any chain) at a corner is measured from that corner, as a short side between two corners
-  // (docs/segments.md, step 7). false: only short sides within one chain, between two corners.
-  // Off by default: it raises junction recall by one point (82.5 -> 83.5 %) but its extra short
-  // junctions on real images cost VGG matching precision on held-out odometry seeds (99.0 / 98.4 ->
-  // 96.6 / 96.2 %, under the 97 % goal) and Strecha's refined shape (docs/junction_results.md).
-  bool corners_between_chains = false;
-  // At an end-point of a segment with no other segment's end-point within 2 max_gap, look for the
-  // corner's missing side in the gradient field: a ray of aligned gradient orientation, tested
-  // a-contrario, refitted to the sub-pixel edge points across it (branch_segments.h;
-  // docs/segments.md, step 8). On by default (session 4): junction recall on generated vertices
-  // 82.5 -> 84.3 % (held-out sequences 80.1 -> 81.3 %), precision 91.6 -> 91.9 %, VGG matching
-  // precision 98.1-98.8 % on odometry seeds 1-3, segments + junctions 2.49 -> 2.86-2.89 x Canny
-  // on VGG (docs/junction_results.md, "Session 4").
-  bool branches_at_free_ends = true;
-  // With branches_at_free_ends: at a free end of a segment B, continue the line of a segment A
-  // that stops 3-12 px short of their corner at a corner of its own, when the gradient along the
-  // gap is aligned with A's line (a-contrario, branch_segments.h; docs/segments.md, step 8).
-  // With branches_to_far_corners, on by default (session 5): junction recall on generated vertices
-  // 84.3 -> 85.3 % (held-out sequences 81.3 -> 82.6 %), precision 91.9 -> 92.2 %, VGG matching
-  // precision 97.8-98.7 % on odometry seeds 1-3 (docs/junction_results.md, "Session 5").
-  bool bridges_past_corners = true;
-  // With branches_at_free_ends: a branch whose far end stops at another segment's corner (an L or a
-  // T within max_gap) is measured from corner to corner for min_length, as the short sides of step 7.
-  bool branches_to_far_corners = true;
-  // A piece shorter than min_length (down to min_contact_length) whose line meets a segment at
-  // least min_length long within max_gap of one of its end-points (an L with that segment's end,
-  // or a T on its interior) is kept if its NFA against the family of such pieces (their count per
-  // image) is at most 10^log10_nfa_max; the chain points no regular piece holds are split again
-  // with 4-point seed windows to find them; every sample must reach the high edge threshold
-  // (docs/segments.md, step 7). Off by default (session 6, docs/junction_results.md): junction
-  // recall on generated vertices 86.4 -> 89.3 % (held-out 86.5 -> 88.3 %) at unchanged precision,
-  // but VGG matching precision 98.2 -> 96.6 %, generated matching recall 91.2 -> 89.0 % and about
-  // 19 % more instructions for segments + junctions on VGG (session 6, part 2).
-  bool short_pieces_at_contacts = false;
-  double min_contact_length = 4.0;  // pixels: shortest piece short_pieces_at_contacts keeps
+  double presmooth_sigma = 0.7;  // pixels: Gaussian pre-smoothing before the Sobel pass (0: none)
+  double line_tolerance = 1.0;   // pixels: a chain pixel farther than this from the growing line ends it
+  double log10_nfa_max = 0.0;    // a piece is kept if log10(number of false alarms) <= this (NFA <= 1)
 };
 
 struct SegmentDetectorOptions {
@@ -84,15 +56,12 @@ struct SegmentDetectorOptions {
   // in the reference path, anchors in the fast path).
   double edge_contrast_low = 5.0;    // grey levels
   double edge_contrast_high = 10.0;  // grey levels
-  // pixels: shorter segments are dropped. The shortest length at which pure noise of twice a
-  // camera's noise (sigma 4 grey levels) gives at most one false segment per 640 x 480 image on
-  // average (measured for the fast path: 0.86 at 9 px, 2.0 at 8 px; docs/segments.md).
+  // pixels: shorter segments are dropped; the shortest length at which noise of sigma 4 grey levels
+  // gives at most one false segment per 640 x 480 image (docs/segments.md, "Defaults").
   double min_length = 9.0;
   double max_gap = 3.0;              // pixels: a longer run without edge points splits a line (>= 1.5)
-  // pixels: a segment whose two end-points both lie this close to the same image border is dropped.
-  // The border is not a scene edge, but the filters' padding and sensor artefacts (a dark first or
-  // last column) make one there; 2 px is the reach of the edge filter's support at sigma 1 (0:
-  // keep everything).
+  // pixels: a segment whose two end-points both lie this close to the same image border is dropped
+  // (padding and sensor artefacts make edges there); the edge filter's reach at sigma 1 (0: keep all).
   double border_margin = 2.0;
   ReferenceSegmentOptions reference;
   FastSegmentOptions fast;

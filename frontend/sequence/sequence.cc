@@ -1,5 +1,9 @@
 #include "frontend/sequence/sequence.h"
 
+#include <glog/logging.h>
+#include <sys/stat.h>
+
+#include <Eigen/LU>
 #include <algorithm>
 #include <cctype>
 #include <cerrno>
@@ -10,16 +14,16 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
-#include <sstream>
-
-#include <Eigen/LU>
-#include <glog/logging.h>
 #include <opencv2/core/eigen.hpp>
 #include <opencv2/imgcodecs.hpp>
+#include <sstream>
 
 #include "frontend/geometry/tum_io.h"
+#include "frontend/sequence/image_header.h"
 #include "frontend/util/atomic_file.h"
+#include "frontend/util/json_format.h"
 #include "frontend/util/number_text.h"
+#include "frontend/util/regular_file.h"
 #include "frontend/util/text_file.h"
 
 namespace sfm {
@@ -46,17 +50,63 @@ bool ParseFiniteDouble(const std::string& token, double* value) {
   return ParseDouble(token, value) && std::isfinite(*value);
 }
 
+// The largest image side accepted (pixels): beyond any camera, and width * height * 3 bytes stay
+// far inside the int OpenCV sizes its buffers with.
+constexpr long long kMaxImageSide = 100000;
+// T_base_camera's translation (metres) and the odometry sigmas are bounded so that their squares
+// and products with poses stay finite; no robot's camera sits a thousand kilometres from its base.
+constexpr double kMaxBaseCameraTranslationM = 1e6;
+constexpr double kMaxOdometrySigma = 1e6;
+
+// The text after "<key>:" on the line that starts with the top-level key, '#' comment and white
+// space cut; "" when there is no such line. OpenCV stores a YAML integer in an int without
+// reporting overflow (4294967936 reads as 640), so integer keys are range-checked on this text.
+std::string RawTopLevelValue(const std::string& text, const std::string& key) {
+  for (size_t at = 0; at < text.size();) {
+    const size_t end = std::min(text.find('\n', at), text.size());
+    if (text.compare(at, key.size(), key) == 0) {
+      size_t colon = at + key.size();
+      while (colon < end && (text[colon] == ' ' || text[colon] == '\t')) ++colon;
+      if (colon < end && text[colon] == ':') {
+        std::string value = text.substr(colon + 1, end - colon - 1);
+        const size_t comment = value.find('#');
+        if (comment != std::string::npos) value.resize(comment);
+        const size_t first = value.find_first_not_of(" \t\r");
+        if (first == std::string::npos) return "";
+        const size_t last = value.find_last_not_of(" \t\r");
+        return value.substr(first, last - first + 1);
+      }
+    }
+    at = end + 1;
+  }
+  return "";
+}
+
 // Reads sequence.yaml's keys; cv::Exception from OpenCV propagates to ReadCalibration.
 class CalibrationReader {
  public:
-  CalibrationReader(const std::string& path, const cv::FileStorage& storage) : path_(path), storage_(storage) {}
+  CalibrationReader(const std::string& path, const std::string& text, const cv::FileStorage& storage)
+      : path_(path), text_(text), storage_(storage) {}
 
-  Status PositiveInt(const std::string& key, int* value) const {
+  // A positive integer of at most `max`, range-checked on the file's own text (RawTopLevelValue).
+  Status PositiveInt(const std::string& key, long long max, int* value) const {
     const cv::FileNode node = storage_[key];
     if (node.empty() || node.isNone()) return Missing(key);
     if (!node.isInt()) return Error(key, "must be an integer");
+    const std::string raw = RawTopLevelValue(text_, key);
+    if (!raw.empty()) {
+      errno = 0;
+      char* end = nullptr;
+      const long long read = std::strtoll(raw.c_str(), &end, 10);
+      if (end != raw.c_str() && (errno == ERANGE || read > max || read < -max)) {
+        return Error(key, "is " + raw + ", out of range (at most " + std::to_string(max) + ")");
+      }
+    }
     *value = static_cast<int>(node);
     if (*value <= 0) return Error(key, "must be positive, found " + std::to_string(*value));
+    if (*value > max)
+      return Error(key,
+                   "is " + std::to_string(*value) + ", out of range (at most " + std::to_string(max) + ")");
     return Status::Ok();
   }
 
@@ -69,6 +119,10 @@ class CalibrationReader {
     const double read = static_cast<double>(node);
     if (!std::isfinite(read)) return Error(key, "is not finite (" + ShortestNumberText(read) + ")");
     if (read <= 0) return Error(key, "must be positive, found " + ShortestNumberText(read));
+    if (read > kMaxOdometrySigma) {
+      return Error(key, "is " + ShortestNumberText(read) + ", out of range (at most " +
+                            ShortestNumberText(kMaxOdometrySigma) + ")");
+    }
     *value = read;
     return Status::Ok();
   }
@@ -119,14 +173,16 @@ class CalibrationReader {
   }
 
   const std::string& path_;
+  const std::string& text_;
   const cv::FileStorage& storage_;
 };
 
-Status ReadCalibrationKeys(const std::string& path, const cv::FileStorage& storage, Calibration* calibration) {
-  const CalibrationReader reader(path, storage);
+Status ReadCalibrationKeys(const std::string& path, const std::string& text, const cv::FileStorage& storage,
+                           Calibration* calibration) {
+  const CalibrationReader reader(path, text, storage);
   Camera& camera = calibration->camera;
-  SFM_RETURN_IF_ERROR(reader.PositiveInt("image_width", &camera.width));
-  SFM_RETURN_IF_ERROR(reader.PositiveInt("image_height", &camera.height));
+  SFM_RETURN_IF_ERROR(reader.PositiveInt("image_width", kMaxImageSide, &camera.width));
+  SFM_RETURN_IF_ERROR(reader.PositiveInt("image_height", kMaxImageSide, &camera.height));
 
   cv::Mat K;
   SFM_RETURN_IF_ERROR(reader.Matrix("camera_matrix", {{3, 3}}, &K));
@@ -162,6 +218,12 @@ Status ReadCalibrationKeys(const std::string& path, const cv::FileStorage& stora
     return reader.Error("T_base_camera", "rotation part is not a rotation (|R^T R - I| = " +
                                              ShortestNumberText(orthogonality_error) + ", det R = " +
                                              ShortestNumberText(determinant) + ")");
+  }
+  const double translation = base_T_camera.topRightCorner<3, 1>().cwiseAbs().maxCoeff();  // no overflow
+  if (!(translation <= kMaxBaseCameraTranslationM)) {
+    return reader.Error("T_base_camera", "translation has a coordinate of " +
+                                             ShortestNumberText(translation) + " m, out of range (at most " +
+                                             ShortestNumberText(kMaxBaseCameraTranslationM) + " m)");
   }
   calibration->base_T_camera = Pose3::FromMatrix4(base_T_camera);
 
@@ -296,10 +358,12 @@ Status ReadImageList(const std::string& directory, const std::string& path, std:
                            " is not after the previous frame's " + ShortestNumberText(frames->back().timestamp) +
                            " (frames must be in increasing time order)");
     }
+    if (!IsValidUtf8(image_path)) {
+      return Status::Error(where + "the image path is not valid UTF-8; rename the image with a UTF-8 name");
+    }
     const fs::path image_file = fs::path(directory) / image_path;
-    std::error_code error;
-    if (!fs::is_regular_file(image_file, error)) {
-      return Status::Error(where + "image file " + image_file.string() + " does not exist");
+    if (const std::string problem = RegularFileProblem(image_file.string()); !problem.empty()) {
+      return Status::Error(where + "image file " + image_file.string() + " " + problem);
     }
     frame.index = static_cast<int>(frames->size());
     frame.image_path = image_path;
@@ -317,15 +381,9 @@ Status ReadImageList(const std::string& directory, const std::string& path, std:
 }  // namespace
 
 Status ReadCalibration(const std::string& yaml_path, Calibration* calibration) {
-  std::error_code error;
-  if (!fs::is_regular_file(yaml_path, error)) {
-    return Status::Error(yaml_path + ": calibration file does not exist");
-  }
-  std::ifstream in(yaml_path, std::ios::binary);
-  std::ostringstream contents;
-  contents << in.rdbuf();
-  if (!in) return Status::Error(yaml_path + ": cannot read (" + std::strerror(errno) + ")");
-  std::string text = contents.str();
+  std::string text;
+  SFM_RETURN_IF_ERROR(ReadRegularFile(yaml_path, "calibration file", &text, size_t(1) << 24));
+  SFM_RETURN_IF_ERROR(CheckPlainText(yaml_path, text));
   if (text.find_first_not_of(" \t\r\n") == std::string::npos) return Status::Error(yaml_path + ": file is empty");
   // OpenCV 4.6 rejects YAML without its "%YAML" directive; hand-written and PyYAML files lack it.
   const bool header_added = text.rfind("%YAML", 0) != 0;
@@ -333,7 +391,7 @@ Status ReadCalibration(const std::string& yaml_path, Calibration* calibration) {
   try {
     const cv::FileStorage storage(text, cv::FileStorage::READ | cv::FileStorage::MEMORY);
     if (!storage.isOpened()) return Status::Error(yaml_path + ": cannot be parsed as OpenCV YAML");
-    return ReadCalibrationKeys(yaml_path, storage, calibration);
+    return ReadCalibrationKeys(yaml_path, text, storage, calibration);
   } catch (const cv::Exception& e) {
     return Status::Error(yaml_path + DescribeYamlError(e, header_added ? 1 : 0));
   }
@@ -384,7 +442,9 @@ Status ReadSequence(const std::string& directory, Sequence* sequence) {
 
   const std::string groundtruth_path = (root / "groundtruth.txt").string();
   std::vector<StampedPose> groundtruth;
-  read.has_groundtruth = fs::exists(groundtruth_path, error);
+  // Present when the name exists at all (a FIFO or a link loop included): the read then names the problem.
+  struct stat groundtruth_info;
+  read.has_groundtruth = lstat(groundtruth_path.c_str(), &groundtruth_info) == 0;
   if (read.has_groundtruth) SFM_RETURN_IF_ERROR(ReadTumTrajectory(groundtruth_path, &groundtruth));
 
   SFM_RETURN_IF_ERROR(AssociatePoses(images_path, line_numbers, odometry_path, odometry, &read.frames,
@@ -402,21 +462,30 @@ Status LoadFrameImage(const Sequence& sequence, int frame_index, cv::Mat* grey) 
   CHECK_GE(frame_index, 0);
   CHECK_LT(frame_index, static_cast<int>(sequence.frames.size()));
   const std::string path = (fs::path(sequence.directory) / sequence.frames[frame_index].image_path).string();
-  std::error_code error;
-  if (!fs::is_regular_file(path, error)) return Status::Error(path + ": image file does not exist");
+  std::string data;
+  SFM_RETURN_IF_ERROR(ReadRegularFile(path, "image file", &data));
+  const Camera& camera = sequence.calibration.camera;
+  auto wrong_size = [&](int width, int height) {
+    return Status::Error(path + ": image is " + std::to_string(width) + "x" + std::to_string(height) +
+                         ", sequence.yaml says " + std::to_string(camera.width) + "x" +
+                         std::to_string(camera.height));
+  };
+  // The header first: the size is checked before decoding (a small file may declare a huge
+  // image), and a truncated JPEG is refused rather than decoded with grey rows.
+  const ImageHeader header = ReadImageHeader(data);
+  if (!header.problem.empty()) return Status::Error(path + ": " + header.problem);
+  if (header.width > 0 && (header.width != camera.width || header.height != camera.height)) {
+    return wrong_size(header.width, header.height);
+  }
   cv::Mat image;
   try {
-    image = cv::imread(path, cv::IMREAD_GRAYSCALE);
+    image =
+        cv::imdecode(cv::Mat(1, static_cast<int>(data.size()), CV_8UC1, data.data()), cv::IMREAD_GRAYSCALE);
   } catch (const cv::Exception& e) {
     return Status::Error(path + ": cannot decode image (" + OneLine(e.err) + ")");
   }
   if (image.empty()) return Status::Error(path + ": cannot decode image");
-  const Camera& camera = sequence.calibration.camera;
-  if (image.cols != camera.width || image.rows != camera.height) {
-    return Status::Error(path + ": image is " + std::to_string(image.cols) + "x" + std::to_string(image.rows) +
-                         ", sequence.yaml says " + std::to_string(camera.width) + "x" +
-                         std::to_string(camera.height));
-  }
+  if (image.cols != camera.width || image.rows != camera.height) return wrong_size(image.cols, image.rows);
   *grey = image;
   return Status::Ok();
 }

@@ -59,7 +59,7 @@ void CheckMatch(const std::vector<Junctions>& frames, const FrameMatch& m) {
   if (!m.match.Partial()) {
     CHECK_EQ(n_a, n_b) << "full match between junctions with different segment counts";
   } else if (m.match.missing_a >= 0 && m.match.missing_b >= 0) {
-    // One common segment (MatchingOptions::match_one_common): two L's, one unshared segment each.
+    // One common segment (docs/matching.md): two L's, one unshared segment each.
     CHECK(n_a == 2 && n_b == 2) << "match with two missing segments between junctions of " << n_a << " and "
                                 << n_b << " segments";
     CHECK(m.match.missing_a < 2 && m.match.missing_b < 2 && m.match.shift == 0)

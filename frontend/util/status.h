@@ -7,7 +7,8 @@
 
 namespace sfm {
 
-class Status {
+// [[nodiscard]]: a caller that drops a returned Status is a compiler warning.
+class [[nodiscard]] Status {
  public:
   Status() = default;  // OK
   static Status Ok() { return Status(); }

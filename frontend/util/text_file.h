@@ -18,8 +18,14 @@ struct DataLine {
 };
 
 // The lines of `path` that hold more than white space once a '#' comment is cut. Fails, naming the
-// file, when it is missing, is a directory, cannot be opened, or a read error occurs.
+// file, when it is missing, is not a regular file (ReadRegularFile: never blocks on a FIFO), cannot
+// be read, or is not plain text (CheckPlainText).
 Status ReadDataLines(const std::string& path, std::vector<DataLine>* lines);
+
+// OK when `text` (the contents of `path`) is plain 8-bit text with LF or CR LF line endings;
+// otherwise a message naming the problem: a UTF-8 byte-order mark, UTF-16, a NUL byte (with its
+// line), CR-only or mixed line endings.
+Status CheckPlainText(const std::string& path, const std::string& text);
 
 // The white-space separated words of `text`.
 std::vector<std::string> SplitWords(const std::string& text);

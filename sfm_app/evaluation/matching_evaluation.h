@@ -128,8 +128,8 @@ struct VertexMatchCounts {
   // Of seen_both_same_count, joined by a full match (junctions of equal segment counts): the recall
   // of the paper's rule, at most seen_both_same_count.
   int matched_same_count = 0;
-  // Of matched, joined by partial matches only (junctions of k and k + 1 segments; MatchingOptions::
-  // match_partial): matched = matched by a full match + matched_partial_only.
+  // Of matched, joined by partial matches only (junctions of k and k + 1 segments; docs/matching.md,
+  // "Partial correspondence"): matched = matched by a full match + matched_partial_only.
   int matched_partial_only = 0;
   int misses[static_cast<int>(MissReason::kNumReasons)] = {};
   void Add(const VertexMatchCounts& o);

@@ -36,13 +36,6 @@ bool UndistortInterpolationFromFlags(UndistortInterpolation* interpolation, std:
 // Same group: --undistort_full_view (default kDetectionView, the full view).
 UndistortView UndistortViewFromFlags();
 
-// Group sfm_flags_segment_branches: --branches_at_free_ends, --branches_to_far_corners,
-// --bridges_past_corners, --short_pieces_at_contacts, --min_contact_length.
-void SegmentBranchesFromFlags(FastSegmentOptions* options);
-
-// Group sfm_flags_junction_choice: --choose_by_end_likelihood, --acute_shortfall_px.
-void JunctionChoiceFromFlags(JunctionDetectorOptions* options);
-
 // Group sfm_flags_junction_detector: --lambda, --mu, --min_probability, --max_gap_px,
 // --collinear_tolerance_deg, --collinear_max_offset_px, --min_arm_px.
 void JunctionDetectorFromFlags(JunctionDetectorOptions* options);
@@ -54,8 +47,7 @@ void JunctionDetectorFromFlags(JunctionDetectorOptions* options);
 // --match_rho1 that is not one of the choices.
 bool MatchingFromFlags(JunctionDetectorOptions* junctions, MatchingOptions* matching, std::string* error);
 
-// Group sfm_flags_matching_refine: --match_refine, --match_refine_gate, --match_refine_min_inliers,
-// --match_refine_constrain, --match_partial, --match_partial_rule_a.
+// Group sfm_flags_matching_refine: --match_refine, --match_refine_gate, --match_refine_min_inliers.
 void MatchingRefineFromFlags(MatchingOptions* matching);
 
 }  // namespace sfm

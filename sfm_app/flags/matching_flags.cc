@@ -22,7 +22,7 @@ DEFINE_double(
 DEFINE_double(match_tau1, kDefaults.tau1, "tau1 of rule (38): least similarity of a match.");
 DEFINE_double(match_tau2, kDefaults.tau2,
               "tau2 of rule (38): how much the best candidate must beat the second, both ways.");
-DEFINE_string(match_rho1, kDefaults.rho1_kind == sfm::Rho1Kind::kLinear ? "linear" : "exponential",
+DEFINE_string(match_rho1, sfm::ToString(kDefaults.rho1_kind),
               "rho1 of eq. (31): 'exponential' or 'linear' (footnote 10; more tolerant of a poor epipolar "
               "geometry).");
 DEFINE_bool(match_pose_band, kDefaults.use_pose_band,
@@ -50,15 +50,9 @@ bool MatchingFromFlags(JunctionDetectorOptions* junctions, MatchingOptions* matc
   matching->band_sigmas = FLAGS_match_band_sigmas;
   matching->use_cheirality = FLAGS_match_cheirality;
   matching->use_topology = FLAGS_match_topology;
-  if (FLAGS_match_rho1 == "exponential") {
-    matching->rho1_kind = Rho1Kind::kExponential;
-  } else if (FLAGS_match_rho1 == "linear") {
-    matching->rho1_kind = Rho1Kind::kLinear;
-  } else {
-    *error = "--match_rho1 must be 'exponential' or 'linear', not '" + FLAGS_match_rho1 + "'";
-    return false;
-  }
-  return true;
+  const Status status = FromString(FLAGS_match_rho1, &matching->rho1_kind);
+  if (!status.ok()) *error = "--match_rho1: " + status.message();
+  return status.ok();
 }
 
 }  // namespace sfm

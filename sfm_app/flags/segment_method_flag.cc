@@ -1,21 +1,15 @@
 #include "sfm_app/flags/detector_flags.h"
 
-DEFINE_string(segments, "fast",
+DEFINE_string(segments, sfm::ToString(sfm::SegmentDetectorOptions().method),
               "Line segment detector: 'fast' (anchored edge chaining) or 'reference' "
               "(the paper's edge filter + Hough transform + sub-pixel fit).");
 
 namespace sfm {
 
 bool SegmentMethodFromFlags(SegmentDetectorOptions* options, std::string* error) {
-  if (FLAGS_segments == "fast") {
-    options->method = SegmentMethod::kFast;
-  } else if (FLAGS_segments == "reference") {
-    options->method = SegmentMethod::kReference;
-  } else {
-    *error = "--segments must be 'fast' or 'reference', not '" + FLAGS_segments + "'";
-    return false;
-  }
-  return true;
+  const Status status = FromString(FLAGS_segments, &options->method);
+  if (!status.ok()) *error = "--segments: " + status.message();
+  return status.ok();
 }
 
 }  // namespace sfm

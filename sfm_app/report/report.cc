@@ -1,14 +1,16 @@
 #include "sfm_app/report/report.h"
 
+#include <glog/logging.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <map>
 #include <memory>
 #include <numeric>
-
-#include <glog/logging.h>
 #include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
 
 #include "backend/metrics/alignment.h"
 #include "frontend/geometry/image_undistorter.h"
@@ -284,7 +286,58 @@ std::string MatchSection(const Context& c) {
   return html;
 }
 
-std::string MatchPictureSection(const Context& c, const std::vector<cv::Mat>& images) {
+// Match pictures of larger frames are drawn on the frames shrunk to this width (pixels), so the
+// page stays a few megabytes and quick to write whatever the camera (8000x6000 frames at full
+// size make a 60 MB page whose encoding takes longer than the rest of the run), and the junction
+// numbers stay readable.
+constexpr int kMaxPictureWidth = 960;
+
+// The factor a frame of this width is shrunk by for its picture (1: not shrunk).
+double PictureScale(int width) {
+  return width > kMaxPictureWidth ? static_cast<double>(kMaxPictureWidth) / width : 1;
+}
+
+cv::Mat Shrunk(const cv::Mat& image, double f) {
+  if (f == 1) return image;
+  cv::Mat small;
+  cv::resize(
+      image, small,
+      cv::Size(static_cast<int>(std::lround(image.cols * f)), static_cast<int>(std::lround(image.rows * f))),
+      0, 0, cv::INTER_AREA);
+  return small;
+}
+
+// Pixel centres scale about the image's corner (the centre of the top-left pixel is at (0, 0),
+// conventions.md).
+Eigen::Vector2d ShrunkPixel(const Eigen::Vector2d& p, double f) {
+  return Eigen::Vector2d((p.array() + 0.5) * f - 0.5);
+}
+
+// The camera of the frames shrunk by f (the distortion acts on normalised coordinates: unchanged).
+Camera ShrunkCamera(const Camera& camera, double f, const cv::Size& size) {
+  Camera small = camera;
+  small.width = size.width;
+  small.height = size.height;
+  small.fx *= f;
+  small.fy *= f;
+  const Eigen::Vector2d c = ShrunkPixel(Eigen::Vector2d(camera.cx, camera.cy), f);
+  small.cx = c.x();
+  small.cy = c.y();
+  return small;
+}
+
+Junctions Shrunk(const Junctions& junctions, double f) {
+  if (f == 1) return junctions;
+  Junctions shrunk = junctions;
+  for (Junction& junction : shrunk) {
+    junction.location = ShrunkPixel(junction.location, f);
+    for (JunctionSegment& segment : junction.segments) segment.end = ShrunkPixel(segment.end, f);
+  }
+  return shrunk;
+}
+
+std::string MatchPictureSection(const Context& c, const std::vector<cv::Mat>& images,
+                                const std::vector<cv::Mat>& stored_images) {
   std::string html = "<h2 id=\"match-images\">Match pictures</h2>\n";
   std::vector<const FramePairMatches*> consecutive;
   for (const FramePairMatches& pair : c.result.pairs) {
@@ -302,16 +355,33 @@ std::string MatchPictureSection(const Context& c, const std::vector<cv::Mat>& im
                "same number in both frames and corresponding junction segments the same colour; unmatched "
                "junctions are thin and grey. Undistorted images, shown dimmed.");
 
+  // Each shown frame at picture scale, undistorted: given, or from the stored frames (given or read
+  // again), shrunk before the undistortion (a 48-megapixel remap would cost more than the rest).
+  const double f = PictureScale(c.sequence.calibration.camera.width);
   std::unique_ptr<ImageUndistorter> undistorter;
+  std::map<int, cv::Mat> pictures;
   auto image_of = [&](int frame, cv::Mat* image) -> Status {
-    if (!images.empty()) {
-      *image = images.at(frame);
+    if (const auto it = pictures.find(frame); it != pictures.end()) {
+      *image = it->second;
       return Status::Ok();
     }
-    cv::Mat grey;
-    SFM_RETURN_IF_ERROR(LoadFrameImage(c.sequence, frame, &grey));
-    if (!undistorter) undistorter = std::make_unique<ImageUndistorter>(c.sequence.calibration.camera);
-    *image = undistorter->Apply(grey);
+    if (!images.empty()) {
+      *image = Shrunk(images.at(frame), f);
+    } else {
+      cv::Mat grey;
+      if (!stored_images.empty()) {
+        grey = stored_images.at(frame);
+      } else {
+        SFM_RETURN_IF_ERROR(LoadFrameImage(c.sequence, frame, &grey));
+      }
+      const cv::Mat small = Shrunk(grey, f);
+      if (!undistorter) {
+        undistorter =
+            std::make_unique<ImageUndistorter>(ShrunkCamera(c.sequence.calibration.camera, f, small.size()));
+      }
+      *image = undistorter->Apply(small);
+    }
+    pictures[frame] = *image;
     return Status::Ok();
   };
   for (const FramePairMatches* pair : shown) {
@@ -326,7 +396,8 @@ std::string MatchPictureSection(const Context& c, const std::vector<cv::Mat>& im
     const Junctions& a = c.result.junctions.at(pair->frame_a);
     const Junctions& b = c.result.junctions.at(pair->frame_b);
     const int scale = image_a.cols < 400 ? 2 : 1;  // small images enlarged so that the numbers stay readable
-    const cv::Mat picture = DrawMatchOverlay(image_a, a, image_b, b, pair->matches, scale);
+    const cv::Mat picture =
+        DrawMatchOverlay(image_a, Shrunk(a, f), image_b, Shrunk(b, f), pair->matches, scale);
     html += Figure(picture, "matches between frames " + std::to_string(pair->frame_a) + " and " + std::to_string(pair->frame_b),
                    "Frames " + std::to_string(pair->frame_a) + " (left) and " + std::to_string(pair->frame_b) +
                        " (right): " + std::to_string(pair->matches.size()) + " matches of " + std::to_string(a.size()) +
@@ -466,7 +537,8 @@ TrajectoryErrors ComputeTrajectoryErrors(const std::vector<Pose3>& world_T_camer
 }
 
 std::string ReportHtml(const Sequence& sequence, const PipelineResult& result,
-                       const std::vector<cv::Mat>& undistorted_images_or_empty) {
+                       const std::vector<cv::Mat>& undistorted_images_or_empty,
+                       const std::vector<cv::Mat>& stored_images_or_empty) {
   const std::vector<cv::Mat>& images = undistorted_images_or_empty;
   CHECK(images.empty() || images.size() == sequence.frames.size())
       << "give one undistorted image per frame, or none";
@@ -493,16 +565,18 @@ std::string ReportHtml(const Sequence& sequence, const PipelineResult& result,
   html += ErrorSection(c);
   html += JunctionSection(c);
   html += MatchSection(c);
-  html += MatchPictureSection(c, images);
+  html += MatchPictureSection(c, images, stored_images_or_empty);
   html += WireframeSection(c);
   return html + "</body>\n</html>\n";
 }
 
 Status WriteReport(const Sequence& sequence, const PipelineResult& result,
-                   const std::vector<cv::Mat>& undistorted_images_or_empty, const std::string& output_dir) {
+                   const std::vector<cv::Mat>& undistorted_images_or_empty, const std::string& output_dir,
+                   const std::vector<cv::Mat>& stored_images_or_empty) {
   SFM_RETURN_IF_ERROR(EnsureWritableDirectory(output_dir));
-  return WriteFileAtomically((fs::path(output_dir) / "report.html").string(),
-                             ReportHtml(sequence, result, undistorted_images_or_empty));
+  return WriteFileAtomically(
+      (fs::path(output_dir) / "report.html").string(),
+      ReportHtml(sequence, result, undistorted_images_or_empty, stored_images_or_empty));
 }
 
 }  // namespace sfm

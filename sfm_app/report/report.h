@@ -21,14 +21,19 @@ namespace sfm {
 // the wireframe from above and from the side.
 // `undistorted_images_or_empty`: the undistorted 8-bit images, one per frame, or empty, in which
 // case the few frames the match pictures need are read from the sequence and undistorted here (a
-// frame that cannot be read is reported on the page, not as an error). Fails only when the file
+// frame that cannot be read is reported on the page, not as an error). `stored_images_or_empty`:
+// the frames as stored (8-bit grey), one per frame, so they are not read again; used when no
+// undistorted images are given. Frames wider than 960 pixels are shrunk to that width for the match
+// pictures (before the undistortion), so the page stays a few megabytes. Fails only when the file
 // cannot be written.
 Status WriteReport(const Sequence& sequence, const PipelineResult& result,
-                   const std::vector<cv::Mat>& undistorted_images_or_empty, const std::string& output_dir);
+                   const std::vector<cv::Mat>& undistorted_images_or_empty, const std::string& output_dir,
+                   const std::vector<cv::Mat>& stored_images_or_empty = {});
 
 // The page WriteReport writes.
 std::string ReportHtml(const Sequence& sequence, const PipelineResult& result,
-                       const std::vector<cv::Mat>& undistorted_images_or_empty);
+                       const std::vector<cv::Mat>& undistorted_images_or_empty,
+                       const std::vector<cv::Mat>& stored_images_or_empty = {});
 
 // "data:image/png;base64,..." of an 8-bit image (grey or BGR).
 std::string PngDataUri(const cv::Mat& image);

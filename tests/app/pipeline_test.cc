@@ -111,10 +111,9 @@ TEST_F(PipelineOnGeneratedRoom, BundleAdjustmentHalvesRotationDriftAndLowersAte)
   RecordProperty("ate_refined_m", std::to_string(result_.drift_refined->ate_m));
 }
 
-// Partial junction matches (MatchingOptions::match_partial: an L in one frame against a Y in the
-// other) go through the whole run: tracks join them through their common segments (the missing one
-// is -1 in that view), lines are triangulated from the views that have the segment, and the report's
-// match pictures draw them. Before, the pipeline refused the option.
+// Partial junction matches (an L in one frame against a Y in the other) go through the whole run:
+// tracks join them through their common segments (the missing one is -1 in that view), lines are
+// triangulated from the views that have the segment, and the report's match pictures draw them.
 TEST(PipelineWithPartialMatches, CarriesThemIntoTracksLinesAndTheReport) {
   const fs::path scratch = testing::MakeScratchDir("pipeline_partial");
   GeneratorOptions generator;
@@ -127,7 +126,6 @@ TEST(PipelineWithPartialMatches, CarriesThemIntoTracksLinesAndTheReport) {
   options.sequence_dir = (scratch / "sequence").string();
   options.output_dir = (scratch / "output").string();
   options.show_progress = false;
-  options.matching.match_partial = true;
   PipelineResult result;
   const Status status = RunPipeline(options, &result);
   ASSERT_TRUE(status.ok()) << status.message();

@@ -48,7 +48,6 @@ TEST(RelativePoseFromMatches, RecoversTheRotationWithinATenthOfADegreeDespiteOut
     prior.covariance.setZero();
     prior.covariance.diagonal() << 4e-4, 4e-4, 4e-4, 2.5e-3, 2.5e-3, 2.5e-3;
     PairRefinementSettings settings;
-    settings.constrain_to_prior_gate = true;
     const PairRefinement map = RefinePairGeometry(prior, x1, x2, settings);
     ASSERT_TRUE(map.Refined()) << "seed " << seed << ": outcome " << static_cast<int>(map.outcome);
     const PairRefinement refinement = RelativePoseFromMatches(map, x1, x2, settings);

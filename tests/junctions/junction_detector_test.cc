@@ -32,13 +32,11 @@ JunctionDetectorOptions Options() {
   return options;
 }
 
-Junctions DetectSpokes(std::initializer_list<double> angles, double gap, bool by_end_likelihood = true) {
+Junctions DetectSpokes(std::initializer_list<double> angles, double gap) {
   const Eigen::Vector2d center(200, 150);
   LineSegments segments;
   for (double a : angles) segments.push_back(Spoke(center, a, gap));
-  JunctionDetectorOptions options = Options();
-  options.choose_by_end_likelihood = by_end_likelihood;
-  return DetectJunctions(segments, options);
+  return DetectJunctions(segments, Options());
 }
 
 // The default threshold's rule (junction_options.h): with end-point offsets t drawn from the default
@@ -142,18 +140,15 @@ TEST(JunctionDetectorTest, TNearTheBarsEndIsAnL) {
   EXPECT_NEAR(junctions[0].score, std::exp(-1.0 - 0.6), 1e-12);
 }
 
-// Four ends meeting at one point are one X under either choice rule. The end-likelihood rule scores
-// the X and the two L's of the same end-points alike (each end-point once, same location): the tie
-// must go to the one junction (the weight's floor is not added per junction, and a sum equal within
-// rounding is a tie).
+// Four ends meeting at one point are one X. The end-likelihood choice scores the X and the two L's of the
+// same end-points alike (each end-point once, same location): the tie must go to the one junction (the
+// weight's floor is not added per junction, and a sum equal within rounding is a tie).
 TEST(JunctionDetectorTest, XFromFourEnds) {
-  for (bool by_end_likelihood : {false, true}) {
-    const Junctions junctions = DetectSpokes({0, 90, 180, 270}, 3, by_end_likelihood);
-    ASSERT_EQ(junctions.size(), 1u) << "by_end_likelihood " << by_end_likelihood;
-    EXPECT_EQ(junctions[0].type, JunctionType::kX);
-    EXPECT_EQ(junctions[0].NumSegments(), 4);
-    EXPECT_NEAR((junctions[0].location - Eigen::Vector2d(200, 150)).norm(), 0, 1e-9);
-  }
+  const Junctions junctions = DetectSpokes({0, 90, 180, 270}, 3);
+  ASSERT_EQ(junctions.size(), 1u);
+  EXPECT_EQ(junctions[0].type, JunctionType::kX);
+  EXPECT_EQ(junctions[0].NumSegments(), 4);
+  EXPECT_NEAR((junctions[0].location - Eigen::Vector2d(200, 150)).norm(), 0, 1e-9);
 }
 
 // Four ends meeting at a vertex whose two lines are not exactly concurrent (the left spoke 0.6 px
@@ -165,15 +160,11 @@ TEST(JunctionDetectorTest, NearlyConcurrentFourEndsAreOneX) {
   const Eigen::Vector2d center(200, 150);
   LineSegments segments = {Spoke(center, 0, 3), Spoke(center + Eigen::Vector2d(0, 0.6), 180, 3),
                            Spoke(center, 90, 3), Spoke(center, 270, 3)};
-  for (bool by_end_likelihood : {false, true}) {
-    JunctionDetectorOptions options = Options();
-    options.choose_by_end_likelihood = by_end_likelihood;
-    const Junctions junctions = DetectJunctions(segments, options);
-    ASSERT_EQ(junctions.size(), 1u) << "by_end_likelihood " << by_end_likelihood;
-    EXPECT_EQ(junctions[0].type, JunctionType::kX);
-    EXPECT_EQ(junctions[0].NumSegments(), 4);
-    EXPECT_LT((junctions[0].location - (center + Eigen::Vector2d(0, 0.3))).norm(), 0.31);
-  }
+  const Junctions junctions = DetectJunctions(segments, Options());
+  ASSERT_EQ(junctions.size(), 1u);
+  EXPECT_EQ(junctions[0].type, JunctionType::kX);
+  EXPECT_EQ(junctions[0].NumSegments(), 4);
+  EXPECT_LT((junctions[0].location - (center + Eigen::Vector2d(0, 0.3))).norm(), 0.31);
 }
 
 TEST(JunctionDetectorTest, XFromTwoCrossingSegments) {
@@ -235,7 +226,7 @@ TEST(JunctionDetectorTest, ConflictingEndPointGoesToTheBestOverallReading) {
   EXPECT_NEAR(junctions[0].score + junctions[1].score, std::exp(-1.6) + std::exp(-1.0), 1e-12);
 }
 
-// choose_by_end_likelihood (the fitted default model, lambda 0.844, mu 0.353, threshold 0.0205). c
+// The end-likelihood choice (the fitted default model, lambda 0.844, mu 0.353, threshold 0.0205). c
 // and d meet at the origin (both 1 px short, f = 0.703 each); a stops 5 px short of it (f = 0.171)
 // and runs 0.5 px past a vertical b at (-5.5, 0), which stops 4 px short there (f = 0.244). The
 // paper's score prefers the 3-junction a-c-d (0.494 + 2 x 0.120 = 0.734) to the L a-b plus c-d
@@ -245,14 +236,7 @@ TEST(JunctionDetectorTest, ConflictingEndPointGoesToTheBestOverallReading) {
 TEST(JunctionDetectorTest, EndLikelihoodChoiceCountsEachEndPointOnce) {
   const LineSegments segments = {Segment(-40, 0, -5, 0), Segment(-5.5, 44, -5.5, 4), Segment(0, -40, 0, -1),
                                  Segment(28.2843, 28.2843, 0.707107, 0.707107)};
-  JunctionDetectorOptions options;
-  options.choose_by_end_likelihood = false;
-  const Junctions by_score = DetectJunctions(segments, options);
-  ASSERT_EQ(by_score.size(), 1u);
-  EXPECT_NEAR(by_score[0].location.norm(), 0, 1e-6);
-  EXPECT_EQ(by_score[0].segments.size(), 3u);
-  options.choose_by_end_likelihood = true;
-  const Junctions by_likelihood = DetectJunctions(segments, options);
+  const Junctions by_likelihood = DetectJunctions(segments, JunctionDetectorOptions());
   ASSERT_EQ(by_likelihood.size(), 2u);
   std::vector<std::pair<double, double>> found;
   for (const Junction& j : by_likelihood) {
@@ -334,7 +318,7 @@ TEST(JunctionDetectorTest, ThirtyCubesAllVertices) {
   for (size_t j = 0; j < junctions.size(); ++j) EXPECT_EQ(junctions[j].id, static_cast<int>(j));
 }
 
-// corner_beyond_taken_end (the fitted default model: mu 0.353, threshold 0.0205, per-end-point
+// A corner beyond a taken end-point (the fitted default model: mu 0.353, threshold 0.0205, per-end-point
 // baseline ln sqrt(0.0205) = -1.943). Two true vertices on one vertical line: W = (0, 0), where a
 // (from above) ends 1 px short and x (the diagonal from the lower left) ends 1 px short, and
 // V = (0, 4), 4 px further down a's line, where b (from the right) ends 1 px short. b's ray meets
@@ -342,8 +326,8 @@ TEST(JunctionDetectorTest, ThirtyCubesAllVertices) {
 // a-x at W (a's end-point explained 1 px short, not 5) and, for b, the T at P: a's end-point belongs
 // to one junction. With the rule, a's line also serves V (4 px beyond W, over min_arm_px = 3): b's
 // end-point is explained there 1 px short (ln f + 1.943 = 1.59 against 0.18 at P), so the T becomes
-// the L a-b at V. Protects: the two junctions at W and V to 1e-9 px with the rule (the T at P
-// without it), and no change when the stub W-V is under min_arm_px.
+// the L a-b at V. Protects: the two junctions at W and V to 1e-9 px, and the T at P when the stub
+// W-V is under min_arm_px.
 TEST(JunctionDetectorTest, CornerBeyondATakenEndReplacesTheT) {
   auto segments_with_gap = [](double gap) {
     // b 1 px short of V = (0, gap); x's line y = -x meets b's line at (-gap, gap).
@@ -357,16 +341,6 @@ TEST(JunctionDetectorTest, CornerBeyondATakenEndReplacesTheT) {
     return found;
   };
   JunctionDetectorOptions options;
-  options.corner_beyond_taken_end = false;  // both rules are on by default since session 8
-  options.corner_beyond_taken_end_free = false;
-  const auto without = sorted_locations(DetectJunctions(segments_with_gap(4), options));
-  ASSERT_EQ(without.size(), 2u);
-  EXPECT_NEAR(without[0].first, -4, 1e-6);  // the T on x
-  EXPECT_NEAR(without[0].second, 4, 1e-6);
-  EXPECT_NEAR(without[1].first, 0, 1e-6);  // W
-  EXPECT_NEAR(without[1].second, 0, 1e-6);
-
-  options.corner_beyond_taken_end = true;
   const Junctions with_rule = DetectJunctions(segments_with_gap(4), options);
   const auto with = sorted_locations(with_rule);
   ASSERT_EQ(with.size(), 2u);
@@ -385,23 +359,15 @@ TEST(JunctionDetectorTest, CornerBeyondATakenEndReplacesTheT) {
   EXPECT_NEAR(short_stub[0].second, 4, 1e-6);
 }
 
-// corner_beyond_taken_end_free: as above, but x comes from the upper left (its line y = x meets
-// b's line at (4, 4), inside b, where x would run 6.6 px past its end: no T), so b's end-point is
-// in no junction and only W = (0, 0) is found. With the rule, a's line also serves V = (0, 4),
-// 4 px beyond W: b's end 1 px short there (ln f + 1.943 = 1.59 > 0), the corner a-b is added.
-// Protects: one junction without the rule (and with the T replacement alone), W and V to 1e-9 px
-// with it.
+// A corner beyond a taken end-point for a free end-point: as above, but x comes from the upper left (its line
+// y = x meets b's line at (4, 4), inside b, where x would run 6.6 px past its end: no T), so b's end-point is
+// in no junction by the choice, which finds only W = (0, 0). a's line also serves V = (0, 4), 4 px
+// beyond W: b's end 1 px short there (ln f + 1.943 = 1.59 > 0), the corner a-b is added.
+// Protects: W and V to 1e-9 px.
 TEST(JunctionDetectorTest, CornerBeyondATakenEndServesAFreeEndPoint) {
   const LineSegments segments = {Segment(0, -40, 0, -1), Segment(-30, -30, -0.707107, -0.707107),
                                  Segment(40, 4, 1, 4)};
-  JunctionDetectorOptions options;
-  options.corner_beyond_taken_end = false;  // both rules are on by default since session 8
-  options.corner_beyond_taken_end_free = false;
-  ASSERT_EQ(DetectJunctions(segments, options).size(), 1u);
-  options.corner_beyond_taken_end = true;
-  ASSERT_EQ(DetectJunctions(segments, options).size(), 1u);
-  options.corner_beyond_taken_end_free = true;
-  const Junctions junctions = DetectJunctions(segments, options);
+  const Junctions junctions = DetectJunctions(segments, JunctionDetectorOptions());
   ASSERT_EQ(junctions.size(), 2u);
   std::vector<std::pair<double, double>> found;
   for (const Junction& j : junctions) found.emplace_back(j.location.x(), j.location.y());
@@ -420,10 +386,7 @@ TEST(JunctionDetectorTest, CornerBeyondATakenEndServesAFreeEndPoint) {
 TEST(JunctionDetectorTest, CornerBeyondATakenEndNotNextToAnotherJunction) {
   const LineSegments segments = {Segment(0, -40, 0, -1), Segment(-30, -30, -0.707107, -0.707107),
                                  Segment(40, 4, 1, 4), Segment(-2, 46, -2, 7), Segment(-42, 6, -3, 6)};
-  JunctionDetectorOptions options;
-  options.corner_beyond_taken_end = true;
-  options.corner_beyond_taken_end_free = true;
-  const Junctions junctions = DetectJunctions(segments, options);
+  const Junctions junctions = DetectJunctions(segments, JunctionDetectorOptions());
   ASSERT_EQ(junctions.size(), 2u);
   std::vector<std::pair<double, double>> found;
   for (const Junction& j : junctions) found.emplace_back(j.location.x(), j.location.y());

@@ -112,35 +112,5 @@ TEST(TestPairTest, CollinearPiecesOfOneLine) {
   EXPECT_FALSE(TestPair(side, 0, 1, Options()).has_value());
 }
 
-// acute_shortfall_px (JunctionDetectorOptions): an end-point at an L corner of angle theta has its
-// shortfall reduced by s (1 / sin(theta) - 1) before eq. (5). A 30 degree wedge, 1 / sin 30 - 1 = 1:
-// with s = 1 px a segment stopping 8 px short is evaluated at t = -7 (f = e^(0.2 * -7)), the other,
-// stopping 0.5 px short, at 0 (never past the corner); a right angle is unchanged, and so is an
-// overshoot. Hand-computed to 1e-12.
-TEST(PairProbabilityTest, AcuteCornerShortfall) {
-  const double angle = 30 * M_PI / 180;
-  const Eigen::Vector2d dir(std::cos(angle), std::sin(angle));
-  // a along +x stopping 8 px short of the corner at the origin; b along dir stopping 0.5 px short.
-  const LineSegment a = Segment(-40, 0, -8, 0);
-  LineSegment b;
-  b.p0 = 40 * dir;
-  b.p1 = 0.5 * dir;
-  const std::vector<SegmentLine> lines = {SegmentLine(a), SegmentLine(b)};
-  EXPECT_NEAR(AcuteCornerT(-8, lines[0], lines[1], 1.0), -7, 1e-12);
-  EXPECT_NEAR(AcuteCornerT(-0.5, lines[0], lines[1], 1.0), 0, 1e-12);
-  EXPECT_NEAR(AcuteCornerT(2, lines[0], lines[1], 1.0), 2, 1e-12);
-  const SegmentLine up(Segment(0, 30, 0, 1));
-  EXPECT_NEAR(AcuteCornerT(-8, lines[0], up, 1.0), -8, 1e-12);
-  JunctionDetectorOptions options = Options();
-  options.min_probability = 1e-6;
-  const std::optional<PairHit> off = TestPair(lines, 0, 1, options);
-  ASSERT_TRUE(off.has_value());
-  EXPECT_NEAR(off->probability, std::exp(0.2 * -8) * std::exp(0.2 * -0.5), 1e-12);
-  options.acute_shortfall_px = 1.0;
-  const std::optional<PairHit> on = TestPair(lines, 0, 1, options);
-  ASSERT_TRUE(on.has_value());
-  EXPECT_NEAR(on->probability, std::exp(0.2 * -7), 1e-12);
-}
-
 }  // namespace
 }  // namespace sfm

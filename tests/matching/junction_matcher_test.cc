@@ -177,7 +177,7 @@ TEST(JunctionMatcherTest, TwoNearIdenticalCandidatesGiveNoMatch) {
   const Eigen::Vector2d along = Eigen::Vector2d(-line.y(), line.x()).normalized();
   copy.location += along;
   // Another junction, on detected segments of its own (holding the same ones the same way, the
-  // two would be rivals on one arm: MatchingOptions::match_rivals_on_one_arm).
+  // two would be rivals on one arm, docs/matching.md).
   for (JunctionSegment& segment : copy.segments) {
     segment.end += along;
     segment.line_segment += kOwnSegments;
@@ -369,12 +369,11 @@ TEST(JunctionMatcherTest, FallsBackToTheOdometryWithTooFewMatches) {
 
 // Partial correspondence in the guided pass (docs/matching.md, "Partial correspondence"). 15
 // rectangles (60 L junctions, which the full passes match and the refinement needs) and one 3D Y
-// junction whose arm 2 is missed in image 1 (an L there, a Y in image 2). Without match_partial the
-// L stays unmatched; with it the L matches the Y, its two segments paired with the Y's segments of
-// the same arms, and the 60 full matches are unchanged. Then a second Y in image 2 at the same
-// place, sharing the L's two segments but with its third arm elsewhere (on the bisector of the
-// other two's outer angle): the L fits both equally (the same two segments, the same rho), so rule
-// (38) refuses it (a tie has margin 0 <= tau2).
+// junction whose arm 2 is missed in image 1 (an L there, a Y in image 2). The L matches the Y, its
+// two segments paired with the Y's segments of the same arms, and every full match is right. Then a second Y
+// in image 2 at the same place, sharing the L's two segments but with its third arm elsewhere (on the
+// bisector of the other two's outer angle): the L fits both equally (the same two segments, the same rho), so
+// rule (38) refuses it (a tie has margin 0 <= tau2).
 struct PartialScene {
   Scene scene;
   int l = -1;                 // index in a of the L
@@ -412,19 +411,10 @@ TEST(JunctionMatcherTest, PartialMatchPairsAnLWithItsY) {
   const Scene& scene = partial.scene;
   const PairGeometry odometry = OdometryGeometry(scene.views);
   MatchingDiagnostics diagnostics;
-  MatchingOptions without;
-  without.match_partial = false;
-  const std::vector<JunctionMatch> full =
-      MatchJunctions(scene.a, scene.graph_a, scene.b, scene.graph_b, odometry, without, &diagnostics);
+  const std::vector<JunctionMatch> with = MatchJunctions(scene.a, scene.graph_a, scene.b, scene.graph_b,
+                                                         odometry, MatchingOptions(), &diagnostics);
   ASSERT_TRUE(diagnostics.refinement.Refined());
-  EXPECT_EQ(diagnostics.partial_matches, 0);
-  for (const JunctionMatch& m : full) EXPECT_NE(m.index_a, partial.l) << "counts differ: no full match";
-  MatchingOptions options;
-  options.match_partial = true;
-  const std::vector<JunctionMatch> with =
-      MatchJunctions(scene.a, scene.graph_a, scene.b, scene.graph_b, odometry, options, &diagnostics);
   EXPECT_EQ(diagnostics.partial_matches, 1);
-  ASSERT_EQ(with.size(), full.size() + 1);
   int partial_found = 0;
   for (const JunctionMatch& m : with) {
     if (!m.Partial()) {
@@ -468,7 +458,6 @@ TEST(JunctionMatcherTest, PartialMatchRejectsAPartnerFarNearerThanItsNeighbours)
   scene.b[partial.y] = decoy.junction;
   const PairGeometry odometry = OdometryGeometry(scene.views);
   MatchingOptions without;
-  without.match_partial = true;
   without.depth_range_neighbours = 0;
   MatchingOptions with = without;
   with.depth_range_neighbours = MatchingOptions().depth_range_neighbours;
@@ -505,7 +494,7 @@ TEST(JunctionMatcherTest, PartialMatchRefusesAnLThatFitsTwoYsEqually) {
   const double length = (decoy.segments[moved].end - decoy.location).norm();
   decoy.segments[moved].end = decoy.location - length * sum.normalized();
   // Another junction, on detected segments of its own (sharing the Y's, it would be the Y's rival on
-  // one arm: MatchingOptions::match_rivals_on_one_arm).
+  // one arm, docs/matching.md).
   for (JunctionSegment& segment : decoy.segments) segment.line_segment += kOwnSegments;
   std::sort(decoy.segments.begin(), decoy.segments.end(), [&](const JunctionSegment& x, const JunctionSegment& y) {
     return std::atan2(x.end.y() - decoy.location.y(), x.end.x() - decoy.location.x()) <
@@ -514,8 +503,7 @@ TEST(JunctionMatcherTest, PartialMatchRefusesAnLThatFitsTwoYsEqually) {
   scene.b.push_back(decoy);
   scene.graph_b.edges_of_junction.emplace_back();
   const PairGeometry odometry = OdometryGeometry(scene.views);
-  MatchingOptions options;
-  options.match_partial = true;
+  const MatchingOptions options;
   MatchingDiagnostics diagnostics;
   const std::vector<JunctionMatch> with =
       MatchJunctions(scene.a, scene.graph_a, scene.b, scene.graph_b, odometry, options, &diagnostics);
@@ -526,14 +514,13 @@ TEST(JunctionMatcherTest, PartialMatchRefusesAnLThatFitsTwoYsEqually) {
   }
 }
 
-// One common segment (MatchingOptions::match_one_common; docs/matching.md, "One common segment"):
+// One common segment (docs/matching.md, "One common segment"):
 // the scene of PartialMatchPairsAnLWithItsY, but the 3D Y is seen as two different corners, arms
 // 0-1 in image 1 and 1-2 in image 2 (two L's sharing arm 1's segment), joined through arm 1 in both
-// topology graphs to the first rectangle corner (its arm-0 segment). Off (the default) the L's stay
-// unmatched; on, they match each other, arm 1's segments paired and the unshared segments missing,
-// and the 60 full matches are unchanged; without the topology edge they stay unmatched even with the
-// option (the support rule). Protects the corridor's recall gain of docs/matching_results.md,
-// "Session 7, part 2"; exact counts, no tolerance.
+// topology graphs to the first rectangle corner (its arm-0 segment). The L's match each other,
+// arm 1's segments paired and the unshared segments missing, and every full match is right; without
+// the topology edge they stay unmatched (the support rule). Protects the corridor's recall gain of
+// docs/matching_results.md, "Session 7, part 2"; exact counts, no tolerance.
 TEST(JunctionMatcherTest, OneCommonSegmentMatchesTwoCornersOfAVertexWithSupport) {
   std::mt19937 rng(31);
   PartialScene partial = MakePartialScene(&rng);
@@ -564,18 +551,11 @@ TEST(JunctionMatcherTest, OneCommonSegmentMatchesTwoCornersOfAVertexWithSupport)
   scene.graph_b.edges_of_junction[corner_b].push_back(static_cast<int>(scene.graph_b.edges.size()) - 1);
 
   const PairGeometry odometry = OdometryGeometry(scene.views);
-  MatchingOptions off;
-  off.match_one_common = false;  // on by default since session 8
-  MatchingOptions on;
-  on.match_one_common = true;
+  const MatchingOptions on;
   MatchingDiagnostics diagnostics;
-  const std::vector<JunctionMatch> before =
-      MatchJunctions(scene.a, scene.graph_a, scene.b, scene.graph_b, odometry, off, &diagnostics);
-  ASSERT_TRUE(diagnostics.refinement.Refined());
-  for (const JunctionMatch& m : before) EXPECT_NE(m.index_a, 60) << "no full match of two different corners";
   const std::vector<JunctionMatch> after =
       MatchJunctions(scene.a, scene.graph_a, scene.b, scene.graph_b, odometry, on, &diagnostics);
-  ASSERT_EQ(after.size(), before.size() + 1);
+  ASSERT_TRUE(diagnostics.refinement.Refined());
   int found = 0;
   for (const JunctionMatch& m : after) {
     if (m.index_a != 60) {
@@ -603,14 +583,13 @@ TEST(JunctionMatcherTest, OneCommonSegmentMatchesTwoCornersOfAVertexWithSupport)
 namespace sfm {
 namespace {
 
-// Rivals on one arm (MatchingOptions::match_rivals_on_one_arm; docs/matching.md, "Rivals on one
-// arm"): the scene of PartialMatchPairsAnLWithItsY with a second L in image 1, 1 px behind the L
-// on the line of its segment 0 (the same detected line segment, pointing the same way; segment 1
-// moved with it, another detected segment): a corner beyond a taken end-point next to the
-// junction holding that end. Both fit the Y partially within tau2 of each other, so by (38) alone
-// neither is matched; with the option the larger of the two is matched to the Y, and the 60 full
-// matches are unchanged; when the second L's segment 0 is another detected segment (no shared
-// arm) neither is matched even with the option. Protects the corridor's recall gain of
+// Rivals on one arm (docs/matching.md, "Rivals on one arm"): the scene of PartialMatchPairsAnLWithItsY with a
+// second L in image 1, 1 px behind the L on the line of its segment 0 (the same detected line segment,
+// pointing the same way; segment 1 moved with it, another detected segment): a corner beyond a taken
+// end-point next to the junction holding that end. Both fit the Y partially within tau2 of each other, so by
+// (38) alone neither would be matched; the larger of the two is matched to the Y, and every full match is
+// right; when the second L's segment 0 is another detected segment (no shared arm) neither is
+// matched. Protects the corridor's recall gain of
 // docs/matching_results.md, "Session 8"; exact outcomes, no tolerance.
 TEST(JunctionMatcherTest, RivalsOnOneArmDoNotBlockEachOther) {
   std::mt19937 rng(31);
@@ -642,10 +621,7 @@ TEST(JunctionMatcherTest, RivalsOnOneArmDoNotBlockEachOther) {
   other_segment.a.push_back(behind);
   other_segment.graph_a.edges_of_junction.emplace_back();
 
-  MatchingOptions off;
-  off.match_rivals_on_one_arm = false;
-  MatchingOptions on;
-  ASSERT_TRUE(on.match_rivals_on_one_arm) << "on by default";
+  const MatchingOptions on;
   MatchingDiagnostics diagnostics;
   auto matched_to_y = [&](const std::vector<JunctionMatch>& matches) {
     std::vector<int> to_y;
@@ -654,13 +630,9 @@ TEST(JunctionMatcherTest, RivalsOnOneArmDoNotBlockEachOther) {
     }
     return to_y;
   };
-  const std::vector<JunctionMatch> before =
-      MatchJunctions(scene.a, scene.graph_a, scene.b, scene.graph_b, odometry, off, &diagnostics);
-  ASSERT_TRUE(diagnostics.refinement.Refined());
-  EXPECT_TRUE(matched_to_y(before).empty()) << "a tie of the two L's: (38) matches neither";
   const std::vector<JunctionMatch> after =
       MatchJunctions(scene.a, scene.graph_a, scene.b, scene.graph_b, odometry, on, &diagnostics);
-  ASSERT_EQ(after.size(), before.size() + 1);
+  ASSERT_TRUE(diagnostics.refinement.Refined());
   const std::vector<int> to_y = matched_to_y(after);
   ASSERT_EQ(to_y.size(), 1u);
   EXPECT_TRUE(to_y[0] == partial.l || to_y[0] == v);

@@ -230,5 +230,20 @@ TEST(JunctionSimilarityTest, PartialRhoPairsAnLWithTheRightTwoSegmentsOfAY) {
   EXPECT_GE(trials_run, 15);
 }
 
+// ToString / FromString (the --match_rho1 flag): every kind's name parses back to it; another name
+// is an error naming the choices, and leaves the kind as it was.
+TEST(Rho1KindTest, NamesParseBackAndOthersAreRefused) {
+  for (const Rho1Kind kind : {Rho1Kind::kExponential, Rho1Kind::kLinear}) {
+    Rho1Kind parsed = kind == Rho1Kind::kLinear ? Rho1Kind::kExponential : Rho1Kind::kLinear;
+    ASSERT_TRUE(FromString(ToString(kind), &parsed).ok()) << ToString(kind);
+    EXPECT_EQ(parsed, kind);
+  }
+  Rho1Kind parsed = Rho1Kind::kLinear;
+  const Status status = FromString("gaussian", &parsed);
+  EXPECT_FALSE(status.ok());
+  EXPECT_NE(status.message().find("'exponential' or 'linear'"), std::string::npos) << status.message();
+  EXPECT_EQ(parsed, Rho1Kind::kLinear);
+}
+
 }  // namespace
 }  // namespace sfm

@@ -57,7 +57,7 @@ TEST(MatchingRuleTest, Tau1RemovesCandidatesBeforeTheComparison) {
 namespace sfm {
 namespace {
 
-// SelectMatches' allied rivals (MatchingOptions::match_rivals_on_one_arm): junctions 0 and 1 of
+// SelectMatches' allied rivals (rivals on one arm, docs/matching.md): junctions 0 and 1 of
 // image 1 both want junction 0 of image 2 (0.54 and 0.53). Without allies (38) refuses both (margin
 // 0.01 <= tau2 = 0.1); allied, the larger is kept; a third, unallied rival at 0.50 still blocks it.
 // Exact outcomes.

@@ -48,47 +48,14 @@ Junction Keep(const ProjectedJunction& image, const std::vector<int>& arms, bool
   return junction;
 }
 
-// Rule (a) (MatchingOptions::partial_rule_not_line_half, off by default): an L made of half the bar
-// and the stem (the other half of the bar not seen: what an occluding edge that the line passes
-// behind gives) is not a T with a missed segment. The same L against a Y of the same three arms'
-// directions bent off the straight would match (the existing Y-L test); here the pair must be
-// unmatched in all 20 trials, both ways round, whether the bar is one detected segment or two
-// collinear ones (opposite within 5 degrees).
-TEST(PartialCorrespondenceTest, WithRuleAHalfOfABarIsNeverTheMissedSegment) {
-  std::mt19937 rng(31);
-  const TwoViews views = testing::MakeTwoViews();
-  MatchingOptions rule_a;
-  rule_a.partial_rule_not_line_half = true;
-  for (int trial = 0; trial < 20; ++trial) {
-    const Junction3d t = RandomT(views, &rng);
-    const ProjectedJunction t_a = testing::ProjectJunction(views, 0, t);
-    const ProjectedJunction t_b = testing::ProjectJunction(views, 1, t);
-    const bool bar_one_segment = trial % 2 == 0;
-    for (int t_in_a = 0; t_in_a < 2; ++t_in_a) {
-      const Junction whole = Keep(t_in_a ? t_a : t_b, {0, 1, 2}, bar_one_segment);
-      const Junction l = Keep(t_in_a ? t_b : t_a, {0, 1}, bar_one_segment);  // bar half 2 missed
-      const Junctions a = {t_in_a ? whole : l};
-      const Junctions b = {t_in_a ? l : whole};
-      const JunctionSimilarity similarity(a, b, views.F(), rule_a);
-      EXPECT_FALSE(similarity.PartialRho(0, 0).Matched()) << trial << " " << t_in_a;
-    }
-    // The full T against itself still matches (rules (a) and (b) concern partial pairs only).
-    const JunctionSimilarity full({Keep(t_a, {0, 1, 2}, bar_one_segment)},
-                                  {Keep(t_b, {0, 1, 2}, bar_one_segment)}, views.F(), rule_a);
-    EXPECT_TRUE(full.Rho(0, 0).Matched()) << trial;
-  }
-}
-
-// The default, without rule (a) (docs/matching.md, "Partial correspondence"): the same pairs match,
-// the T's missed segment being the bar half the L lacks, and the L's two segments paired with the
-// T's of the same arms, in all 20 trials both ways round. This is what a true L vertex seen in the
-// other frame as a T (another edge collinear with one arm) needs; the occlusion T's that rule (a)
-// stopped are left to the guided pass's depth range test. Protects the generated recall with
-// partial matches, 87.7 % with rule (a) -> 91.3 % without (docs/matching_results.md).
+// Half of a bar may be the missed segment (docs/matching.md, "Partial correspondence"): an L made
+// of half a T's bar and its stem matches the T, the T's missed segment being the bar half the L
+// lacks, and the L's two segments paired with the T's of the same arms, in all 20 trials both ways
+// round. This is what a true L vertex seen in the other frame as a T (another edge collinear with
+// one arm) needs; occlusion T's are left to the guided pass's depth range test.
 TEST(PartialCorrespondenceTest, ByDefaultHalfOfABarMayBeTheMissedSegment) {
   std::mt19937 rng(31);
   const TwoViews views = testing::MakeTwoViews();
-  ASSERT_FALSE(MatchingOptions().partial_rule_not_line_half);
   for (int trial = 0; trial < 20; ++trial) {
     const Junction3d t = RandomT(views, &rng);
     const ProjectedJunction t_a = testing::ProjectJunction(views, 0, t);
@@ -132,18 +99,15 @@ TEST(PartialCorrespondenceTest, ByDefaultHalfOfABarMayBeTheMissedSegment) {
 // short half's end-point off by noise, as on VGG: an "L" of 164 degrees against a T's bar), is not
 // a T whose stem was missed: without its stem the T is a straight line, the L has no line through
 // its location. Image b's bar half 2 is turned 10 degrees about the location, beyond detection's
-// 5-degree collinear tolerance. With rule (a) as well, unmatched in all 20 trials. Without it (the
-// default) the stem is still never the left-out segment, but a bar half may be: then the bent bar
-// pairs with the T's stem and other bar half, the right location with a wrong segment
-// correspondence (37 tolerates up to 90 degrees between partner segments); this happens in 8 of the
-// 20 trials, the price of the default stated in docs/matching.md ("Partial correspondence").
+// 5-degree collinear tolerance. The stem is never the left-out segment, but a bar half may be: then the bent
+// bar pairs with the T's stem and other bar half, the right location with a wrong segment correspondence (37
+// tolerates up to 90 degrees between partner segments); this happens in 8 of the 20 trials, the price of the
+// default stated in docs/matching.md ("Partial correspondence").
 TEST(PartialCorrespondenceTest, ATWithoutItsStemIsALineNotAnL) {
   std::mt19937 rng(32);
   const TwoViews views = testing::MakeTwoViews();
   const double angle = 10 * 3.14159265358979323846 / 180;
-  MatchingOptions rule_a;
-  rule_a.partial_rule_not_line_half = true;
-  int matched_without_rule_a = 0;
+  int matched = 0;
   for (int trial = 0; trial < 20; ++trial) {
     const Junction3d t = RandomT(views, &rng);
     const Junction whole = Keep(testing::ProjectJunction(views, 0, t), {0, 1, 2}, true);
@@ -156,17 +120,15 @@ TEST(PartialCorrespondenceTest, ATWithoutItsStemIsALineNotAnL) {
       l.segments[s].end = l.location + Eigen::Rotation2Dd(sign * angle) * v;
     }
     ASSERT_FALSE(testing::HasLineThrough(l, 5)) << trial;
-    const JunctionSimilarity with_rule_a({whole}, {l}, views.F(), rule_a);
-    EXPECT_FALSE(with_rule_a.PartialRho(0, 0).Matched()) << trial;
     const PairSimilarity rho =
         JunctionSimilarity({whole}, {l}, views.F(), MatchingOptions()).PartialRho(0, 0);
     if (!rho.Matched()) continue;
-    ++matched_without_rule_a;
+    ++matched;
     ASSERT_GE(rho.missing_a, 0);
     EXPECT_NE(testing::ProjectJunction(views, 0, t).arm_of_segment[rho.missing_a], 1)
         << trial << ": the stem left out";
   }
-  EXPECT_EQ(matched_without_rule_a, 8);
+  EXPECT_EQ(matched, 8);
 }
 
 }  // namespace

@@ -47,7 +47,7 @@ ProjectedJunction ProjectJunction(const TwoViews& views, int camera, const Junct
   std::sort(projected.arm_of_segment.begin(), projected.arm_of_segment.end(),
             [&](int x, int y) { return angle[x] < angle[y]; });
   // Detected segments of their own (ids unique in the process): detection gives two junctions one
-  // line_segment only where they hold one segment, which MatchingOptions::match_rivals_on_one_arm
+  // line_segment only where they hold one segment, which the rivals-on-one-arm rule
   // reads; the arm is in arm_of_segment.
   static int next_line_segment = 0;
   for (const int arm : projected.arm_of_segment) {

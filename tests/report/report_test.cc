@@ -182,6 +182,49 @@ TEST(ReportTest, EmptyResultStillGivesAPage) {
   EXPECT_EQ(CheckEmbeddedImages(html), 3);  // trajectories, junctions, matches (empty bars)
 }
 
+// Issue 18, item 4: 8000x6000 frames gave a 60 MB page that took 14 s to write, as the match
+// pictures embedded the frames at full size. Frames of 4000x3000 (the hand-built run scaled 25
+// times, with noise so PNG cannot compress it away) now give pictures at most 2 x 960 pixels wide
+// and a page under 8 MB (at full size, 25 times the pixels, it would be above 100 MB), whether the
+// frames are given undistorted or as stored.
+TEST(ReportTest, MatchPicturesOfLargeFramesAreShrunk) {
+  HandBuiltRun run;
+  constexpr double kScale = 25;
+  Camera& camera = run.sequence.calibration.camera;
+  camera.width *= kScale, camera.height *= kScale, camera.fx *= kScale, camera.fy *= kScale;
+  camera.cx = (camera.cx + 0.5) * kScale - 0.5, camera.cy = (camera.cy + 0.5) * kScale - 0.5;
+  cv::RNG rng(7);
+  for (cv::Mat& image : run.images) {
+    cv::Mat large, noise(camera.height, camera.width, CV_8UC1);
+    cv::resize(image, large, cv::Size(camera.width, camera.height), 0, 0, cv::INTER_NEAREST);
+    rng.fill(noise, cv::RNG::UNIFORM, 0, 40);
+    image = large + noise;
+  }
+  for (Junctions& junctions : run.result.junctions) {
+    for (Junction& junction : junctions) {
+      junction.location = (junction.location.array() + 0.5) * kScale - 0.5;
+      for (JunctionSegment& segment : junction.segments)
+        segment.end = (segment.end.array() + 0.5) * kScale - 0.5;
+    }
+  }
+  for (const bool as_stored : {false, true}) {
+    const std::string html = as_stored ? ReportHtml(run.sequence, run.result, {}, run.images)
+                                       : ReportHtml(run.sequence, run.result, run.images);
+    EXPECT_LT(html.size(), 8u << 20) << "as stored: " << as_stored;
+    const std::string prefix = "data:image/png;base64,";
+    int pictures = 0;
+    for (size_t at = html.find(prefix); at != std::string::npos; at = html.find(prefix, at + 1)) {
+      const size_t begin = at + prefix.size(), end = html.find('"', begin);
+      std::string png;
+      ASSERT_TRUE(Base64Decode(html.substr(begin, end - begin), &png));
+      const cv::Mat image = cv::imdecode(std::vector<uchar>(png.begin(), png.end()), cv::IMREAD_UNCHANGED);
+      EXPECT_LE(image.cols, 2 * 960 + 40);
+      pictures += image.cols > 1000;  // the plots are 800 wide
+    }
+    EXPECT_GE(pictures, 1) << "the match pictures are there";
+  }
+}
+
 TEST(ReportTest, FailsWhenTheDirectoryCannotBeWritten) {
   const HandBuiltRun run;
   const std::string dir = testing::MakeScratchDir("report_unwritable");

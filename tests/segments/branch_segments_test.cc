@@ -127,15 +127,15 @@ TEST(BranchSegmentsTest, LeavesEndsThatMeetOtherSegmentsAlone) {
   }
 }
 
-// Bridges past corners (fast.bridges_past_corners). A vertical edge A (x = 80.5) stops at W =
+// Bridges past corners. A vertical edge A (x = 80.5) stops at W =
 // (80.5, 72.5), where a horizontal edge D leaves it to the right, and goes on with the other
 // polarity for 8 px to V = (80.5, 80.5), where the free end of a horizontal segment B stops 1.5 px
 // short (case 0067 of the benchmark's not-joined misses). A's end-point has D's nearby, so W's
 // junction takes it and A-B cannot make V's; the 8 px piece is under min_length and no branch can
 // reach min_length from V. With the bridge: exactly one new segment, on A's line (within 0.05 px),
 // covering the gap from within 3 px of V to within 3 px of W, its brighter side (120 against 60)
-// along Normal(). Without it, or when D is not there (A's end is free: the pair test joins A and B
-// directly), no bridge.
+// along Normal(). When D is not there (A's end is free: the pair test joins A and B directly), no
+// bridge.
 TEST(BranchSegmentsTest, BridgesALineContinuedPastACornerToAFreeEnd) {
   SyntheticImageOptions image;
   image.width = 160;
@@ -155,14 +155,8 @@ TEST(BranchSegmentsTest, BridgesALineContinuedPastACornerToAFreeEnd) {
   for (int seed = 1; seed <= 3; ++seed) {
     SCOPED_TRACE("seed " + std::to_string(seed));
     image.seed = seed;
-    SegmentDetectorOptions options;
-    options.fast.bridges_past_corners = false;
-    options.fast.branches_to_far_corners = false;
+    const SegmentDetectorOptions options;
     const Gradient g = GradientOf(testing::RenderPolygons(scene, image), options);
-    LineSegments off = segments;
-    AppendBranchSegments(g.gx, g.gy, g.magnitude, g.low, g.high, options, &off);
-    EXPECT_EQ(off.size(), segments.size());
-    options.fast.bridges_past_corners = true;
     LineSegments on = segments;
     const BranchSearchStats stats =
         AppendBranchSegments(g.gx, g.gy, g.magnitude, g.low, g.high, options, &on);
@@ -181,12 +175,12 @@ TEST(BranchSegmentsTest, BridgesALineContinuedPastACornerToAFreeEnd) {
   }
 }
 
-// Branches measured from corner to corner (fast.branches_to_far_corners). A dark box's top side
+// Branches measured from corner to corner. A dark box's top side
 // runs 10 px from its corner V = (60.5, 80.5), where the free end of its left side B stops, to
 // x = 70.5, where a vertical edge C ends on it and the side goes on with the other polarity (a
 // darker block above). The ray from B's end loses 1-2 px at each corner, so the branch is 7-9 px,
-// under min_length (9 px); measured from V to its meeting with C's line it is 10 px. With the rule:
-// one branch on the side's line (within 0.3 px at both ends); without it: none.
+// under min_length (9 px); measured from V to its meeting with C's line it is 10 px: one branch on
+// the side's line (within 0.3 px at both ends).
 TEST(BranchSegmentsTest, MeasuresABranchEndingAtAnotherCornerFromCornerToCorner) {
   SyntheticImageOptions image;
   image.width = 160;
@@ -205,9 +199,7 @@ TEST(BranchSegmentsTest, MeasuresABranchEndingAtAnotherCornerFromCornerToCorner)
   for (int seed = 1; seed <= 3; ++seed) {
     SCOPED_TRACE("seed " + std::to_string(seed));
     image.seed = seed;
-    SegmentDetectorOptions options;
-    options.fast.branches_to_far_corners = false;
-    options.fast.bridges_past_corners = false;  // which would bridge V to the top side beyond C
+    const SegmentDetectorOptions options;
     const Gradient g = GradientOf(testing::RenderPolygons(scene, image), options);
     // The new segments with an end-point within 4 px of V (the other free ends, at the scene's
     // other corners, may get branches of their own).
@@ -219,10 +211,6 @@ TEST(BranchSegmentsTest, MeasuresABranchEndingAtAnotherCornerFromCornerToCorner)
       }
       return near;
     };
-    LineSegments off = segments;
-    AppendBranchSegments(g.gx, g.gy, g.magnitude, g.low, g.high, options, &off);
-    EXPECT_TRUE(at_v(off).empty());
-    options.fast.branches_to_far_corners = true;
     LineSegments on = segments;
     AppendBranchSegments(g.gx, g.gy, g.magnitude, g.low, g.high, options, &on);
     const LineSegments branches = at_v(on);

@@ -1,18 +1,20 @@
 #include "frontend/sequence/sequence.h"
 
+#include <glog/logging.h>
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+#include <sys/stat.h>
+
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <opencv2/imgcodecs.hpp>
 #include <string>
 #include <utility>
 #include <vector>
-
-#include <gmock/gmock.h>
-#include <glog/logging.h>
-#include <gtest/gtest.h>
-#include <opencv2/imgcodecs.hpp>
 
 #include "frontend/geometry/tum_io.h"
 #include "frontend/util/number_text.h"
@@ -482,6 +484,133 @@ TEST_F(SequenceTest, ImageWithin1msOutsideTheSpanTakesTheEndLine) {
 TEST_F(SequenceTest, FewerThanTwoFramesFails) {
   WriteText(Path("images.txt"), "# one frame\n10.0 images/000000.png\n");
   ExpectError(Read(), {Path("images.txt") + ": lists 1 frame, at least 2 are needed"});
+}
+
+// --- Input that used to be read wrong in silence or block (issue 18, items 5 and 6) ------------------
+
+// OpenCV stores a YAML integer in an int without reporting overflow: 4294967936 read as 640 and
+// 99999999999 as 1215752191. Both are refused, naming the key and the value.
+TEST_F(SequenceTest, ImageSizeBeyondIntIsRefusedNotWrapped) {
+  ExpectYamlValueError("image_width", "4294967936", {"key 'image_width' is 4294967936, out of range"});
+  ExpectYamlValueError("image_height", "99999999999", {"key 'image_height' is 99999999999, out of range"});
+  ExpectYamlValueError("image_width", "200000",
+                       {"key 'image_width' is 200000, out of range (at most 100000)"});
+}
+
+// A translation of 1e300 m or a sigma of 1e300 is finite but overflows once squared; it used to be
+// blamed on odometry.txt. Now sequence.yaml and the key are named.
+TEST_F(SequenceTest, HugeTBaseCameraTranslationBlamesTheKey) {
+  ExpectYamlValueError("T_base_camera",
+                       OpenCvMatrix(4, 4, "0, 0, 1, 1e300, -1, 0, 0, 0, 0, -1, 0, 0.5, 0, 0, 0, 1"),
+                       {"key 'T_base_camera' translation has a coordinate of 1e+300 m, out of range"});
+}
+
+TEST_F(SequenceTest, HugeOdometrySigmaBlamesTheKey) {
+  ExpectYamlValueError("odometry_translation_sigma", "1e300",
+                       {"key 'odometry_translation_sigma' is 1e+300, out of range"});
+}
+
+TEST_F(SequenceTest, TruncatedJpegIsRefusedNotDecodedWithGreyRows) {
+  cv::Mat image(kHeight, kWidth, CV_8UC1);
+  cv::randu(image, 0, 255);
+  std::vector<uchar> jpeg;
+  ASSERT_TRUE(cv::imencode(".jpg", image, jpeg));
+  WriteText(Path("images/000001.jpg"), std::string(jpeg.begin(), jpeg.end()));
+  WriteText(Path("images/000002.jpg"), std::string(jpeg.begin(), jpeg.begin() + jpeg.size() / 2));
+  WriteText(Path("images.txt"), "10.0 images/000000.png\n10.1 images/000001.jpg\n10.2 images/000002.jpg\n");
+  ASSERT_TRUE(Read().ok());
+  cv::Mat grey;
+  EXPECT_TRUE(LoadFrameImage(sequence_, 1, &grey).ok()) << "the complete JPEG reads";
+  ExpectError(LoadFrameImage(sequence_, 2, &grey),
+              {Path("images/000002.jpg") + ": JPEG is truncated: no end-of-image marker"});
+}
+
+TEST_F(SequenceTest, TruncatedPngIsRefusedBeforeLibpngSeesIt) {
+  const std::string png = testing::ReadFile(Path("images/000001.png"));
+  WriteText(Path("images/000001.png"), png.substr(0, png.size() / 2));
+  ASSERT_TRUE(Read().ok());
+  cv::Mat grey;
+  ExpectError(LoadFrameImage(sequence_, 1, &grey), {Path("images/000001.png") + ": PNG is truncated"});
+}
+
+// A PNG that declares 30000x30000 in a few hundred kilobytes would take 900 MB to decode: its size
+// is read from the IHDR chunk and refused first. The header alone is enough (the file is cut after
+// it and a fake IEND, so decoding it would fail differently).
+TEST_F(SequenceTest, ImageSizeIsCheckedFromTheHeaderBeforeDecoding) {
+  std::string png = testing::ReadFile(Path("images/000001.png"));
+  ASSERT_GT(png.size(), 24u);
+  const unsigned char side[4] = {0x00, 0x00, 0x75, 0x30};  // 30000, big-endian
+  png.replace(16, 4, reinterpret_cast<const char*>(side), 4);
+  png.replace(20, 4, reinterpret_cast<const char*>(side), 4);
+  WriteText(Path("images/000001.png"), png);
+  ASSERT_TRUE(Read().ok());
+  cv::Mat grey;
+  ExpectError(LoadFrameImage(sequence_, 1, &grey),
+              {Path("images/000001.png") + ": image is 30000x30000, sequence.yaml says 64x48"});
+}
+
+TEST_F(SequenceTest, NonRegularImagesAreNamedAsWhatTheyAre) {
+  std::filesystem::remove(Path("images/000001.png"));
+  std::filesystem::create_directory(Path("images/000001.png"));
+  ExpectError(Read(),
+              {Path("images.txt") + ":4: image file " + Path("images/000001.png") + " is a directory"});
+  std::filesystem::remove(Path("images/000001.png"));
+  ASSERT_EQ(mkfifo(Path("images/000001.png").c_str(), 0644), 0);
+  ExpectError(Read(), {"image file " + Path("images/000001.png") + " is a FIFO (named pipe)"});
+  std::filesystem::remove(Path("images/000001.png"));
+  std::filesystem::create_symlink("/dev/zero", Path("images/000001.png"));
+  ExpectError(Read(), {"image file " + Path("images/000001.png") + " is a character device"});
+  std::filesystem::remove(Path("images/000001.png"));
+  std::filesystem::create_symlink(Path("images/000001.png"), Path("images/000001.png"));
+  ExpectError(Read(), {"image file " + Path("images/000001.png") + " is a symbolic link loop"});
+}
+
+// A FIFO as images.txt, odometry.txt or sequence.yaml: refused at once, never opened for a
+// blocking read (the test would hang otherwise).
+TEST_F(SequenceTest, FifoInputFilesAreRefusedWithoutBlocking) {
+  for (const std::string name : {"images.txt", "odometry.txt", "sequence.yaml", "groundtruth.txt"}) {
+    const std::string saved = testing::ReadFile(Path(name));
+    std::filesystem::remove(Path(name));
+    ASSERT_EQ(mkfifo(Path(name).c_str(), 0644), 0);
+    ExpectError(Read(), {Path(name) + ": ", "is a FIFO (named pipe), expected a regular file"});
+    std::filesystem::remove(Path(name));
+    WriteText(Path(name), saved);
+  }
+}
+
+TEST_F(SequenceTest, TextEncodingsAreNamed) {
+  const std::string images = testing::ReadFile(Path("images.txt"));
+  WriteText(Path("images.txt"), "\xEF\xBB\xBF" + images);
+  ExpectError(Read(), {Path("images.txt") + ": starts with a UTF-8 byte-order mark"});
+  std::string utf16 = "\xFF\xFE";
+  for (const char c : images) utf16 += std::string(1, c) + '\0';
+  WriteText(Path("images.txt"), utf16);
+  ExpectError(Read(), {Path("images.txt") + ": is UTF-16 encoded"});
+  std::string cr = images;
+  std::replace(cr.begin(), cr.end(), '\n', '\r');
+  WriteText(Path("images.txt"), cr);
+  ExpectError(Read(), {Path("images.txt") + ": has CR-only line endings"});
+  std::string crlf;
+  for (const char c : images) crlf += c == '\n' ? std::string("\r\n") : std::string(1, c);
+  WriteText(Path("images.txt"), crlf);
+  EXPECT_TRUE(Read().ok()) << "CR LF line endings are fine";
+  const std::string yaml = testing::ReadFile(Path("sequence.yaml"));
+  WriteText(Path("sequence.yaml"), "\xEF\xBB\xBF" + yaml);
+  ExpectError(Read(), {Path("sequence.yaml") + ": starts with a UTF-8 byte-order mark"});
+}
+
+// A NUL inside an images.txt path used to cut the path there.
+TEST_F(SequenceTest, NulByteInImagesTxtIsRefusedWithItsLine) {
+  WriteText(Path("images.txt"),
+            std::string("10.0 images/000000.png\n10.1 images/000001.png") + '\0' + ".x\n");
+  ExpectError(Read(), {Path("images.txt") + ":2: holds a NUL byte"});
+}
+
+TEST_F(SequenceTest, ImagePathThatIsNotUtf8IsRefused) {
+  const std::string name = "images/\xE9t\xE9.png";  // Latin-1, not UTF-8
+  std::filesystem::copy_file(Path("images/000001.png"), Path(name));
+  WriteText(Path("images.txt"), "10.0 images/000000.png\n10.1 " + name + "\n");
+  ExpectError(Read(), {Path("images.txt") + ":2: the image path is not valid UTF-8"});
 }
 
 }  // namespace
