@@ -28,9 +28,6 @@ Matrix6 PseudoInverse(const Matrix6& covariance) {
 constexpr double kPriorWidening = 10;
 // RANSAC's confidence of having drawn one all-inlier sample.
 constexpr double kEssentialConfidence = 0.999;
-// Matches a pair needs for a relative pose from the images alone: eight, the linear
-// (eight-point) minimum, so that RANSAC's five-point samples leave some to check against.
-constexpr int kFewestMatchesForAPose = 8;
 
 // The MAP covariance widened by kPriorWidening in every sigma but the translation's length (along
 // `translation`), which the matches cannot measure: there the odometry's sigma stays, or the fit
@@ -121,8 +118,6 @@ std::vector<RelativePoseConstraint> VisualConstraints(const std::vector<FramePai
   for (size_t p = 0; p < matches.size(); ++p) {
     ++counts->pairs;
     const PairRefinement& refinement = diagnostics[p].refinement;
-    const FramePairMatches& pair = matches[p];
-    PairRefinementSettings pair_settings = settings;
     switch (refinement.outcome) {
       case PairRefinement::Outcome::kRefined:
         break;
@@ -134,23 +129,17 @@ std::vector<RelativePoseConstraint> VisualConstraints(const std::vector<FramePai
         continue;
       case PairRefinement::Outcome::kTooFewMatches:
       case PairRefinement::Outcome::kNoPriorUncertainty:
-        // Too few for the matcher's verification, which must tell a wrong pose from a right one
-        // among many; an essential matrix from as few matches still fixes the rotation, and the
-        // pose graph's robust loss answers for a wrong one.
-        if (static_cast<int>(pair.matches.size()) < kFewestMatchesForAPose) {
-          ++counts->too_few_matches;
-          continue;
-        }
-        pair_settings.min_inliers = kFewestMatchesForAPose;
-        break;
+        ++counts->too_few_matches;
+        continue;
     }
+    const FramePairMatches& pair = matches[p];
     std::vector<Eigen::Vector2d> x1, x2;
     for (const JunctionMatch& match : pair.matches) {
       x1.push_back(frames[pair.frame_a][match.index_a].location);
       x2.push_back(frames[pair.frame_b][match.index_b].location);
     }
     PairGeometry fit_prior;
-    const PairRefinement images = RelativePoseFromMatches(refinement, x1, x2, pair_settings, &fit_prior);
+    const PairRefinement images = RelativePoseFromMatches(refinement, x1, x2, settings, &fit_prior);
     if (!images.Refined()) {
       ++counts->too_few_inliers;
       continue;
