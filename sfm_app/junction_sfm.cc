@@ -14,7 +14,7 @@
 #include <vector>
 
 #include "sfm_app/flags/detector_flags.h"
-#include "sfm_app/pipeline.h"
+#include "pipeline/pipeline.h"
 #include "sfm_app/run_junction_sfm.h"
 
 namespace {

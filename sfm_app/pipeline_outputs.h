@@ -5,8 +5,8 @@
 #include <vector>
 
 #include "frontend/sequence/sequence.h"
-#include "frontend/util/status.h"
-#include "sfm_app/pipeline_result.h"
+#include "util/status.h"
+#include "pipeline/pipeline_result.h"
 
 namespace sfm {
 

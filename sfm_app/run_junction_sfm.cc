@@ -14,9 +14,9 @@
 #include <new>
 #include <opencv2/core.hpp>
 
-#include "frontend/util/output_directory.h"
-#include "frontend/util/status.h"
-#include "sfm_app/pipeline_outputs.h"
+#include "util/output_directory.h"
+#include "util/status.h"
+#include "pipeline/pipeline_outputs.h"
 
 namespace sfm {
 namespace {

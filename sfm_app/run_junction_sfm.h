@@ -7,7 +7,7 @@
 #include <utility>
 #include <vector>
 
-#include "sfm_app/pipeline.h"
+#include "pipeline/pipeline.h"
 
 namespace sfm {
 

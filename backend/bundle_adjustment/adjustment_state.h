@@ -9,7 +9,7 @@
 
 #include "backend/bundle_adjustment/bundle_adjustment_options.h"
 #include "backend/bundle_adjustment/pose_parameters.h"
-#include "frontend/geometry/pose.h"
+#include "geometry/pose.h"
 #include "frontend/sequence/sequence.h"
 
 namespace sfm {

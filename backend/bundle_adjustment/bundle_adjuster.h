@@ -25,8 +25,8 @@
 #include "backend/bundle_adjustment/floor_prior_state.h"
 #include "backend/bundle_adjustment/landmark_filter.h"
 #include "backend/triangulation/reconstruction.h"
-#include "frontend/geometry/pose.h"
-#include "frontend/util/status.h"
+#include "geometry/pose.h"
+#include "util/status.h"
 
 namespace sfm {
 

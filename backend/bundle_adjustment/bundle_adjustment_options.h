@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "backend/triangulation/triangulation_options.h"
-#include "frontend/util/status.h"
+#include "util/status.h"
 
 namespace sfm {
 

@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
-#include "frontend/util/atomic_file.h"
-#include "frontend/util/number_text.h"
+#include "util/atomic_file.h"
+#include "util/number_text.h"
 
 namespace sfm {
 namespace {

@@ -8,7 +8,7 @@
 #include <Eigen/Core>
 
 #include "backend/initialization/pose_graph.h"
-#include "frontend/geometry/pose.h"
+#include "geometry/pose.h"
 #include "frontend/sequence/sequence.h"
 
 namespace sfm {

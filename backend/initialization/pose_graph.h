@@ -21,9 +21,9 @@
 #include <Eigen/Core>
 
 #include "backend/bundle_adjustment/bundle_adjustment_options.h"
-#include "frontend/geometry/pose.h"
+#include "geometry/pose.h"
 #include "frontend/sequence/sequence.h"
-#include "frontend/util/status.h"
+#include "util/status.h"
 
 namespace sfm {
 

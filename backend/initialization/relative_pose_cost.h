@@ -8,7 +8,7 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
-#include "frontend/geometry/pose.h"
+#include "geometry/pose.h"
 
 namespace sfm {
 

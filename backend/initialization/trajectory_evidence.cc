@@ -4,7 +4,7 @@
 #include <cmath>
 #include <limits>
 
-#include "frontend/geometry/epipolar.h"
+#include "geometry/epipolar.h"
 #include "frontend/matching/pair_refinement.h"
 
 namespace sfm {

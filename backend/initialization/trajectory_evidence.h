@@ -9,7 +9,7 @@
 
 #include <Eigen/Core>
 
-#include "frontend/geometry/pose.h"
+#include "geometry/pose.h"
 #include "frontend/junctions/junction.h"
 #include "frontend/sequence/sequence.h"
 #include "frontend/tracks/tracks.h"

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "backend/triangulation/landmarks.h"
-#include "frontend/geometry/pose.h"
+#include "geometry/pose.h"
 #include "frontend/junctions/junction.h"
 #include "frontend/sequence/sequence.h"
 #include "frontend/tracks/tracks.h"

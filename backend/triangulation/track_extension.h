@@ -14,10 +14,10 @@
 #include "backend/triangulation/landmarks.h"
 #include "backend/triangulation/reconstruction.h"
 #include "backend/triangulation/triangulation_options.h"
-#include "frontend/geometry/pose.h"
+#include "geometry/pose.h"
 #include "frontend/junctions/junction.h"
 #include "frontend/tracks/tracks.h"
-#include "frontend/util/status.h"
+#include "util/status.h"
 
 namespace sfm {
 

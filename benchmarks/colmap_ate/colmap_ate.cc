@@ -22,9 +22,9 @@
 #include <string>
 
 #include "benchmarks/colmap_ate/colmap_poses.h"
-#include "frontend/geometry/tum_io.h"
-#include "frontend/util/json_format.h"
-#include "frontend/util/number_text.h"
+#include "geometry/tum_io.h"
+#include "util/json_format.h"
+#include "util/number_text.h"
 
 DEFINE_string(sequence, "", "Sequence directory with groundtruth.txt. Required.");
 DEFINE_string(colmap_model, "", "COLMAP text model directory (images.txt is read).");

@@ -6,9 +6,9 @@
 #include <string>
 #include <vector>
 
-#include "frontend/geometry/pose.h"
+#include "geometry/pose.h"
 #include "frontend/sequence/sequence.h"
-#include "frontend/util/status.h"
+#include "util/status.h"
 
 namespace sfm {
 

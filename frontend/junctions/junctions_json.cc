@@ -9,7 +9,7 @@
 #include <utility>
 #include <vector>
 
-#include "frontend/util/json_format.h"
+#include "util/json_format.h"
 
 namespace sfm {
 namespace {

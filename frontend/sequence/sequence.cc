@@ -18,13 +18,13 @@
 #include <opencv2/imgcodecs.hpp>
 #include <sstream>
 
-#include "frontend/geometry/tum_io.h"
+#include "geometry/tum_io.h"
 #include "frontend/sequence/image_header.h"
-#include "frontend/util/atomic_file.h"
-#include "frontend/util/json_format.h"
-#include "frontend/util/number_text.h"
-#include "frontend/util/regular_file.h"
-#include "frontend/util/text_file.h"
+#include "util/atomic_file.h"
+#include "util/json_format.h"
+#include "util/number_text.h"
+#include "util/regular_file.h"
+#include "util/text_file.h"
 
 namespace sfm {
 namespace {

@@ -1,4 +1,4 @@
-#include "frontend/util/output_directory.h"
+#include "util/output_directory.h"
 
 #include <dirent.h>
 #include <fcntl.h>

@@ -1,4 +1,4 @@
-#include "frontend/util/regular_file.h"
+#include "util/regular_file.h"
 
 #include <fcntl.h>
 #include <sys/stat.h>

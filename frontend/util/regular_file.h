@@ -6,7 +6,7 @@
 #include <cstddef>
 #include <string>
 
-#include "frontend/util/status.h"
+#include "util/status.h"
 
 namespace sfm {
 

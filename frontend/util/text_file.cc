@@ -1,4 +1,4 @@
-#include "frontend/util/text_file.h"
+#include "util/text_file.h"
 
 #include <algorithm>
 #include <cerrno>
@@ -6,7 +6,7 @@
 #include <cstring>
 #include <sstream>
 
-#include "frontend/util/regular_file.h"
+#include "util/regular_file.h"
 
 namespace sfm {
 

@@ -23,8 +23,8 @@
 #include "backend/export/ply_io.h"
 #include "sequences/generator/ground_truth.h"
 #include "sequences/generator/sequence_writer.h"
-#include "sfm_app/evaluation/matching_evaluation.h"
-#include "sfm_app/pipeline.h"
+#include "benchmarks/evaluation/matching_evaluation.h"
+#include "pipeline/pipeline.h"
 #include "tests/test_data.h"
 
 namespace sfm {

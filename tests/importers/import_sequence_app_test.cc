@@ -14,7 +14,7 @@
 #include <string>
 
 #include "frontend/sequence/sequence.h"
-#include "frontend/util/number_text.h"
+#include "util/number_text.h"
 #include "sequences/importers/camera_odometry_noise.h"
 #include "sequences/importers/imported_sequence.h"
 #include "tests/test_data.h"

@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "backend/initialization/pose_graph.h"
-#include "frontend/geometry/pose.h"
+#include "geometry/pose.h"
 
 namespace sfm {
 

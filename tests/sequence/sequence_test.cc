@@ -16,8 +16,8 @@
 #include <utility>
 #include <vector>
 
-#include "frontend/geometry/tum_io.h"
-#include "frontend/util/number_text.h"
+#include "geometry/tum_io.h"
+#include "util/number_text.h"
 #include "tests/test_data.h"
 
 namespace sfm {

@@ -1,6 +1,6 @@
 // JSON strings stay valid JSON whatever bytes they are given (issue 18, item 5: a file name that
 // is not UTF-8 went raw into the junction JSON).
-#include "frontend/util/json_format.h"
+#include "util/json_format.h"
 
 #include <gtest/gtest.h>
 

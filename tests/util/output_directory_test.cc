@@ -1,6 +1,6 @@
 // The output directory as one unit (SPEC section 2): what a committed, a failed and an interrupted
 // run leave, the lock, and the refusal to replace what is not an earlier output.
-#include "frontend/util/output_directory.h"
+#include "util/output_directory.h"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
