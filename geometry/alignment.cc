@@ -1,4 +1,4 @@
-#include "backend/metrics/alignment.h"
+#include "geometry/alignment.h"
 
 #include <glog/logging.h>
 

@@ -4,7 +4,7 @@
 #include <Eigen/Core>
 #include <vector>
 
-#include "frontend/geometry/pose.h"
+#include "geometry/pose.h"
 
 namespace sfm {
 

@@ -1,6 +1,6 @@
-#include "frontend/geometry/camera.h"
+#include "geometry/camera.h"
 
-#include "frontend/geometry/image_undistorter.h"
+#include "geometry/image_undistorter.h"
 
 #include <cmath>
 

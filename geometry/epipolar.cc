@@ -1,4 +1,4 @@
-#include "frontend/geometry/epipolar.h"
+#include "geometry/epipolar.h"
 
 #include <cmath>
 #include <limits>

@@ -4,8 +4,8 @@
 
 #include <Eigen/Core>
 
-#include "frontend/geometry/camera.h"
-#include "frontend/geometry/pose.h"
+#include "geometry/camera.h"
+#include "geometry/pose.h"
 
 namespace sfm {
 

@@ -1,4 +1,4 @@
-#include "frontend/geometry/image_undistorter.h"
+#include "geometry/image_undistorter.h"
 
 #include <glog/logging.h>
 

@@ -7,7 +7,7 @@
 #include <opencv2/core.hpp>
 #include <string>
 
-#include "frontend/geometry/camera.h"
+#include "geometry/camera.h"
 
 namespace sfm {
 

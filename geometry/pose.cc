@@ -1,4 +1,4 @@
-#include "frontend/geometry/pose.h"
+#include "geometry/pose.h"
 
 #include <cmath>
 

@@ -1,11 +1,11 @@
-#include "frontend/geometry/tum_io.h"
+#include "geometry/tum_io.h"
 
 #include <cmath>
 #include <cstdio>
 
-#include "frontend/util/atomic_file.h"
-#include "frontend/util/number_text.h"
-#include "frontend/util/text_file.h"
+#include "util/atomic_file.h"
+#include "util/number_text.h"
+#include "util/text_file.h"
 
 namespace sfm {
 namespace {

@@ -4,8 +4,8 @@
 #include <string>
 #include <vector>
 
-#include "frontend/geometry/pose.h"
-#include "frontend/util/status.h"
+#include "geometry/pose.h"
+#include "util/status.h"
 
 namespace sfm {
 
@@ -23,7 +23,7 @@ Status ReadTumTrajectory(const std::string& path, std::vector<StampedPose>* pose
 // text that reads back to the same double, so a write-read round trip is exact.
 std::string FormatTumTrajectory(const std::vector<StampedPose>& poses);
 
-// Writes the TUM text atomically (see frontend/util/atomic_file.h).
+// Writes the TUM text atomically (see util/atomic_file.h).
 Status WriteTumTrajectory(const std::string& path, const std::vector<StampedPose>& poses);
 
 }  // namespace sfm

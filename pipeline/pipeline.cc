@@ -1,4 +1,4 @@
-#include "sfm_app/pipeline.h"
+#include "pipeline/pipeline.h"
 
 #include <glog/logging.h>
 
@@ -15,7 +15,7 @@
 #include "backend/bundle_adjustment/pose_covariance.h"
 #include "backend/metrics/drift.h"
 #include "backend/triangulation/triangulate_tracks.h"
-#include "frontend/geometry/image_undistorter.h"
+#include "geometry/image_undistorter.h"
 #include "frontend/junctions/junction_detector.h"
 #include "frontend/junctions/topology.h"
 #include "frontend/matching/junction_matcher.h"
@@ -23,10 +23,10 @@
 #include "frontend/segments/undistorted_segments.h"
 #include "frontend/sequence/sequence.h"
 #include "frontend/tracks/tracks.h"
-#include "frontend/util/atomic_file.h"
-#include "frontend/util/progress.h"
-#include "sfm_app/pipeline_outputs.h"
-#include "sfm_app/report/report.h"
+#include "util/atomic_file.h"
+#include "util/progress.h"
+#include "pipeline/pipeline_outputs.h"
+#include "pipeline/report/report.h"
 
 namespace sfm {
 namespace {

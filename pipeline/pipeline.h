@@ -8,12 +8,12 @@
 #include "backend/triangulation/landmark_merge.h"
 #include "backend/triangulation/track_extension.h"
 #include "backend/triangulation/triangulation_options.h"
-#include "frontend/geometry/image_undistorter.h"
+#include "geometry/image_undistorter.h"
 #include "frontend/junctions/junction_options.h"
 #include "frontend/matching/matching_options.h"
 #include "frontend/segments/segment_detector.h"
-#include "frontend/util/status.h"
-#include "sfm_app/pipeline_result.h"
+#include "util/status.h"
+#include "pipeline/pipeline_result.h"
 
 namespace sfm {
 

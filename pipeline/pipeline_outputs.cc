@@ -1,4 +1,4 @@
-#include "sfm_app/pipeline_outputs.h"
+#include "pipeline/pipeline_outputs.h"
 
 #include <array>
 #include <cstdio>
@@ -7,12 +7,12 @@
 
 #include "backend/export/colmap_model.h"
 #include "backend/export/ply_io.h"
-#include "frontend/geometry/tum_io.h"
+#include "geometry/tum_io.h"
 #include "frontend/junctions/junctions_json.h"
 #include "frontend/matching/matches_csv.h"
 #include "frontend/tracks/tracks_csv.h"
-#include "frontend/util/atomic_file.h"
-#include "frontend/util/json_format.h"
+#include "util/atomic_file.h"
+#include "util/json_format.h"
 
 namespace sfm {
 namespace {

@@ -4,8 +4,8 @@
 #include <string>
 
 #include "frontend/sequence/sequence.h"
-#include "frontend/util/status.h"
-#include "sfm_app/pipeline_result.h"
+#include "util/status.h"
+#include "pipeline/pipeline_result.h"
 
 namespace sfm {
 

@@ -8,7 +8,7 @@
 #include "backend/metrics/drift.h"
 #include "backend/triangulation/landmarks.h"
 #include "backend/triangulation/wireframe_selection.h"
-#include "frontend/geometry/pose.h"
+#include "geometry/pose.h"
 #include "frontend/junctions/junction.h"
 #include "frontend/tracks/tracks.h"
 

@@ -22,14 +22,14 @@
 #include <string>
 #include <vector>
 
-#include "frontend/geometry/image_undistorter.h"
+#include "geometry/image_undistorter.h"
 #include "frontend/junctions/junction_detector.h"
 #include "frontend/junctions/junctions_json.h"
 #include "frontend/segments/segment_detector.h"
 #include "frontend/segments/undistorted_segments.h"
 #include "frontend/sequence/sequence.h"
-#include "frontend/util/atomic_file.h"
-#include "sfm_app/evaluation/junction_overlay.h"
+#include "util/atomic_file.h"
+#include "pipeline/overlay/junction_overlay.h"
 #include "sfm_app/flags/detector_flags.h"
 
 namespace {

@@ -33,7 +33,7 @@
 #include <glog/logging.h>
 
 #include "backend/export/ply_io.h"
-#include "frontend/geometry/tum_io.h"
+#include "geometry/tum_io.h"
 #include "sequences/generator/ground_truth.h"
 
 DEFINE_string(sequence, "", "Generated sequence directory with truth/ (required).");

@@ -12,7 +12,7 @@
 #include <glog/logging.h>
 
 #include "sfm_app/flags/detector_flags.h"
-#include "sfm_app/pipeline.h"
+#include "pipeline/pipeline.h"
 
 namespace {
 const sfm::PipelineOptions kDefaults;

@@ -26,8 +26,8 @@
 #include <string>
 #include <vector>
 
-#include "frontend/geometry/epipolar.h"
-#include "frontend/geometry/image_undistorter.h"
+#include "geometry/epipolar.h"
+#include "geometry/image_undistorter.h"
 #include "frontend/junctions/junction_detector.h"
 #include "frontend/junctions/topology.h"
 #include "frontend/matching/junction_matcher.h"
@@ -35,8 +35,8 @@
 #include "frontend/segments/segment_detector.h"
 #include "frontend/segments/undistorted_segments.h"
 #include "frontend/sequence/sequence.h"
-#include "frontend/util/atomic_file.h"
-#include "sfm_app/evaluation/match_overlay.h"
+#include "util/atomic_file.h"
+#include "pipeline/overlay/match_overlay.h"
 #include "sfm_app/flags/detector_flags.h"
 
 namespace {

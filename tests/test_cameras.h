@@ -1,7 +1,7 @@
 // Cameras that several tests share.
 #pragma once
 
-#include "frontend/geometry/camera.h"
+#include "geometry/camera.h"
 
 namespace sfm::testing {
 

@@ -1,4 +1,4 @@
-#include "frontend/util/atomic_file.h"
+#include "util/atomic_file.h"
 
 #include <unistd.h>
 

@@ -4,7 +4,7 @@
 
 #include <string>
 
-#include "frontend/util/status.h"
+#include "util/status.h"
 
 namespace sfm {
 

@@ -1,6 +1,6 @@
-#include "frontend/util/json_format.h"
+#include "util/json_format.h"
 
-#include "frontend/util/number_text.h"
+#include "util/number_text.h"
 
 #include <cmath>
 #include <cstdio>

@@ -1,4 +1,4 @@
-#include "frontend/util/progress.h"
+#include "util/progress.h"
 
 #include <unistd.h>
 

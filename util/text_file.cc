@@ -1,4 +1,4 @@
-#include "frontend/util/text_file.h"
+#include "util/text_file.h"
 
 #include <cerrno>
 #include <cstdlib>

@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "frontend/util/status.h"
+#include "util/status.h"
 
 namespace sfm {
 

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "frontend/util/status.h"
+#include "util/status.h"
 
 namespace sfm {
 

@@ -10,7 +10,7 @@
 #include <Eigen/Core>
 
 #include "backend/triangulation/landmarks.h"
-#include "frontend/geometry/pose.h"
+#include "geometry/pose.h"
 
 namespace sfm {
 

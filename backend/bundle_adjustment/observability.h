@@ -10,7 +10,7 @@
 #include <Eigen/Geometry>
 #include <vector>
 
-#include "frontend/geometry/pose.h"
+#include "geometry/pose.h"
 
 namespace sfm {
 

@@ -22,7 +22,7 @@
 #include <Eigen/Geometry>
 
 #include "backend/bundle_adjustment/bundle_adjustment_options.h"
-#include "frontend/geometry/pose.h"
+#include "geometry/pose.h"
 #include "frontend/sequence/sequence.h"
 
 namespace sfm {

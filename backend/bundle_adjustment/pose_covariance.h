@@ -12,9 +12,9 @@
 #include "backend/bundle_adjustment/bundle_adjustment_options.h"
 #include "backend/triangulation/landmark_uncertainty.h"
 #include "backend/triangulation/landmarks.h"
-#include "frontend/geometry/pose.h"
+#include "geometry/pose.h"
 #include "frontend/sequence/sequence.h"
-#include "frontend/util/status.h"
+#include "util/status.h"
 
 namespace sfm {
 

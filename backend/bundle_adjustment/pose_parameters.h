@@ -12,7 +12,7 @@
 #include <Eigen/Geometry>
 #include <array>
 
-#include "frontend/geometry/pose.h"
+#include "geometry/pose.h"
 
 namespace sfm {
 

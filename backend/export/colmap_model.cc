@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
-#include "frontend/util/number_text.h"
-#include "frontend/util/atomic_file.h"
+#include "util/number_text.h"
+#include "util/atomic_file.h"
 
 namespace sfm {
 namespace {

@@ -7,9 +7,9 @@
 #include <string>
 #include <vector>
 
-#include "frontend/geometry/camera.h"
-#include "frontend/geometry/pose.h"
-#include "frontend/util/status.h"
+#include "geometry/camera.h"
+#include "geometry/pose.h"
+#include "util/status.h"
 
 namespace sfm {
 

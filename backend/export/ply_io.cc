@@ -10,9 +10,9 @@
 #include <utility>
 #include <vector>
 
-#include "frontend/util/number_text.h"
-#include "frontend/util/text_file.h"
-#include "frontend/util/atomic_file.h"
+#include "util/number_text.h"
+#include "util/text_file.h"
+#include "util/atomic_file.h"
 
 namespace sfm {
 namespace {

@@ -6,7 +6,7 @@
 #include <string>
 
 #include "backend/export/wireframe.h"
-#include "frontend/util/status.h"
+#include "util/status.h"
 
 namespace sfm {
 
@@ -18,7 +18,7 @@ namespace sfm {
 // outside [0, N), naming the vertex or edge.
 Status FormatPly(const ReconstructedWireframe& wireframe, std::string* text);
 
-// FormatPly written atomically to `path` (frontend/util/atomic_file.h); errors are prefixed by the path.
+// FormatPly written atomically to `path` (util/atomic_file.h); errors are prefixed by the path.
 Status WritePly(const std::string& path, const ReconstructedWireframe& wireframe);
 
 // Reads an ASCII PLY file holding `element vertex` with scalar properties x, y, z (others are

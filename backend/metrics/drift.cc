@@ -5,7 +5,7 @@
 #include <cmath>
 #include <limits>
 
-#include "backend/metrics/alignment.h"
+#include "geometry/alignment.h"
 
 namespace sfm {
 namespace {

@@ -5,7 +5,7 @@
 
 #include <vector>
 
-#include "frontend/geometry/pose.h"
+#include "geometry/pose.h"
 
 namespace sfm {
 

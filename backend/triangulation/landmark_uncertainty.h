@@ -9,7 +9,7 @@
 #include <memory>
 #include <vector>
 
-#include "frontend/geometry/pose.h"
+#include "geometry/pose.h"
 
 namespace sfm {
 

@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "backend/triangulation/triangulation_options.h"
-#include "frontend/geometry/pose.h"
+#include "geometry/pose.h"
 
 namespace sfm {
 

@@ -13,10 +13,10 @@
 #include <Eigen/Core>
 
 #include "backend/triangulation/landmarks.h"
-#include "frontend/geometry/pose.h"
+#include "geometry/pose.h"
 #include "frontend/junctions/junction.h"
 #include "frontend/tracks/tracks.h"
-#include "frontend/util/status.h"
+#include "util/status.h"
 
 namespace sfm {
 

@@ -9,7 +9,7 @@
 #include "backend/triangulation/line_triangulation.h"
 #include "backend/triangulation/point_triangulation.h"
 #include "backend/triangulation/triangulation_options.h"
-#include "frontend/geometry/pose.h"
+#include "geometry/pose.h"
 #include "frontend/junctions/junction.h"
 #include "frontend/tracks/tracks.h"
 

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <string>
 
-#include "frontend/util/status.h"
+#include "util/status.h"
 
 namespace sfm {
 

@@ -13,7 +13,7 @@
 #include "backend/triangulation/landmarks.h"
 #include "backend/triangulation/triangulate_tracks.h"
 #include "backend/triangulation/triangulation_options.h"
-#include "frontend/geometry/pose.h"
+#include "geometry/pose.h"
 #include "frontend/junctions/junction.h"
 
 namespace sfm {

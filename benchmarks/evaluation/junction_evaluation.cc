@@ -1,4 +1,4 @@
-#include "sfm_app/evaluation/junction_evaluation.h"
+#include "benchmarks/evaluation/junction_evaluation.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "sfm_app/evaluation/matching_evaluation.h"
+#include "benchmarks/evaluation/matching_evaluation.h"
 
 #include <algorithm>
 #include <ctime>
@@ -15,12 +15,12 @@
 #include <glog/logging.h>
 #include <opencv2/line_descriptor.hpp>
 
-#include "frontend/geometry/epipolar.h"
+#include "geometry/epipolar.h"
 #include "frontend/junctions/junction_detector.h"
 #include "frontend/junctions/topology.h"
 #include "frontend/matching/junction_similarity.h"
-#include "frontend/segments/segment_evaluation.h"
-#include "frontend/util/text_file.h"
+#include "benchmarks/evaluation/segment_evaluation.h"
+#include "util/text_file.h"
 
 namespace sfm {
 namespace {

@@ -23,10 +23,10 @@
 #include "frontend/matching/junction_matcher.h"
 #include "frontend/segments/line_segment.h"
 #include "frontend/segments/segment_detector.h"
-#include "frontend/util/status.h"
+#include "util/status.h"
 #include "sequences/generator/ground_truth.h"
 #include "sequences/generator/wireframe.h"
-#include "sfm_app/evaluation/junction_evaluation.h"
+#include "benchmarks/evaluation/junction_evaluation.h"
 
 namespace sfm {
 

@@ -1,4 +1,4 @@
-#include "frontend/segments/segment_evaluation.h"
+#include "benchmarks/evaluation/segment_evaluation.h"
 
 #include <algorithm>
 #include <cmath>

@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "frontend/segments/line_segment.h"
-#include "frontend/util/status.h"
+#include "util/status.h"
 
 namespace sfm {
 

@@ -33,20 +33,20 @@
 #include <string>
 #include <vector>
 
-#include "frontend/geometry/image_undistorter.h"
+#include "geometry/image_undistorter.h"
 #include "frontend/junctions/junction_detector.h"
 #include "frontend/junctions/pair_probability.h"
 #include "frontend/segments/endpoint_fit.h"
 #include "frontend/segments/segment_detector.h"
-#include "frontend/segments/segment_evaluation.h"
+#include "benchmarks/evaluation/segment_evaluation.h"
 #include "frontend/segments/undistorted_segments.h"
 #include "frontend/sequence/sequence.h"
-#include "frontend/util/atomic_file.h"
+#include "util/atomic_file.h"
 #include "sequences/generator/ground_truth.h"
 #include "sequences/generator/sequence_writer.h"
-#include "sfm_app/evaluation/junction_evaluation.h"
-#include "sfm_app/evaluation/junction_overlay.h"
-#include "sfm_app/evaluation/table_format.h"
+#include "benchmarks/evaluation/junction_evaluation.h"
+#include "pipeline/overlay/junction_overlay.h"
+#include "benchmarks/evaluation/table_format.h"
 #include "sfm_app/flags/detector_flags.h"
 
 namespace {

@@ -35,18 +35,18 @@
 #include <string>
 #include <vector>
 
-#include "frontend/geometry/epipolar.h"
-#include "frontend/geometry/image_undistorter.h"
+#include "geometry/epipolar.h"
+#include "geometry/image_undistorter.h"
 #include "frontend/junctions/topology.h"
 #include "frontend/matching/junction_matcher.h"
 #include "frontend/matching/junction_similarity.h"
-#include "frontend/segments/segment_evaluation.h"
+#include "benchmarks/evaluation/segment_evaluation.h"
 #include "frontend/sequence/sequence.h"
-#include "frontend/util/atomic_file.h"
+#include "util/atomic_file.h"
 #include "sequences/generator/ground_truth.h"
-#include "sfm_app/evaluation/match_overlay.h"
-#include "sfm_app/evaluation/matching_evaluation.h"
-#include "sfm_app/evaluation/table_format.h"
+#include "pipeline/overlay/match_overlay.h"
+#include "benchmarks/evaluation/matching_evaluation.h"
+#include "benchmarks/evaluation/table_format.h"
 #include "sfm_app/flags/detector_flags.h"
 
 namespace {

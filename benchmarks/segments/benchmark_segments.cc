@@ -31,8 +31,8 @@
 #include "frontend/junctions/junction_detector.h"
 #include "frontend/segments/endpoint_fit.h"
 #include "frontend/segments/segment_detector.h"
-#include "frontend/segments/segment_evaluation.h"
-#include "frontend/util/atomic_file.h"
+#include "benchmarks/evaluation/segment_evaluation.h"
+#include "util/atomic_file.h"
 #include "sfm_app/flags/detector_flags.h"
 
 DEFINE_string(vgg_dir, "../shared/data/vgg-corridor",

@@ -1,6 +1,6 @@
 #include "frontend/matching/matches_csv.h"
 
-#include "frontend/util/number_text.h"
+#include "util/number_text.h"
 
 namespace sfm {
 

@@ -5,7 +5,7 @@
 #include <string>
 
 #include "frontend/segments/endpoint_model.h"
-#include "frontend/util/status.h"
+#include "util/status.h"
 
 namespace sfm {
 

@@ -7,7 +7,7 @@
 #include <Eigen/Core>
 #include <cmath>
 
-#include "frontend/geometry/pose.h"
+#include "geometry/pose.h"
 
 namespace sfm {
 

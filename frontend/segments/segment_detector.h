@@ -16,7 +16,7 @@
 #include <opencv2/core.hpp>
 
 #include "frontend/segments/line_segment.h"
-#include "frontend/util/status.h"
+#include "util/status.h"
 
 namespace sfm {
 

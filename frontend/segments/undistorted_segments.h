@@ -5,8 +5,8 @@
 
 #include <opencv2/core.hpp>
 
-#include "frontend/geometry/camera.h"
-#include "frontend/geometry/image_undistorter.h"
+#include "geometry/camera.h"
+#include "geometry/image_undistorter.h"
 #include "frontend/segments/line_segment.h"
 #include "frontend/segments/segment_detector.h"
 

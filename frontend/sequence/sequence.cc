@@ -17,10 +17,10 @@
 #include <opencv2/core/eigen.hpp>
 #include <opencv2/imgcodecs.hpp>
 
-#include "frontend/geometry/tum_io.h"
-#include "frontend/util/atomic_file.h"
-#include "frontend/util/number_text.h"
-#include "frontend/util/text_file.h"
+#include "geometry/tum_io.h"
+#include "util/atomic_file.h"
+#include "util/number_text.h"
+#include "util/text_file.h"
 
 namespace sfm {
 namespace {

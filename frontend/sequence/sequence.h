@@ -8,9 +8,9 @@
 
 #include <opencv2/core.hpp>
 
-#include "frontend/geometry/camera.h"
-#include "frontend/geometry/pose.h"
-#include "frontend/util/status.h"
+#include "geometry/camera.h"
+#include "geometry/pose.h"
+#include "util/status.h"
 
 namespace sfm {
 

@@ -1,4 +1,4 @@
-#include "sfm_app/evaluation/junction_overlay.h"
+#include "pipeline/overlay/junction_overlay.h"
 
 #include <algorithm>
 #include <cstdio>

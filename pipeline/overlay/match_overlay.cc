@@ -1,4 +1,4 @@
-#include "sfm_app/evaluation/match_overlay.h"
+#include "pipeline/overlay/match_overlay.h"
 
 #include <algorithm>
 #include <string>

@@ -1,4 +1,4 @@
-#include "sfm_app/report/base64.h"
+#include "pipeline/report/base64.h"
 
 #include <cstdint>
 

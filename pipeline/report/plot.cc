@@ -1,4 +1,4 @@
-#include "sfm_app/report/plot.h"
+#include "pipeline/report/plot.h"
 
 #include <algorithm>
 #include <cmath>

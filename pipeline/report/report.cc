@@ -1,4 +1,4 @@
-#include "sfm_app/report/report.h"
+#include "pipeline/report/report.h"
 
 #include <algorithm>
 #include <cmath>
@@ -10,12 +10,12 @@
 #include <glog/logging.h>
 #include <opencv2/imgcodecs.hpp>
 
-#include "backend/metrics/alignment.h"
-#include "frontend/geometry/image_undistorter.h"
-#include "frontend/util/atomic_file.h"
-#include "sfm_app/evaluation/match_overlay.h"
-#include "sfm_app/report/base64.h"
-#include "sfm_app/report/plot.h"
+#include "geometry/alignment.h"
+#include "geometry/image_undistorter.h"
+#include "util/atomic_file.h"
+#include "pipeline/overlay/match_overlay.h"
+#include "pipeline/report/base64.h"
+#include "pipeline/report/plot.h"
 
 namespace sfm {
 namespace {

@@ -8,10 +8,10 @@
 
 #include <opencv2/core.hpp>
 
-#include "frontend/geometry/pose.h"
+#include "geometry/pose.h"
 #include "frontend/sequence/sequence.h"
-#include "frontend/util/status.h"
-#include "sfm_app/pipeline_result.h"
+#include "util/status.h"
+#include "pipeline/pipeline_result.h"
 
 namespace sfm {
 

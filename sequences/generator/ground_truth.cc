@@ -6,7 +6,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "frontend/util/atomic_file.h"
+#include "util/atomic_file.h"
 
 namespace sfm {
 namespace {

@@ -17,8 +17,8 @@
 
 #include <Eigen/Core>
 
-#include "frontend/geometry/pose.h"
-#include "frontend/util/status.h"
+#include "geometry/pose.h"
+#include "util/status.h"
 #include "sequences/generator/scene.h"
 #include "sequences/generator/wireframe.h"
 

@@ -14,9 +14,9 @@
 #include <cstdint>
 #include <vector>
 
-#include "frontend/geometry/pose.h"
+#include "geometry/pose.h"
 #include "frontend/sequence/sequence.h"
-#include "frontend/util/status.h"
+#include "util/status.h"
 
 namespace sfm {
 

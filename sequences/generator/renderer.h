@@ -16,9 +16,9 @@
 #include <Eigen/Core>
 #include <opencv2/core.hpp>
 
-#include "frontend/geometry/camera.h"
-#include "frontend/geometry/pose.h"
-#include "frontend/util/status.h"
+#include "geometry/camera.h"
+#include "geometry/pose.h"
+#include "util/status.h"
 #include "sequences/generator/scene.h"
 
 namespace sfm {

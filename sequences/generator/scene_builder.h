@@ -7,7 +7,7 @@
 
 #include <cstdint>
 
-#include "frontend/util/status.h"
+#include "util/status.h"
 #include "sequences/generator/scene.h"
 
 namespace sfm {

@@ -8,9 +8,9 @@
 #include <glog/logging.h>
 #include <opencv2/imgcodecs.hpp>
 
-#include "frontend/geometry/tum_io.h"
+#include "geometry/tum_io.h"
 #include "frontend/sequence/sequence.h"
-#include "frontend/util/atomic_file.h"
+#include "util/atomic_file.h"
 #include "sequences/generator/ground_truth.h"
 #include "sequences/generator/random.h"
 #include "sequences/generator/wireframe.h"

@@ -13,7 +13,7 @@
 #include <cstdint>
 #include <string>
 
-#include "frontend/util/status.h"
+#include "util/status.h"
 #include "sequences/generator/camera_rig.h"
 #include "sequences/generator/odometry_noise.h"
 #include "sequences/generator/renderer.h"

@@ -13,8 +13,8 @@
 #include <string>
 #include <vector>
 
-#include "frontend/geometry/pose.h"
-#include "frontend/util/status.h"
+#include "geometry/pose.h"
+#include "util/status.h"
 #include "sequences/generator/scene.h"
 
 namespace sfm {

@@ -9,8 +9,8 @@
 // image; the ends of each visible run are refined by bisection.
 #pragma once
 
-#include "frontend/geometry/camera.h"
-#include "frontend/geometry/pose.h"
+#include "geometry/camera.h"
+#include "geometry/pose.h"
 #include "sequences/generator/ground_truth.h"
 #include "sequences/generator/renderer.h"
 #include "sequences/generator/scene.h"

@@ -16,9 +16,9 @@
 #include <cstdint>
 #include <vector>
 
-#include "frontend/geometry/pose.h"
+#include "geometry/pose.h"
 #include "frontend/sequence/sequence.h"
-#include "frontend/util/status.h"
+#include "util/status.h"
 
 namespace sfm {
 

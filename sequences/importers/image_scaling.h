@@ -3,8 +3,8 @@
 
 #include <opencv2/core.hpp>
 
-#include "frontend/geometry/camera.h"
-#include "frontend/util/status.h"
+#include "geometry/camera.h"
+#include "util/status.h"
 
 namespace sfm {
 

@@ -14,10 +14,10 @@
 #include <sstream>
 #include <utility>
 
-#include "frontend/geometry/tum_io.h"
+#include "geometry/tum_io.h"
 #include "frontend/sequence/sequence.h"
-#include "frontend/util/atomic_file.h"
-#include "frontend/util/number_text.h"
+#include "util/atomic_file.h"
+#include "util/number_text.h"
 #include "sequences/importers/input_files.h"
 
 namespace sfm {

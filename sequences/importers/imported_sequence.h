@@ -8,9 +8,9 @@
 #include <string>
 #include <vector>
 
-#include "frontend/geometry/camera.h"
-#include "frontend/geometry/pose.h"
-#include "frontend/util/status.h"
+#include "geometry/camera.h"
+#include "geometry/pose.h"
+#include "util/status.h"
 #include "sequences/importers/camera_odometry_noise.h"
 #include "sequences/importers/image_scaling.h"
 

@@ -15,7 +15,7 @@
 #include <glog/logging.h>
 #include <opencv2/imgcodecs.hpp>
 
-#include "frontend/util/text_file.h"
+#include "util/text_file.h"
 
 namespace sfm {
 namespace {

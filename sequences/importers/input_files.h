@@ -7,7 +7,7 @@
 
 #include <opencv2/core.hpp>
 
-#include "frontend/util/status.h"
+#include "util/status.h"
 
 namespace sfm {
 

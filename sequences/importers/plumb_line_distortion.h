@@ -11,7 +11,7 @@
 #include <opencv2/core.hpp>
 #include <vector>
 
-#include "frontend/util/status.h"
+#include "util/status.h"
 
 namespace sfm {
 

@@ -1,4 +1,4 @@
-#include "frontend/util/number_text.h"
+#include "util/number_text.h"
 #include "sequences/importers/projection_decomposition.h"
 
 #include <cmath>

@@ -5,8 +5,8 @@
 
 #include <Eigen/Core>
 
-#include "frontend/geometry/pose.h"
-#include "frontend/util/status.h"
+#include "geometry/pose.h"
+#include "util/status.h"
 
 namespace sfm {
 

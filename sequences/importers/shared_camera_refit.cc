@@ -8,7 +8,7 @@
 #include <cmath>
 #include <string>
 
-#include "backend/metrics/alignment.h"
+#include "geometry/alignment.h"
 #include "sequences/importers/shared_camera_refit_costs.h"
 
 namespace sfm {

@@ -12,7 +12,7 @@
 #include <Eigen/Core>
 #include <vector>
 
-#include "frontend/util/status.h"
+#include "util/status.h"
 
 namespace sfm {
 

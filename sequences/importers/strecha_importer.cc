@@ -7,7 +7,7 @@
 #include <Eigen/SVD>
 #include <glog/logging.h>
 
-#include "frontend/util/number_text.h"
+#include "util/number_text.h"
 #include "sequences/importers/input_files.h"
 
 namespace sfm {

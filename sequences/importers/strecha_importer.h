@@ -4,7 +4,7 @@
 
 #include <string>
 
-#include "frontend/util/status.h"
+#include "util/status.h"
 #include "sequences/importers/imported_sequence.h"
 
 namespace sfm {

@@ -11,8 +11,8 @@
 
 #include <glog/logging.h>
 
-#include "frontend/geometry/tum_io.h"
-#include "frontend/util/text_file.h"
+#include "geometry/tum_io.h"
+#include "util/text_file.h"
 #include "sequences/importers/input_files.h"
 
 namespace sfm {

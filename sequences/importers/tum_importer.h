@@ -5,9 +5,9 @@
 
 #include <string>
 
-#include "frontend/geometry/camera.h"
-#include "frontend/geometry/pose.h"
-#include "frontend/util/status.h"
+#include "geometry/camera.h"
+#include "geometry/pose.h"
+#include "util/status.h"
 #include "sequences/importers/imported_sequence.h"
 
 namespace sfm {

@@ -14,7 +14,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <sstream>
 
-#include "frontend/util/number_text.h"
+#include "util/number_text.h"
 #include "sequences/importers/input_files.h"
 #include "sequences/importers/projection_decomposition.h"
 #include "sequences/importers/shared_intrinsics_warp.h"

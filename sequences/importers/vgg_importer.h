@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "frontend/util/status.h"
+#include "util/status.h"
 #include "sequences/importers/imported_sequence.h"
 #include "sequences/importers/plumb_line_distortion.h"
 #include "sequences/importers/shared_camera_refit.h"

@@ -1,6 +1,6 @@
 // The whole pipeline on a generated sequence with known truth: every SPEC section 3 output is
 // written and readable, and the bundle adjustment improves on the odometry.
-#include "sfm_app/pipeline.h"
+#include "pipeline/pipeline.h"
 
 #include <filesystem>
 #include <fstream>
@@ -10,7 +10,7 @@
 #include <gtest/gtest.h>
 
 #include "backend/export/ply_io.h"
-#include "frontend/geometry/tum_io.h"
+#include "geometry/tum_io.h"
 #include "frontend/junctions/junctions_json.h"
 #include "sequences/generator/sequence_writer.h"
 #include "tests/test_data.h"

@@ -15,7 +15,7 @@
 #include "backend/triangulation/triangulate_tracks.h"
 #include "frontend/sequence/sequence.h"
 #include "sequences/generator/sequence_writer.h"
-#include "sfm_app/pipeline.h"
+#include "pipeline/pipeline.h"
 #include "tests/test_data.h"
 
 namespace sfm {

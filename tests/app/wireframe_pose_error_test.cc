@@ -11,7 +11,7 @@
 #include "backend/bundle_adjustment/pose_covariance.h"
 #include "frontend/sequence/sequence.h"
 #include "sequences/generator/sequence_writer.h"
-#include "sfm_app/pipeline.h"
+#include "pipeline/pipeline.h"
 #include "tests/test_data.h"
 
 namespace sfm {

@@ -21,7 +21,7 @@
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 
-#include "frontend/geometry/tum_io.h"
+#include "geometry/tum_io.h"
 #include "frontend/sequence/sequence.h"
 #include "sequences/generator/camera_rig.h"
 #include "sequences/generator/odometry_noise.h"
@@ -29,7 +29,7 @@
 #include "sequences/generator/renderer.h"
 #include "sequences/generator/scene_builder.h"
 #include "sequences/generator/sequence_writer.h"
-#include "sfm_app/pipeline.h"
+#include "pipeline/pipeline.h"
 #include "tests/test_data.h"
 
 namespace sfm {

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "backend/triangulation/landmarks.h"
-#include "frontend/geometry/pose.h"
+#include "geometry/pose.h"
 #include "frontend/sequence/sequence.h"
 
 namespace sfm::testing {

@@ -21,7 +21,7 @@
 #include <utility>
 #include <vector>
 
-#include "frontend/geometry/image_undistorter.h"
+#include "geometry/image_undistorter.h"
 #include "sequences/generator/ground_truth.h"
 #include "sequences/generator/sequence_writer.h"
 #include "tests/test_data.h"
@@ -382,7 +382,7 @@ void ExpectOcclusionEndsOnContours(std::vector<double> gaps, size_t min_count) {
 }
 
 // The sequence scripts/benchmark_junctions.sh calls corridor-distorted (StandardSequences in
-// sfm_app/benchmark_junctions.cc), where a helper saw vertex 463 drawn "4-5 px higher" than its
+// benchmarks/junctions/benchmark_junctions.cc), where a helper saw vertex 463 drawn "4-5 px higher" than its
 // truth in frames 17-28.
 GeneratorOptions CorridorDistorted() {
   GeneratorOptions options;

@@ -1,4 +1,4 @@
-#include "frontend/geometry/camera.h"
+#include "geometry/camera.h"
 
 #include <algorithm>
 #include <cmath>

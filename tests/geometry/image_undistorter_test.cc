@@ -1,5 +1,5 @@
 // ImageUndistorter's interpolation: how much each resampling blurs a sharp edge.
-#include "frontend/geometry/image_undistorter.h"
+#include "geometry/image_undistorter.h"
 
 #include <gtest/gtest.h>
 

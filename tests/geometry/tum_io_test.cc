@@ -1,4 +1,4 @@
-#include "frontend/geometry/tum_io.h"
+#include "geometry/tum_io.h"
 
 #include <fstream>
 #include <string>

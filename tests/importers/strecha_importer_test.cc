@@ -12,7 +12,7 @@
 #include <opencv2/features2d.hpp>
 #include <opencv2/imgcodecs.hpp>
 
-#include "frontend/geometry/epipolar.h"
+#include "geometry/epipolar.h"
 #include "frontend/sequence/sequence.h"
 #include "tests/test_data.h"
 

@@ -15,8 +15,8 @@
 #include <vector>
 
 #include "backend/triangulation/point_triangulation.h"
-#include "frontend/geometry/camera.h"
-#include "frontend/geometry/epipolar.h"
+#include "geometry/camera.h"
+#include "geometry/epipolar.h"
 #include "frontend/sequence/sequence.h"
 #include "tests/test_data.h"
 

@@ -6,7 +6,7 @@
 #include <cmath>
 #include <functional>
 
-#include "frontend/geometry/image_undistorter.h"
+#include "geometry/image_undistorter.h"
 #include "frontend/junctions/junction_detector.h"
 #include "frontend/segments/undistorted_segments.h"
 #include "tests/test_cameras.h"

@@ -1,6 +1,6 @@
 // The evaluation code of benchmark_junctions on hand-made inputs: ground-truth junctions from
 // segments (VGG rule), one-to-one matching, true junctions of a frame, end-point offsets.
-#include "sfm_app/evaluation/junction_evaluation.h"
+#include "benchmarks/evaluation/junction_evaluation.h"
 
 #include <gtest/gtest.h>
 

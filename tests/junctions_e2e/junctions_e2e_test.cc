@@ -8,12 +8,12 @@
 
 #include "frontend/junctions/junction_detector.h"
 #include "frontend/segments/segment_detector.h"
-#include "frontend/segments/segment_evaluation.h"
+#include "benchmarks/evaluation/segment_evaluation.h"
 #include "sequences/generator/camera_rig.h"
 #include "sequences/generator/renderer.h"
 #include "sequences/generator/visibility.h"
 #include "sequences/generator/wireframe.h"
-#include "sfm_app/evaluation/junction_evaluation.h"
+#include "benchmarks/evaluation/junction_evaluation.h"
 #include "tests/test_scenes.h"
 
 namespace sfm {

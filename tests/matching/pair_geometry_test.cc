@@ -7,7 +7,7 @@
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>
 
-#include "frontend/geometry/epipolar.h"
+#include "geometry/epipolar.h"
 #include "frontend/matching/junction_matcher.h"
 #include "frontend/matching/junction_similarity.h"
 

@@ -7,7 +7,7 @@
 
 #include <Eigen/Core>
 
-#include "frontend/geometry/pose.h"
+#include "geometry/pose.h"
 #include "frontend/junctions/junction.h"
 
 namespace sfm::testing {

@@ -1,6 +1,6 @@
-// The Fig. 6-style match picture (sfm_app/evaluation/match_overlay.h): partner segments share a
+// The Fig. 6-style match picture (pipeline/overlay/match_overlay.h): partner segments share a
 // colour, also for a partial match (an L against a Y), whose left-out segment is drawn in grey.
-#include "sfm_app/evaluation/match_overlay.h"
+#include "pipeline/overlay/match_overlay.h"
 
 #include <gtest/gtest.h>
 

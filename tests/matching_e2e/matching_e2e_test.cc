@@ -7,7 +7,7 @@
 
 #include <gtest/gtest.h>
 
-#include "frontend/geometry/epipolar.h"
+#include "geometry/epipolar.h"
 #include "frontend/junctions/junction_detector.h"
 #include "frontend/junctions/topology.h"
 #include "frontend/matching/junction_matcher.h"
@@ -17,7 +17,7 @@
 #include "sequences/generator/renderer.h"
 #include "sequences/generator/visibility.h"
 #include "sequences/generator/wireframe.h"
-#include "sfm_app/evaluation/matching_evaluation.h"
+#include "benchmarks/evaluation/matching_evaluation.h"
 #include "tests/test_scenes.h"
 
 namespace sfm {

@@ -1,6 +1,6 @@
-// The evaluation code of benchmark_matching (sfm_app/evaluation/matching_evaluation.h), on
+// The evaluation code of benchmark_matching (benchmarks/evaluation/matching_evaluation.h), on
 // hand-built cases, and its reading of the VGG Corridor ground truth when the data is present.
-#include "sfm_app/evaluation/matching_evaluation.h"
+#include "benchmarks/evaluation/matching_evaluation.h"
 
 #include <cmath>
 #include <fstream>
@@ -8,8 +8,8 @@
 #include <gtest/gtest.h>
 #include <opencv2/imgcodecs.hpp>
 
-#include "frontend/geometry/epipolar.h"
-#include "frontend/segments/segment_evaluation.h"
+#include "geometry/epipolar.h"
+#include "benchmarks/evaluation/segment_evaluation.h"
 #include "tests/test_data.h"
 #include "tests/test_segments.h"
 

@@ -1,4 +1,4 @@
-#include "sfm_app/report/report.h"
+#include "pipeline/report/report.h"
 
 #include <cmath>
 #include <filesystem>
@@ -10,7 +10,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "backend/metrics/drift.h"
-#include "sfm_app/report/base64.h"
+#include "pipeline/report/base64.h"
 #include "tests/test_data.h"
 
 namespace sfm {

@@ -8,7 +8,7 @@
 #include <gtest/gtest.h>
 #include <opencv2/core.hpp>
 
-#include "frontend/segments/segment_evaluation.h"
+#include "benchmarks/evaluation/segment_evaluation.h"
 #include "tests/segments/synthetic_image.h"
 
 namespace sfm {

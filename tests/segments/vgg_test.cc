@@ -14,7 +14,7 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "frontend/segments/segment_detector.h"
-#include "frontend/segments/segment_evaluation.h"
+#include "benchmarks/evaluation/segment_evaluation.h"
 #include "tests/test_data.h"
 
 namespace sfm {

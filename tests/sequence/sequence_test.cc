@@ -14,8 +14,8 @@
 #include <gtest/gtest.h>
 #include <opencv2/imgcodecs.hpp>
 
-#include "frontend/geometry/tum_io.h"
-#include "frontend/util/number_text.h"
+#include "geometry/tum_io.h"
+#include "util/number_text.h"
 #include "tests/test_data.h"
 
 namespace sfm {

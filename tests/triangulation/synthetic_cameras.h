@@ -6,7 +6,7 @@
 #include <random>
 #include <vector>
 
-#include "frontend/geometry/pose.h"
+#include "geometry/pose.h"
 
 namespace sfm::testing {
 
