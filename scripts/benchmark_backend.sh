@@ -26,7 +26,7 @@ build=${BUILD:-build}
 work=${WORK:-/tmp/backend_benchmark}
 vgg=${VGG_DIR:-../shared/data/vgg-corridor}
 strecha=${STRECHA_DIR:-../shared/data/strecha-entry-P10}
-cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Release >/dev/null
+cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Release -DSFM_BUILD_BENCHMARKS=ON >/dev/null
 cmake --build "$build" --target junction_sfm make_sequence import_sequence evaluate_wireframe -j2 >&2
 mkdir -p "$work"
 

@@ -16,6 +16,6 @@ work=${WORK:-/tmp/junction_benchmark}
 vgg=${VGG_DIR:-../shared/data/vgg-corridor}
 report=${1:-junction_results_run.md}
 shift || true
-cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Release >/dev/null
+cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Release -DSFM_BUILD_BENCHMARKS=ON >/dev/null
 cmake --build "$build" --target benchmark_junctions detect_junctions -j2
 "$build/bin/benchmark_junctions" --output "$report" --work_dir "$work" --vgg_dir "$vgg" "$@"

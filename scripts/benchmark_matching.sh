@@ -18,7 +18,7 @@ work=${WORK:-/tmp/matching_benchmark}
 vgg=${VGG_DIR:-../shared/data/vgg-corridor}
 report=${1:-matching_results_run.md}
 shift || true
-cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Release >/dev/null
+cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Release -DSFM_BUILD_BENCHMARKS=ON >/dev/null
 cmake --build "$build" --target make_sequence import_sequence match_junctions benchmark_matching -j2
 mkdir -p "$work"
 "$build/bin/make_sequence" --output "$work/corridor" --overwrite --scene=corridor --trajectory=straight \

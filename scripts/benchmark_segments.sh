@@ -10,6 +10,6 @@ cd "$(dirname "$0")/.."
 build=${BUILD:-build}
 report=${1:-segments_run.md}
 shift || true
-cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Release >/dev/null
+cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Release -DSFM_BUILD_BENCHMARKS=ON >/dev/null
 cmake --build "$build" --target benchmark_segments -j2
 "$build/bin/benchmark_segments" --images_dir sequences/default/images --output "$report" "$@"

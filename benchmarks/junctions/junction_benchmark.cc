@@ -1,21 +1,4 @@
-// benchmark_junctions: quality of junction detection and the end-point model of eq. (5), measured
-// against ground truth in one run (docs/junction_results.md, docs/endpoint_model.md).
-//
-//   build/bin/benchmark_junctions --output junction_results.md [--work_dir /tmp/junction_benchmark]
-//                                 [--sequences a,b] [--segments fast,reference] [junction flags]
-//
-// Run from the repository's top directory (the default --vgg_dir is relative to it). Single thread.
-// 1. Generated sequences: unless --sequences names existing ones, three are generated into
-//    --work_dir with the generator library (fixed seeds, so the same bytes every run): a corridor
-//    (straight), a room (loop) and a corridor with barrel distortion (turns). Each frame is
-//    undistorted with ImageUndistorter, segments and junctions detected, and the junctions
-//    compared with the true vertices of the frame (junction_evaluation.h).
-// 2. VGG Corridor: ground-truth junctions built from the ground-truth segments (bt.NNN.lines)
-//    whose ends meet; recall and precision of the detected junctions against them.
-// 3. End-point model: t offsets of detected segments against the true edge parts (generated) and
-//    the ground-truth segments (VGG), and the maximum-likelihood lambda and mu (FitEndpointModel).
-// Markdown tables go to stdout and to --output.
-#include <gflags/gflags.h>
+// The measurements and the report of benchmark_junctions (junction_benchmark.h).
 #include <glog/logging.h>
 
 #include <algorithm>
@@ -47,60 +30,13 @@
 #include "benchmarks/evaluation/junction_evaluation.h"
 #include "pipeline/overlay/junction_overlay.h"
 #include "benchmarks/evaluation/table_format.h"
-#include "sfm_app/flags/detector_flags.h"
-
-namespace {
-const sfm::TrueJunctionOptions kTruthDefaults;
-const sfm::SegmentJunctionOptions kGtDefaults;
-const sfm::EndpointOffsetOptions kOffsetDefaults;
-}  // namespace
-
-DEFINE_string(output, "", "Also write the markdown report to this file.");
-DEFINE_string(work_dir, "/tmp/junction_benchmark", "Where the generated sequences are written (replaced each run).");
-DEFINE_string(sequences, "",
-              "Comma-separated generated sequence directories (with truth/) to measure instead of generating "
-              "the standard three.");
-DEFINE_int32(frames, 30, "Frames of each generated sequence.");
-DEFINE_string(vgg_dir, "../shared/data/vgg-corridor", "VGG Corridor directory (bt.NNN.pgm, bt.NNN.lines); skipped if absent.");
-DEFINE_string(segments, "fast,reference", "Segment detectors to measure, comma-separated: fast, reference.");
-DEFINE_double(min_segment_length, sfm::SegmentDetectorOptions().min_length, "Segment detectors: shortest segment kept, px.");
-DEFINE_double(edge_contrast_low, sfm::SegmentDetectorOptions().edge_contrast_low, "Segment detectors: low edge contrast, grey levels.");
-DEFINE_double(edge_contrast_high, sfm::SegmentDetectorOptions().edge_contrast_high, "Segment detectors: high edge contrast, grey levels.");
-DEFINE_double(log10_nfa_max, sfm::SegmentDetectorOptions().fast.log10_nfa_max, "Fast segments: NFA threshold, log10.");
-DEFINE_double(presmooth_sigma, sfm::SegmentDetectorOptions().fast.presmooth_sigma,
-              "Fast segments: Gaussian pre-smoothing before the Sobel pass, px.");
-DEFINE_double(line_tolerance, sfm::SegmentDetectorOptions().fast.line_tolerance, "Fast segments: splitting tolerance, px.");
-// The junction flags (--lambda, --mu, --min_probability, ...) are
-// shared with the other apps: sfm_app/flags/detector_flags.h.
-DEFINE_string(overlay_dir, "", "If set, write overlays there (every 10th generated frame, every VGG image), "
-                               "with missed true junctions circled in white.");
-DEFINE_double(noise_sigma, sfm::RenderOptions().noise_sigma,
-              "Generated images: sensor noise sigma, grey levels (the generator's; the contrast rule's unit).");
-DEFINE_double(min_contrast_sigmas, 3.0,
-              "Contrast-visible reading: a true edge counts when its noise-free grey-level step is at least this "
-              "many noise sigmas.");
-DEFINE_string(miss_dir, "",
-              "If set, write there misses.csv (one row per long edge of each missed detectable vertex whose "
-              "segments are missing: length, contrast, the closest detection) and a crop of each such vertex "
-              "(8x enlarged, true long edges orange), for finding why edges get no segment.");
-DEFINE_bool(
-    truth_in_image, true,
-    "Generated: true vertices count only --radius px inside the undistorted image, and a true edge's "
-    "length only inside it (with barrel distortion the stored image sees beyond it); false: as before "
-    "session 7 (only the stored image's border applies).");
-DEFINE_double(radius, 3.0, "A true junction is found when a detected one lies within this, px.");
-DEFINE_double(min_edge_px, kTruthDefaults.min_edge_px,
-              "Generated: a vertex is detectable when at least two visible edges at least this long (px) meet there.");
-DEFINE_string(gt_contact_px, "3,5",
-              "VGG: how close ground-truth segment ends must come to meet, px; a comma-separated list gives one "
-              "set of ground-truth junctions each (overlays and end-point fits use the first).");
-DEFINE_double(gt_min_angle_deg, kGtDefaults.min_angle_deg, "VGG: ground-truth segments closer to parallel never meet, degrees.");
-DEFINE_double(max_abs_t, kOffsetDefaults.max_abs_t, "End-point samples with |t| above this are gross failures, px.");
-DEFINE_int32(junction_repeats, 1,
-             "The junction time is the fastest of this many runs on the same segments (VGG: also printed per image to stderr).");
+#include "benchmarks/junctions/junction_benchmark.h"
 
 namespace sfm {
 namespace {
+
+const SegmentJunctionOptions kGtDefaults;
+const EndpointOffsetOptions kOffsetDefaults;
 
 using Clock = std::chrono::steady_clock;
 constexpr int kNumTypes = 6;
@@ -122,10 +58,10 @@ const char* const kMissNames[kNumMissKinds] = {
     "not joined: 2 or more segments end near, no junction within the radius"};
 
 // No other true junction (vertex or occlusion T) within 2 x radius of p.
-bool Isolated(const Eigen::Vector2d& p, const std::vector<Eigen::Vector2d>& any_truth) {
+bool Isolated(const JunctionBenchmarkOptions& bench, const Eigen::Vector2d& p, const std::vector<Eigen::Vector2d>& any_truth) {
   for (const Eigen::Vector2d& q : any_truth) {
     const double d = (p - q).norm();
-    if (d > 1e-6 && d <= 2 * FLAGS_radius) return false;
+    if (d > 1e-6 && d <= 2 * bench.radius) return false;
   }
   return true;
 }
@@ -133,9 +69,9 @@ bool Isolated(const Eigen::Vector2d& p, const std::vector<Eigen::Vector2d>& any_
 // The segment-level reason (kEdgesMissing, kEndsFar or kNotJoined), crowded or not.
 MissKind WhySegmentsMissed(const TrueVertexJunction& v, const LineSegments& segments, double max_gap);
 
-MissKind WhyMissed(const TrueVertexJunction& v, const std::vector<Eigen::Vector2d>& any_truth,
+MissKind WhyMissed(const JunctionBenchmarkOptions& bench, const TrueVertexJunction& v, const std::vector<Eigen::Vector2d>& any_truth,
                    const LineSegments& segments, double max_gap) {
-  if (!Isolated(v.location, any_truth)) return kCrowded;
+  if (!Isolated(bench, v.location, any_truth)) return kCrowded;
   return WhySegmentsMissed(v, segments, max_gap);
 }
 
@@ -229,10 +165,7 @@ std::vector<std::string> Split(const std::string& text) {
 }
 
 
-struct Method {
-  std::string name;
-  SegmentDetectorOptions options;
-};
+using Method = JunctionBenchmarkMethod;
 
 // What one detector did on one set of generated frames.
 // Stricter readings of "detectable", reported beside the main one.
@@ -240,7 +173,7 @@ struct Method {
 // noise-free image), at min_contrast_sigmas x noise_sigma and at the segment detectors' high
 // contrast threshold.
 constexpr int kNumVariants = 5;
-std::string VariantName(int k) {
+std::string VariantName(const JunctionBenchmarkOptions& bench, int k) {
   switch (k) {
     case 0: return "main, and isolated: no other true junction within 2 x radius";
     case 1: return "at least two edges of at least 20 px";
@@ -249,13 +182,13 @@ std::string VariantName(int k) {
       char text[200];
       std::snprintf(text, sizeof text,
                     "contrast-visible: main, counting only edges with a step >= %g sigma = %g grey levels",
-                    FLAGS_min_contrast_sigmas, FLAGS_min_contrast_sigmas * FLAGS_noise_sigma);
+                    bench.min_contrast_sigmas, bench.min_contrast_sigmas * bench.noise_sigma);
       return text;
     }
     default: {
       char text[200];
       std::snprintf(text, sizeof text, "main, counting only edges with a step >= %g grey levels (detector's high threshold)",
-                    FLAGS_edge_contrast_high);
+                    bench.edge_contrast_high);
       return text;
     }
   }
@@ -345,7 +278,7 @@ struct GeneratedStats {
 
 // Ground-truth junctions of the VGG images for a range of contact distances: how far apart the
 // ends of GT segments that meet at a corner are.
-std::string VggContactTable(const std::string& directory) {
+std::string VggContactTable(const JunctionBenchmarkOptions& bench, const std::string& directory) {
   const double contacts[] = {1, 2, 3, 4, 5, 6, 8, 10};
   int totals[8] = {0, 0, 0, 0, 0, 0, 0, 0};
   for (int i = 0;; ++i) {
@@ -356,7 +289,7 @@ std::string VggContactTable(const std::string& directory) {
     for (int c = 0; c < 8; ++c) {
       SegmentJunctionOptions options;
       options.contact_px = contacts[c];
-      options.min_angle_deg = FLAGS_gt_min_angle_deg;
+      options.min_angle_deg = bench.gt_min_angle_deg;
       totals[c] += static_cast<int>(JunctionsFromSegments(segments, options).size());
     }
   }
@@ -482,7 +415,7 @@ Status WriteMissCrop(const std::string& path, const TrueVertexJunction& v,
 
 // One missed vertex whose edges have no segment, for --miss_dir: a row per long edge in misses.csv
 // and a crop of the image around it.
-Status WriteMiss(const std::string& tag, int frame, const TrueVertexJunction& v, bool crowded,
+Status WriteMiss(const JunctionBenchmarkOptions& bench, const std::string& tag, int frame, const TrueVertexJunction& v, bool crowded,
                  const std::vector<Eigen::Vector2d>& any_truth, const cv::Mat& grey, const cv::Mat& clean,
                  const LineSegments& segments, const SegmentDetectorOptions& detector) {
   static int counter = 0;  // numbers the misses of the whole run (one run per process)
@@ -496,7 +429,7 @@ Status WriteMiss(const std::string& tag, int frame, const TrueVertexJunction& v,
     relaxed[k] = DetectLineSegments(grey, o);
   }
   const int id = counter++;
-  const std::string csv_path = FLAGS_miss_dir + "/misses.csv";
+  const std::string csv_path = bench.miss_dir + "/misses.csv";
   const bool fresh = id == 0;
   FILE* csv = std::fopen(csv_path.c_str(), fresh ? "w" : "a");
   if (csv == nullptr) return Status::Error(csv_path + ": cannot open");
@@ -539,7 +472,7 @@ Status WriteMiss(const std::string& tag, int frame, const TrueVertexJunction& v,
   std::fclose(csv);
   char name[128];
   std::snprintf(name, sizeof name, "/%04d_%s_%03d.png", id, tag.c_str(), frame);
-  return WriteMissCrop(FLAGS_miss_dir + name, v, any_truth, grey, segments, {}, edges);
+  return WriteMissCrop(bench.miss_dir + name, v, any_truth, grey, segments, {}, edges);
 }
 
 // One missed vertex whose segments end near it, for --miss_dir: in notjoined.csv, a row per pair of
@@ -547,13 +480,13 @@ Status WriteMiss(const std::string& tag, int frame, const TrueVertexJunction& v,
 // point's distance from the vertex, the t of each segment, and for each segment the detected junction
 // that took it closest to the vertex (its distance from the vertex and its segments' indices, "-" if
 // none): which reading won over the vertex's own pair.
-Status WriteNotJoined(const std::string& tag, int frame, const TrueVertexJunction& v, bool crowded,
+Status WriteNotJoined(const JunctionBenchmarkOptions& bench, const std::string& tag, int frame, const TrueVertexJunction& v, bool crowded,
                       const std::vector<Eigen::Vector2d>& any_truth, const cv::Mat& grey,
                       const LineSegments& segments, const Junctions& junctions,
                       const JunctionDetectorOptions& options) {
   static int counter = 0;
   const int id = counter++;
-  const std::string csv_path = FLAGS_miss_dir + "/notjoined.csv";
+  const std::string csv_path = bench.miss_dir + "/notjoined.csv";
   FILE* csv = std::fopen(csv_path.c_str(), id == 0 ? "w" : "a");
   if (csv == nullptr) return Status::Error(csv_path + ": cannot open");
   if (id == 0) std::fprintf(csv, "id,tag,frame,vx,vy,crowded,edge_a,edge_b,seg_a,seg_b,passes,probability,location_error_px,t_a,t_b,angle_deg,len_a,len_b,taken_a_px,taken_a_by,taken_b_px,taken_b_by\n");
@@ -629,13 +562,13 @@ Status WriteNotJoined(const std::string& tag, int frame, const TrueVertexJunctio
   }
   char name[128];
   std::snprintf(name, sizeof name, "/notjoined_%04d_%s_%03d.png", id, tag.c_str(), frame);
-  return WriteMissCrop(FLAGS_miss_dir + name, v, any_truth, grey, segments, junctions, edges);
+  return WriteMissCrop(bench.miss_dir + name, v, any_truth, grey, segments, junctions, edges);
 }
 
 // Measures one generated sequence with each method.
 // `clean_directory`: the same sequence rendered without noise (for the contrast-visible reading), or
 // empty.
-Status MeasureSequence(const std::string& directory, const std::string& clean_directory,
+Status MeasureSequence(const JunctionBenchmarkOptions& bench, const std::string& directory, const std::string& clean_directory,
                        const std::vector<Method>& methods, const JunctionDetectorOptions& junction_options,
                        const std::string& overlay_prefix, std::vector<GeneratedStats>* stats) {
   Sequence sequence;
@@ -654,30 +587,28 @@ Status MeasureSequence(const std::string& directory, const std::string& clean_di
     }
   }
   const Camera& camera = sequence.calibration.camera;
-  UndistortInterpolation interpolation;
-  if (std::string error; !UndistortInterpolationFromFlags(&interpolation, &error))
-    return Status::Error(error);
+  const UndistortInterpolation interpolation = bench.undistort_interpolation;
   const ImageUndistorter undistorter(camera, interpolation);
   // Detection's view (--undistort_full_view): junctions in K's pixels, possibly outside the image.
   // The truth keeps its definition (--truth_in_image, the valid part of the undistorted image)
   // unless --truth_in_image=false, which with the full view counts the whole field of view.
-  const UndistortView view = UndistortViewFromFlags();
+  const UndistortView view = bench.undistort_view;
   const ImageUndistorter detection_undistorter(camera, interpolation, view);
   Eigen::Vector2d valid_offset = Eigen::Vector2d::Zero();
   cv::Size valid_size(camera.width, camera.height);
-  if (view == UndistortView::kFullView && !FLAGS_truth_in_image && camera.HasDistortion()) {
+  if (view == UndistortView::kFullView && !bench.truth_in_image && camera.HasDistortion()) {
     FullViewCanvas(camera, 0, &valid_offset, &valid_size);
   }
-  const cv::Mat valid = ValidMask(camera, FLAGS_radius, FLAGS_truth_in_image, valid_offset, valid_size);
+  const cv::Mat valid = ValidMask(camera, bench.radius, bench.truth_in_image, valid_offset, valid_size);
   auto in_valid = [&](const Eigen::Vector2d& p) { return InMask(valid, p + valid_offset); };
   TrueJunctionOptions truth_options;
-  truth_options.min_edge_px = FLAGS_min_edge_px;
-  if (FLAGS_truth_in_image) {
+  truth_options.min_edge_px = bench.min_edge_px;
+  if (bench.truth_in_image) {
     truth_options.image_width = camera.width;
     truth_options.image_height = camera.height;
   }
   EndpointOffsetOptions offset_options;
-  offset_options.max_abs_t = FLAGS_max_abs_t;
+  offset_options.max_abs_t = bench.max_abs_t;
   stats->assign(methods.size(), GeneratedStats());
   // Radial stretch of the undistortion in the middle of each ring (1 without distortion): how many
   // undistorted pixels one stored pixel becomes along the radius, d r_u / d r_d, measured along x.
@@ -706,7 +637,7 @@ Status MeasureSequence(const std::string& directory, const std::string& clean_di
     TrueJunctionOptions contrast_options = truth_options;
     if (!contrast.empty()) {
       contrast_options.segment_contrast = &contrast;
-      contrast_options.min_contrast = FLAGS_min_contrast_sigmas * FLAGS_noise_sigma;
+      contrast_options.min_contrast = bench.min_contrast_sigmas * bench.noise_sigma;
     }
     FrameTrueJunctions true_junctions = TrueJunctionsOfFrame(truth.wireframe, truth.frames[f], contrast_options);
     auto outside = [&](const TrueVertexJunction& v) { return !in_valid(v.location); };
@@ -744,19 +675,19 @@ Status MeasureSequence(const std::string& directory, const std::string& clean_di
                               long_edged.vertices.end());
     std::array<std::vector<Eigen::Vector2d>, kNumVariants> variant_points;
     for (const Eigen::Vector2d& p : detectable) {
-      if (Isolated(p, any_truth)) variant_points[0].push_back(p);
+      if (Isolated(bench, p, any_truth)) variant_points[0].push_back(p);
     }
     for (const TrueVertexJunction& v : long_edged.vertices) {
       if (!v.detectable) continue;
       variant_points[1].push_back(v.location);
-      if (Isolated(v.location, any_truth)) variant_points[2].push_back(v.location);
+      if (Isolated(bench, v.location, any_truth)) variant_points[2].push_back(v.location);
     }
     if (!contrast.empty()) {
       for (const TrueVertexJunction& v : true_junctions.vertices) {
         if (v.contrast_detectable) variant_points[3].push_back(v.location);
       }
       TrueJunctionOptions high_options = contrast_options;
-      high_options.min_contrast = FLAGS_edge_contrast_high;
+      high_options.min_contrast = bench.edge_contrast_high;
       for (const TrueVertexJunction& v : TrueJunctionsOfFrame(truth.wireframe, truth.frames[f], high_options).vertices) {
         if (v.contrast_detectable && in_valid(v.location)) variant_points[4].push_back(v.location);
       }
@@ -774,7 +705,7 @@ Status MeasureSequence(const std::string& directory, const std::string& clean_di
       // the fastest of that many runs on the same segments, which a loaded machine disturbs least.
       Junctions junctions;
       double fastest = 0;
-      for (int r = 0; r < std::max(1, FLAGS_junction_repeats); ++r) {
+      for (int r = 0; r < std::max(1, bench.junction_repeats); ++r) {
         start = Clock::now();
         junctions = DetectJunctions(segments, junction_options);
         const double ms = Ms(start);
@@ -787,7 +718,7 @@ Status MeasureSequence(const std::string& directory, const std::string& clean_di
       // Recall over detectable vertices, with location error and type.
       s.detectable += static_cast<int>(detectable.size());
       std::vector<bool> detectable_found(detectable.size(), false);
-      for (const PointMatch& match : MatchPoints(detectable, detected, FLAGS_radius)) {
+      for (const PointMatch& match : MatchPoints(detectable, detected, bench.radius)) {
         ++s.detectable_found;
         detectable_found[match.truth] = true;
         s.errors.push_back(match.distance);
@@ -803,24 +734,24 @@ Status MeasureSequence(const std::string& directory, const std::string& clean_di
       // The literal wording: a detected junction within the radius, shared or not.
       for (const Eigen::Vector2d& p : detectable) {
         if (std::any_of(detected.begin(), detected.end(),
-                        [&](const Eigen::Vector2d& d) { return (d - p).norm() <= FLAGS_radius; })) {
+                        [&](const Eigen::Vector2d& d) { return (d - p).norm() <= bench.radius; })) {
           ++s.detectable_near;
         }
       }
       for (size_t i = 0; i < detectable.size(); ++i) {
         if (detectable_found[i]) continue;
-        const MissKind kind = WhyMissed(*detectable_vertex[i], any_truth, segments, junction_options.max_gap_px);
+        const MissKind kind = WhyMissed(bench, *detectable_vertex[i], any_truth, segments, junction_options.max_gap_px);
         ++s.misses[kind];
         ++s.ring_misses[RingOf(camera, detectable[i])][kind];
         if (!contrast.empty() && detectable_seen[i]) ++s.contrast_misses[kind];
         const MissKind inner = WhySegmentsMissed(*detectable_vertex[i], segments, junction_options.max_gap_px);
-        if (!FLAGS_miss_dir.empty() && inner == kNotJoined) {
-          SFM_RETURN_IF_ERROR(WriteNotJoined(std::filesystem::path(directory).filename().string() + "_" + methods[m].name,
+        if (!bench.miss_dir.empty() && inner == kNotJoined) {
+          SFM_RETURN_IF_ERROR(WriteNotJoined(bench, std::filesystem::path(directory).filename().string() + "_" + methods[m].name,
                                              static_cast<int>(f), *detectable_vertex[i], kind == kCrowded,
                                              any_truth, grey, segments, junctions, junction_options));
         }
-        if (!FLAGS_miss_dir.empty() && inner == kEdgesMissing) {
-          SFM_RETURN_IF_ERROR(WriteMiss(std::filesystem::path(directory).filename().string() + "_" + methods[m].name,
+        if (!bench.miss_dir.empty() && inner == kEdgesMissing) {
+          SFM_RETURN_IF_ERROR(WriteMiss(bench, std::filesystem::path(directory).filename().string() + "_" + methods[m].name,
                                         static_cast<int>(f), *detectable_vertex[i], kind == kCrowded, any_truth, grey,
                                         clean_grey, segments, methods[m].options));
         }
@@ -829,23 +760,23 @@ Status MeasureSequence(const std::string& directory, const std::string& clean_di
           ++s.crowded[inner == kEdgesMissing ? 0 : 1];
         } else {
           const bool near = std::any_of(detected.begin(), detected.end(), [&](const Eigen::Vector2d& d) {
-            return (d - detectable[i]).norm() <= FLAGS_radius;
+            return (d - detectable[i]).norm() <= bench.radius;
           });
           ++s.crowded[near ? 2 : 3];
         }
       }
       for (int k = 0; k < kNumVariants; ++k) {
         s.variant_count[k] += static_cast<int>(variant_points[k].size());
-        for (const PointMatch& match : MatchPoints(variant_points[k], detected, FLAGS_radius)) {
+        for (const PointMatch& match : MatchPoints(variant_points[k], detected, bench.radius)) {
           ++s.variant_found[k];
           s.variant_errors[k].push_back(match.distance);
         }
       }
       s.occlusions += static_cast<int>(occlusions.size());
-      s.occlusions_found += static_cast<int>(MatchPoints(occlusions, detected, FLAGS_radius).size());
+      s.occlusions_found += static_cast<int>(MatchPoints(occlusions, detected, bench.radius).size());
       // Recall over every visible vertex junction, and which detections sit on a vertex.
       s.visible += static_cast<int>(visible.size());
-      for (const PointMatch& match : MatchPoints(visible, detected, FLAGS_radius)) {
+      for (const PointMatch& match : MatchPoints(visible, detected, bench.radius)) {
         ++s.visible_found;
         ++s.detected_vertex_by_type[static_cast<int>(junctions[match.detected].type)];
       }
@@ -855,7 +786,7 @@ Status MeasureSequence(const std::string& directory, const std::string& clean_di
         ++s.detected_by_type[static_cast<int>(j.type)];
         if (in_valid(j.location)) ++s.detected_valid;
       }
-      for (const PointMatch& match : MatchPoints(any_truth, detected, FLAGS_radius)) {
+      for (const PointMatch& match : MatchPoints(any_truth, detected, bench.radius)) {
         if (!in_valid(detected[match.detected])) continue;
         ++s.detected_correct;
         ++s.detected_correct_by_type[static_cast<int>(junctions[match.detected].type)];
@@ -894,12 +825,12 @@ std::string ContrastCells(const GeneratedStats& s, bool bold) {
 
 // Measures the VGG Corridor images with each method, against the ground-truth junctions of each
 // contact distance: (*stats)[method][contact].
-Status MeasureVgg(const std::string& directory, const std::vector<Method>& methods, const std::vector<double>& contacts,
+Status MeasureVgg(const JunctionBenchmarkOptions& bench, const std::string& directory, const std::vector<Method>& methods, const std::vector<double>& contacts,
                   const JunctionDetectorOptions& junction_options, const std::string& overlay_dir,
                   std::vector<std::vector<VggStats>>* stats) {
   stats->assign(methods.size(), std::vector<VggStats>(contacts.size()));
   EndpointOffsetOptions offset_options;
-  offset_options.max_abs_t = FLAGS_max_abs_t;
+  offset_options.max_abs_t = bench.max_abs_t;
   for (int i = 0;; ++i) {
     char stem[32];
     std::snprintf(stem, sizeof stem, "bt.%03d", i);
@@ -914,7 +845,7 @@ Status MeasureVgg(const std::string& directory, const std::vector<Method>& metho
     for (size_t c = 0; c < contacts.size(); ++c) {
       SegmentJunctionOptions gt_options;
       gt_options.contact_px = contacts[c];
-      gt_options.min_angle_deg = FLAGS_gt_min_angle_deg;
+      gt_options.min_angle_deg = bench.gt_min_angle_deg;
       gt[c] = JunctionsFromSegments(gt_segments, gt_options);
       for (const SegmentJunction& j : gt[c]) gt_points[c].push_back(j.location);
     }
@@ -926,13 +857,13 @@ Status MeasureVgg(const std::string& directory, const std::vector<Method>& metho
       // As for the generated frames: the junction step's fastest of --junction_repeats runs.
       Junctions junctions;
       double junction_ms = 0;
-      for (int r = 0; r < std::max(1, FLAGS_junction_repeats); ++r) {
+      for (int r = 0; r < std::max(1, bench.junction_repeats); ++r) {
         const auto junction_start = Clock::now();
         junctions = DetectJunctions(segments, junction_options);
         const double run_ms = Ms(junction_start);
         junction_ms = r == 0 ? run_ms : std::min(junction_ms, run_ms);
       }
-      if (FLAGS_junction_repeats > 1) std::fprintf(stderr, "vgg junction_ms %.3f\n", junction_ms);
+      if (bench.junction_repeats > 1) std::fprintf(stderr, "vgg junction_ms %.3f\n", junction_ms);
       const double ms = segment_ms + junction_ms;
       const std::vector<Eigen::Vector2d> detected = Locations(junctions);
       // Which detected segments lie on a GT segment (same line within 1.5 px, overlapping), and so
@@ -972,8 +903,8 @@ Status MeasureVgg(const std::string& directory, const std::vector<Method>& metho
         s.detected += static_cast<int>(junctions.size());
         for (const SegmentJunction& j : gt[c]) ++s.gt_by_type[static_cast<int>(j.type)];
         auto near_border = [&](const Eigen::Vector2d& p) {
-          return p.x() < FLAGS_radius || p.y() < FLAGS_radius || p.x() > grey.cols - 1 - FLAGS_radius ||
-                 p.y() > grey.rows - 1 - FLAGS_radius;
+          return p.x() < bench.radius || p.y() < bench.radius || p.x() > grey.cols - 1 - bench.radius ||
+                 p.y() > grey.rows - 1 - bench.radius;
         };
         for (size_t k = 0; k < junctions.size(); ++k) {
           ++s.detected_by_type[static_cast<int>(junctions[k].type)];
@@ -981,7 +912,7 @@ Status MeasureVgg(const std::string& directory, const std::vector<Method>& metho
           if (junction_on_gt[k]) ++s.detected_on_gt;
         }
         found.assign(gt[c].size(), false);
-        for (const PointMatch& match : MatchPoints(gt_points[c], detected, FLAGS_radius)) {
+        for (const PointMatch& match : MatchPoints(gt_points[c], detected, bench.radius)) {
           found[match.truth] = true;
           ++s.gt_found;
           ++s.detected_correct;
@@ -1048,99 +979,83 @@ const char* kEndpointHeader =
     "| mean -t (t < 0) | lambda (1/px) | mu (1/px) |\n|---|---|---|---|---|---|---|---|---|---|---|---|\n";
 
 }  // namespace
-}  // namespace sfm
 
-int main(int argc, char** argv) {
-  using namespace sfm;
-  gflags::SetUsageMessage(
-      "junction quality and the end-point model against ground truth (docs/junction_results.md).\n"
-      "  benchmark_junctions --output report.md [--work_dir dir] [--sequences a,b] [--segments fast,reference]");
-  gflags::ParseCommandLineFlags(&argc, &argv, true);
-  FLAGS_logtostderr = true;
-  google::InitGoogleLogging(argv[0]);
-  auto fail = [](int code, const std::string& message) {
-    std::fprintf(stderr, "benchmark_junctions: %s\n", message.c_str());
-    return code;
-  };
-  if (argc > 1) return fail(2, std::string("unexpected argument '") + argv[1] + "' (flags are --name=value)");
+std::vector<std::string> SplitList(const std::string& text) { return Split(text); }
 
-  std::vector<Method> methods;
-  for (const std::string& name : Split(FLAGS_segments)) {
-    Method method{name, SegmentDetectorOptions()};
-    method.options.min_length = FLAGS_min_segment_length;
-    method.options.edge_contrast_low = FLAGS_edge_contrast_low;
-    method.options.edge_contrast_high = FLAGS_edge_contrast_high;
-    method.options.fast.log10_nfa_max = FLAGS_log10_nfa_max;
-    method.options.fast.line_tolerance = FLAGS_line_tolerance;
-    method.options.fast.presmooth_sigma = FLAGS_presmooth_sigma;
+Status ParseSegmentMethods(const std::string& names, const SegmentDetectorOptions& base,
+                           std::vector<JunctionBenchmarkMethod>* methods) {
+  methods->clear();
+  for (const std::string& name : Split(names)) {
+    JunctionBenchmarkMethod method{name, base};
     if (const Status status = FromString(name, &method.options.method); !status.ok()) {
-      return fail(2, "--segments: " + status.message());
+      return Status::Error("--segments: " + status.message());
     }
-    methods.push_back(method);
+    methods->push_back(method);
   }
-  if (methods.empty()) return fail(2, "--segments is empty");
-  std::vector<double> contacts;
-  for (const std::string& text : Split(FLAGS_gt_contact_px)) {
+  if (methods->empty()) return Status::Error("--segments is empty");
+  return Status::Ok();
+}
+
+Status ParseContactDistances(const std::string& text, std::vector<double>* contacts) {
+  contacts->clear();
+  for (const std::string& item : Split(text)) {
     char* end = nullptr;
-    const double value = std::strtod(text.c_str(), &end);
-    if (end == text.c_str() || *end != '\0' || !(value > 0 && value < 100)) {
-      return fail(2, "--gt_contact_px lists distances in (0, 100) px, not '" + text + "'");
+    const double value = std::strtod(item.c_str(), &end);
+    if (end == item.c_str() || *end != '\0' || !(value > 0 && value < 100)) {
+      return Status::Error("--gt_contact_px lists distances in (0, 100) px, not '" + item + "'");
     }
-    contacts.push_back(value);
+    contacts->push_back(value);
   }
-  if (contacts.empty()) return fail(2, "--gt_contact_px is empty");
-  JunctionDetectorOptions junction_options;
-  JunctionDetectorFromFlags(&junction_options);
-  if (const Status check = junction_options.Check(); !check.ok()) return fail(2, check.message());
-  for (const std::string& directory : {FLAGS_overlay_dir, FLAGS_miss_dir}) {
-    if (directory.empty()) continue;
-    if (const Status s = EnsureWritableDirectory(directory); !s.ok()) return fail(1, s.message());
-  }
+  if (contacts->empty()) return Status::Error("--gt_contact_px is empty");
+  return Status::Ok();
+}
 
-  // The sequences: given, or generated.
-  // name, directory, noise-free twin (<directory>-noise-free when it exists; the benchmark writes
-  // one for each sequence it generates: same seeds, render noise 0, so the same scene and poses).
-  struct SequenceDirs {
-    std::string name, directory, clean;
-  };
-  std::vector<SequenceDirs> sequences;
-  if (!FLAGS_sequences.empty()) {
-    for (const std::string& directory : Split(FLAGS_sequences)) {
-      const std::string clean = directory + "-noise-free";
-      sequences.push_back({std::filesystem::path(directory).filename().string(), directory,
-                           std::filesystem::exists(clean + "/images.txt") ? clean : ""});
-    }
-  } else {
-    for (const auto& [name, options] : StandardSequences(FLAGS_frames)) {
-      const std::string directory = FLAGS_work_dir + "/" + name;
-      std::fprintf(stderr, "benchmark_junctions: generating %s\n", directory.c_str());
-      if (const Status s = GenerateSequence(options, directory, true); !s.ok()) return fail(1, s.message());
-      GeneratorOptions clean_options = options;
-      clean_options.render.noise_sigma = 0;
-      if (const Status s = GenerateSequence(clean_options, directory + "-noise-free", true); !s.ok()) {
-        return fail(1, s.message());
-      }
-      sequences.push_back({name, directory, directory + "-noise-free"});
-    }
+std::vector<JunctionBenchmarkSequence> GivenSequences(const std::vector<std::string>& directories) {
+  std::vector<JunctionBenchmarkSequence> sequences;
+  for (const std::string& directory : directories) {
+    const std::string clean = directory + "-noise-free";
+    sequences.push_back({std::filesystem::path(directory).filename().string(), directory,
+                         std::filesystem::exists(clean + "/images.txt") ? clean : ""});
   }
+  return sequences;
+}
 
+Status GenerateStandardSequences(int frames, const std::string& work_dir,
+                                 std::vector<JunctionBenchmarkSequence>* sequences) {
+  sequences->clear();
+  for (const auto& [name, options] : StandardSequences(frames)) {
+    const std::string directory = work_dir + "/" + name;
+    std::fprintf(stderr, "benchmark_junctions: generating %s\n", directory.c_str());
+    SFM_RETURN_IF_ERROR(GenerateSequence(options, directory, true));
+    GeneratorOptions clean_options = options;
+    clean_options.render.noise_sigma = 0;
+    SFM_RETURN_IF_ERROR(GenerateSequence(clean_options, directory + "-noise-free", true));
+    sequences->push_back({name, directory, directory + "-noise-free"});
+  }
+  return Status::Ok();
+}
+
+Status JunctionBenchmarkReport(const JunctionBenchmarkOptions& bench,
+                               const std::vector<JunctionBenchmarkSequence>& sequences,
+                               const std::vector<JunctionBenchmarkMethod>& methods, const std::vector<double>& contacts,
+                               const JunctionDetectorOptions& junction_options, std::string* text) {
   std::ostringstream report;
   report << "Junction options: lambda " << junction_options.endpoint_model.lambda << " /px, mu "
          << junction_options.endpoint_model.mu << " /px, min_probability " << junction_options.min_probability
          << ", max_gap_px " << junction_options.max_gap_px << ", collinear_tolerance_deg "
          << junction_options.collinear_tolerance_deg << ", collinear_max_offset_px "
          << junction_options.collinear_max_offset_px << ", min_arm_px " << junction_options.min_arm_px
-         << ". Segment detectors at their defaults (min_length " << FLAGS_min_segment_length << " px).\n\n";
+         << ". Segment detectors at their defaults (min_length " << bench.min_segment_length << " px).\n\n";
   report << "## Generated sequences\n\n"
-         << "Radius " << FLAGS_radius << " px; detectable vertex: at least two visible edges of at least "
-         << FLAGS_min_edge_px << " px meet there, not just two collinear ones. True vertices and "
+         << "Radius " << bench.radius << " px; detectable vertex: at least two visible edges of at least "
+         << bench.min_edge_px << " px meet there, not just two collinear ones. True vertices and "
          << "detections count only inside the part of the undistorted image that the camera sees, at least "
-         << FLAGS_radius << " px from its border. Occlusion T: where a visible edge part of at least "
-         << FLAGS_min_edge_px << " px disappears behind a nearer face. Precision: detections matched to a visible "
+         << bench.radius << " px from its border. Occlusion T: where a visible edge part of at least "
+         << bench.min_edge_px << " px disappears behind a nearer face. Precision: detections matched to a visible "
          << "vertex junction or an occlusion T (of any length).\n\n"
-         << "| sequence | segments | frames | detectable vertices | found within " << FLAGS_radius
-         << " px | any within " << FLAGS_radius << " px (literal) | contrast-visible (step >= "
-         << FLAGS_min_contrast_sigmas << " sigma) | found | median error (px) | 90 % error (px) | all visible vertex junctions | found | occlusion T's | found "
+         << "| sequence | segments | frames | detectable vertices | found within " << bench.radius
+         << " px | any within " << bench.radius << " px (literal) | contrast-visible (step >= "
+         << bench.min_contrast_sigmas << " sigma) | found | median error (px) | 90 % error (px) | all visible vertex junctions | found | occlusion T's | found "
          << "| detected | precision | segments/frame | ms/frame segments + junctions |\n"
          << "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   std::vector<GeneratedStats> pooled(methods.size());
@@ -1162,9 +1077,9 @@ int main(int argc, char** argv) {
   for (const auto& [name, directory, clean] : sequences) {
     std::fprintf(stderr, "benchmark_junctions: measuring %s\n", directory.c_str());
     std::vector<GeneratedStats> stats;
-    const std::string prefix = FLAGS_overlay_dir.empty() ? "" : FLAGS_overlay_dir + "/" + name;
-    if (const Status s = MeasureSequence(directory, clean, methods, junction_options, prefix, &stats); !s.ok()) {
-      return fail(1, s.message());
+    const std::string prefix = bench.overlay_dir.empty() ? "" : bench.overlay_dir + "/" + name;
+    if (const Status s = MeasureSequence(bench, directory, clean, methods, junction_options, prefix, &stats); !s.ok()) {
+      return s;
     }
     for (size_t m = 0; m < methods.size(); ++m) pooled[m].Add(stats[m]);
     for (size_t m = 0; m < methods.size(); ++m) {
@@ -1209,11 +1124,11 @@ int main(int argc, char** argv) {
     const GeneratedStats& s = pooled[m];
     report << "| every visible vertex junction | " << methods[m].name << " | " << s.visible << " | " << s.visible_found
            << " | " << Percent(s.visible_found, s.visible) << " | - |\n";
-    report << "| main: at least two edges of at least " << FLAGS_min_edge_px << " px | " << methods[m].name << " | "
+    report << "| main: at least two edges of at least " << bench.min_edge_px << " px | " << methods[m].name << " | "
            << s.detectable << " | " << s.detectable_found << " | " << Percent(s.detectable_found, s.detectable) << " | "
            << Fixed(Quantile(s.errors, 0.5), 3) << " |\n";
     for (int k = 0; k < kNumVariants; ++k) {
-      report << "| " << VariantName(k) << " | " << methods[m].name << " | " << s.variant_count[k] << " | "
+      report << "| " << VariantName(bench, k) << " | " << methods[m].name << " | " << s.variant_count[k] << " | "
              << s.variant_found[k] << " | " << Percent(s.variant_found[k], s.variant_count[k]) << " | "
              << Fixed(Quantile(s.variant_errors[k], 0.5), 3) << " |\n";
     }
@@ -1272,18 +1187,18 @@ int main(int argc, char** argv) {
   }
 
   std::vector<std::vector<VggStats>> vgg;
-  const bool have_vgg = std::filesystem::is_directory(FLAGS_vgg_dir);
+  const bool have_vgg = std::filesystem::is_directory(bench.vgg_dir);
   if (have_vgg) {
-    std::fprintf(stderr, "benchmark_junctions: measuring %s\n", FLAGS_vgg_dir.c_str());
-    if (const Status s = MeasureVgg(FLAGS_vgg_dir, methods, contacts, junction_options, FLAGS_overlay_dir, &vgg);
+    std::fprintf(stderr, "benchmark_junctions: measuring %s\n", bench.vgg_dir.c_str());
+    if (const Status s = MeasureVgg(bench, bench.vgg_dir, methods, contacts, junction_options, bench.overlay_dir, &vgg);
         !s.ok()) {
-      return fail(1, s.message());
+      return s;
     }
     report << "\n## VGG Corridor\n\n"
-           << "Ground-truth junctions: pairs of bt.NNN.lines segments at least " << FLAGS_gt_min_angle_deg
+           << "Ground-truth junctions: pairs of bt.NNN.lines segments at least " << bench.gt_min_angle_deg
            << " degrees from parallel whose line intersection lies within the contact distance of an end-point "
            << "of one and of the other segment (end or interior); pair points within " << kGtDefaults.merge_px
-           << " px merged. Radius " << FLAGS_radius << " px, one-to-one.\n\n"
+           << " px merged. Radius " << bench.radius << " px, one-to-one.\n\n"
            << "| segments | contact (px) | images | GT segments | GT junctions | found | recall | detected | precision "
            << "(lower bound) | precision away from the border | detections on two GT lines | their precision "
            << "| median error (px) | mean dx, dy (px) | ms/image |\n"
@@ -1297,12 +1212,12 @@ int main(int argc, char** argv) {
              << " | " << s.gt_found << " | **" << Percent(s.gt_found, s.gt_junctions) << "** | " << s.detected
              << " | **" << Percent(s.detected_correct, s.detected) << "** | "
              << Percent(s.detected_correct - s.correct_border, s.detected - s.detected_border) << " ("
-             << s.detected_border << " within " << FLAGS_radius << " px of the border left out) | " << s.detected_on_gt
+             << s.detected_border << " within " << bench.radius << " px of the border left out) | " << s.detected_on_gt
              << " | " << Percent(s.correct_on_gt, s.detected_on_gt) << " | "
              << Fixed(Quantile(s.errors, 0.5), 3)
              << " | " << Fixed(mean_dx, 2) << ", " << Fixed(mean_dy, 2) << " | " << Fixed(s.ms / s.images, 1) << " |\n";
     }
-    report << "\nGround-truth junctions of all images by contact distance:\n\n" << VggContactTable(FLAGS_vgg_dir);
+    report << "\nGround-truth junctions of all images by contact distance:\n\n" << VggContactTable(bench, bench.vgg_dir);
     for (size_t m = 0; m < methods.size(); ++m) for (size_t c = 0; c < contacts.size(); ++c) {
       const VggStats& s = vgg[m][c];
       report << "\nPer type, " << methods[m].name << " segments, contact " << Fixed(contacts[c], 1) << " px:\n\n"
@@ -1314,7 +1229,7 @@ int main(int argc, char** argv) {
       }
     }
   } else {
-    std::fprintf(stderr, "benchmark_junctions: %s not found; skipping VGG Corridor\n", FLAGS_vgg_dir.c_str());
+    std::fprintf(stderr, "benchmark_junctions: %s not found; skipping VGG Corridor\n", bench.vgg_dir.c_str());
   }
 
   report << "\n## End-point model, eq. (5)\n\n"
@@ -1322,7 +1237,7 @@ int main(int argc, char** argv) {
          << "lambda's branch; t < 0: too short, mu's branch). Per true end, the detection on the same line "
          << "(both ends within " << kOffsetDefaults.max_line_distance << " px of it, within "
          << kOffsetDefaults.max_angle_deg << " degrees) overlapping the true segment that reaches farthest "
-         << "towards the end; |t| > " << FLAGS_max_abs_t << " px is counted apart. Maximum likelihood "
+         << "towards the end; |t| > " << bench.max_abs_t << " px is counted apart. Maximum likelihood "
          << "(FitEndpointModel).\n\n";
   for (size_t m = 0; m < methods.size(); ++m) {
     report << "\n" << methods[m].name << " segments:\n\n" << kEndpointHeader;
@@ -1338,10 +1253,8 @@ int main(int argc, char** argv) {
     if (have_vgg) report << EndpointRow("VGG GT segments", vgg[m][0].ends) << "\n";
   }
 
-  const std::string text = report.str();
-  std::fputs(text.c_str(), stdout);
-  if (!FLAGS_output.empty()) {
-    if (const Status s = WriteFileAtomically(FLAGS_output, text); !s.ok()) return fail(1, s.message());
-  }
-  return 0;
+  *text = report.str();
+  return Status::Ok();
 }
+
+}  // namespace sfm

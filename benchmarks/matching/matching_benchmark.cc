@@ -1,24 +1,4 @@
-// benchmark_matching: every figure junction matching must show (issue 4), measured against ground
-// truth in one run, single thread (docs/matching_results.md; scripts/benchmark_matching.sh
-// prepares the sequences and runs it).
-//
-//   build/bin/benchmark_matching --generated <seq>,<seq> --vgg_sequence <imported seq>
-//                                [--vgg_dir ../shared/data/vgg-corridor] --output report.md [flags]
-//
-// a. Generated sequences (make_sequence, with truth/): consecutive pairs, F from the true poses and
-//    from the noisy odometry. Each junction takes the visible wireframe vertex nearest to it within
-//    --radius; precision = matches pairing the same vertex among those whose junctions both take
-//    one; recall = vertices taken in both frames that a match joins.
-// b. VGG Corridor imported with simulated odometry (import_sequence --format vgg): matches under
-//    the odometry F, judged with the F of the true projection matrices (--epipolar_tolerance both
-//    ways) and, where both junctions lie within --radius of ground-truth junctions identified by
-//    their 3D lines, by that identity.
-// c. The paper's Table 2: rho and sigma over tau2 x R on one VGG pair and one generated pair.
-// d. OpenCV line_descriptor (LSD + binary LBD, brute-force Hamming matching) on the same pairs,
-//    judged against the same ground truth, and the time of both methods per pair.
-// e. Time of MatchJunctions on the VGG pairs (about 150 junctions per frame), median of repeats.
-// Markdown tables go to stdout and to --output.
-#include <gflags/gflags.h>
+// The measurements and the report of benchmark_matching (matching_benchmark.h).
 #include <glog/logging.h>
 
 #include <Eigen/SVD>
@@ -47,40 +27,7 @@
 #include "pipeline/overlay/match_overlay.h"
 #include "benchmarks/evaluation/matching_evaluation.h"
 #include "benchmarks/evaluation/table_format.h"
-#include "sfm_app/flags/detector_flags.h"
-
-namespace {
-const sfm::MatchingOptions kMatchingDefaults;
-}  // namespace
-
-DEFINE_string(generated, "", "Comma-separated generated sequence directories (with truth/), e.g. a corridor and a room.");
-DEFINE_string(vgg_sequence, "", "VGG Corridor imported by import_sequence --format vgg (odometry and images).");
-DEFINE_string(vgg_dir, "../shared/data/vgg-corridor", "The VGG Corridor data set (bt.NNN.P, bt.NNN.lines, bt_original.nview-lines).");
-DEFINE_string(output, "", "Also write the markdown report here.");
-DEFINE_string(image_dir, "", "If set, write Fig. 6-style pictures of the Table 2 pairs there (wrong matches' numbers in red).");
-DEFINE_double(radius, 3.0, "A junction lies at a true vertex / ground-truth junction within this, px.");
-DEFINE_double(epipolar_tolerance, 2.0, "A correct match lies within this of the true epipolar lines, both ways, px.");
-DEFINE_int32(max_gap, 2, "VGG: also measure pairs up to this many frames apart (1: consecutive only).");
-DEFINE_string(table2_vgg_pair, "0,1", "VGG frames of the Table 2 sweep.");
-DEFINE_string(table2_generated_pair, "10,11", "Frames of the first generated sequence for the Table 2 sweep.");
-DEFINE_string(table2_tau2, "0.05,0.1,0.2,0.3", "tau2 values of the Table 2 sweep.");
-DEFINE_string(table2_R, "4,6,10,15", "R values of the Table 2 sweep, px.");
-DEFINE_int32(speed_repeats, 21, "Time each pair's matching this many times and take the median.");
-DEFINE_int32(speed_junctions, 150, "e: also time the VGG pairs with only this many strongest junctions per frame.");
-DEFINE_double(lbd_min_length, sfm::SegmentDetectorOptions().min_length, "LSD segments shorter than this are dropped, px.");
-// The detector and matching flags shared with the other apps (--segments, --endpoint_lambda,
-// --match_tau1, ...): sfm_app/flags/detector_flags.h. Those below are this benchmark's own.
-DEFINE_bool(match_pose, true,
-            "Give the matcher the odometry pose and its uncertainty (sequence.yaml's noise model): per-pair band and "
-            "cheirality; false: F only, fixed R.");
-DEFINE_double(match_location_sigma, kMatchingDefaults.location_sigma_px, "Junction location sigma, px (band, cheirality).");
-DEFINE_int32(match_depth_range_neighbours, kMatchingDefaults.depth_range_neighbours,
-             "With --match_refine: the local depth range test's neighbours (0: off).");
-DEFINE_string(
-    vgg_matches_csv, "",
-    "If set, write every match of the consecutive VGG pairs (odometry) with its diagnosis there: verdict, "
-    "junction types, distances from the true and the refined epipolar lines, the guided band, rho and "
-    "sigma.");
+#include "benchmarks/matching/matching_benchmark.h"
 
 namespace sfm {
 namespace {
@@ -123,12 +70,7 @@ std::string Goal(int part, int whole, double goal) {
 }
 double Median(std::vector<double> v) { return Quantile(std::move(v), 0.5); }
 
-struct Settings {
-  UndistortInterpolation undistort_interpolation = kDetectionInterpolation;
-  SegmentDetectorOptions segments;
-  JunctionDetectorOptions junctions;
-  MatchingOptions matching;
-};
+using Settings = MatchingBenchmarkSettings;
 
 struct LoadedFrame {
   cv::Mat grey;  // undistorted
@@ -152,7 +94,7 @@ std::vector<Eigen::Vector2d> JudgedLocations(const LoadedFrame& frame) {
   return locations;
 }
 
-Status LoadFrames(const Sequence& sequence, const Settings& settings, std::vector<LoadedFrame>* frames) {
+Status LoadFrames(const MatchingBenchmarkOptions& bench, const Sequence& sequence, const Settings& settings, std::vector<LoadedFrame>* frames) {
   const ImageUndistorter undistorter(sequence.calibration.camera, settings.undistort_interpolation);
   frames->resize(sequence.frames.size());
   for (size_t f = 0; f < sequence.frames.size(); ++f) {
@@ -161,7 +103,7 @@ Status LoadFrames(const Sequence& sequence, const Settings& settings, std::vecto
     LoadedFrame& frame = (*frames)[f];
     frame.grey = undistorter.Apply(image).clone();
     frame.features = DetectFrameFeatures(frame.grey, settings.segments, settings.junctions);
-    frame.lbd = DetectLbd(frame.grey, FLAGS_lbd_min_length);
+    frame.lbd = DetectLbd(frame.grey, bench.lbd_min_length);
   }
   return Status::Ok();
 }
@@ -183,10 +125,10 @@ struct PairInput {
   const PairGeometry* Geometry() const { return geometry ? &*geometry : nullptr; }
 };
 
-PairInput PairInputOf(const Sequence& sequence, int i, int j, bool groundtruth) {
+PairInput PairInputOf(const MatchingBenchmarkOptions& bench, const Sequence& sequence, int i, int j, bool groundtruth) {
   PairInput input;
   input.F = FundamentalOf(sequence, i, j, groundtruth);
-  if (FLAGS_match_pose) {
+  if (bench.match_pose) {
     const Frame& a = sequence.frames[i];
     const Frame& b = sequence.frames[j];
     const OdometryNoise& noise = sequence.calibration.odometry_noise;
@@ -201,7 +143,7 @@ PairInput PairInputOf(const Sequence& sequence, int i, int j, bool groundtruth) 
   return input;
 }
 
-PairInput PairInputOf(const Eigen::Matrix3d& F) {
+PairInput PairInputOf(const MatchingBenchmarkOptions& bench, const Eigen::Matrix3d& F) {
   PairInput input;
   input.F = F;
   return input;
@@ -237,7 +179,7 @@ struct GeneratedData {
   std::vector<std::vector<int>> lbd_line_id;  // per frame, per LSD segment: 3D line id or -1
 };
 
-Status LoadGenerated(const std::string& directory, const Settings& settings, GeneratedData* data) {
+Status LoadGenerated(const MatchingBenchmarkOptions& bench, const std::string& directory, const Settings& settings, GeneratedData* data) {
   data->name = std::filesystem::path(directory).filename().string();
   SFM_RETURN_IF_ERROR(ReadSequence(directory, &data->sequence));
   if (!data->sequence.has_groundtruth) return Status::Error(directory + ": no groundtruth.txt");
@@ -246,11 +188,11 @@ Status LoadGenerated(const std::string& directory, const Settings& settings, Gen
     return Status::Error(directory + ": truth/frames has " + std::to_string(data->truth.frames.size()) +
                          " frames but images.txt " + std::to_string(data->sequence.frames.size()));
   }
-  SFM_RETURN_IF_ERROR(LoadFrames(data->sequence, settings, &data->frames));
+  SFM_RETURN_IF_ERROR(LoadFrames(bench, data->sequence, settings, &data->frames));
   const std::vector<int> edge_line = WireframeLineIds(data->truth.wireframe);
   for (size_t f = 0; f < data->frames.size(); ++f) {
     const FrameTruth& truth = data->truth.frames[f];
-    data->near_vertices.push_back(TrueVerticesNearJunctions(data->frames[f].features.junctions, truth, FLAGS_radius));
+    data->near_vertices.push_back(TrueVerticesNearJunctions(data->frames[f].features.junctions, truth, bench.radius));
     LineSegments lines;
     std::vector<int> ids;
     TrueLinesOfFrame(truth, edge_line, &lines, &ids);
@@ -274,14 +216,14 @@ struct VggData {
   Eigen::Matrix3d TrueF(int i, int j) const { return FundamentalFromProjections(truth.views[i].P, truth.views[j].P); }
 };
 
-Status LoadVgg(const std::string& sequence_dir, const std::string& data_dir, const Settings& settings, VggData* data) {
+Status LoadVgg(const MatchingBenchmarkOptions& bench, const std::string& sequence_dir, const std::string& data_dir, const Settings& settings, VggData* data) {
   SFM_RETURN_IF_ERROR(ReadSequence(sequence_dir, &data->sequence));
   SFM_RETURN_IF_ERROR(ReadVggTruth(data_dir, SegmentJunctionOptions(), &data->truth));
   if (data->truth.views.size() != data->sequence.frames.size()) {
     return Status::Error(sequence_dir + ": " + std::to_string(data->sequence.frames.size()) + " frames but " +
                          data_dir + " has " + std::to_string(data->truth.views.size()) + " views");
   }
-  SFM_RETURN_IF_ERROR(LoadFrames(data->sequence, settings, &data->frames));
+  SFM_RETURN_IF_ERROR(LoadFrames(bench, data->sequence, settings, &data->frames));
   for (LoadedFrame& frame : data->frames) {
     if (data->sequence.calibration.camera.HasDistortion()) frame.truth_in_distorted_pixels = data->sequence.calibration.camera;
   }
@@ -294,8 +236,8 @@ Status LoadVgg(const std::string& sequence_dir, const std::string& data_dir, con
     std::vector<Eigen::Vector2d> gt_points;
     for (const SegmentJunction& j : view.junctions) gt_points.push_back(j.location);
     const std::vector<Eigen::Vector2d> locations = JudgedLocations(data->frames[f]);
-    data->gt_junction_of.push_back(NearestWithin(locations, gt_points, FLAGS_radius));
-    data->near_points.push_back(VggPointsNear(view, locations, FLAGS_radius));
+    data->gt_junction_of.push_back(NearestWithin(locations, gt_points, bench.radius));
+    data->near_points.push_back(VggPointsNear(view, locations, bench.radius));
     LineSegments lbd_judged = data->frames[f].lbd.segments;  // end-points in bt.NNN.lines' pixels
     for (LineSegment& s : lbd_judged) {
       s.p0 = JudgedPixel(data->frames[f], s.p0);
@@ -504,10 +446,10 @@ void VggCornerEpipolarErrors(const VggView& a, const VggView& b, const Camera& c
   }
 }
 
-RefinementCase VggRefinementCase(const VggData& d, int i, int j, const PairGeometry& odometry,
+RefinementCase VggRefinementCase(const MatchingBenchmarkOptions& bench, const VggData& d, int i, int j, const PairGeometry& odometry,
                                  const PairRefinement& refinement, const MatchingOptions& matching) {
   constexpr double kDegrees = 180 / 3.14159265358979323846;
-  const Pose3 truth = PairInputOf(d.sequence, i, j, true).geometry->camera2_T_camera1;
+  const Pose3 truth = PairInputOf(bench, d.sequence, i, j, true).geometry->camera2_T_camera1;
   auto median_error = [&](const Eigen::Matrix3d& F) {
     std::vector<double> errors;
     VggCornerEpipolarErrors(d.truth.views[i], d.truth.views[j], d.sequence.calibration.camera, F, &errors);
@@ -583,7 +525,7 @@ std::string MethodRow(const std::string& data, const std::string& method, const 
 }
 
 // One pair for LBD: nearest-neighbour and mutual matches, judged; appended to the two stats.
-void AddLbdPair(const LoadedFrame& a, const LoadedFrame& b, const std::vector<int>& id_a, const std::vector<int>& id_b,
+void AddLbdPair(const MatchingBenchmarkOptions& bench, const LoadedFrame& a, const LoadedFrame& b, const std::vector<int>& id_a, const std::vector<int>& id_b,
                 const LineOfId& line_in_a, const LineOfId& line_in_b, const Eigen::Matrix3d& F_true,
                 MethodStats* nearest, MethodStats* mutual) {
   for (auto [stats, is_mutual] : {std::pair{nearest, false}, std::pair{mutual, true}}) {
@@ -595,7 +537,7 @@ void AddLbdPair(const LoadedFrame& a, const LoadedFrame& b, const std::vector<in
     stats->features += a.lbd.segments.size() + b.lbd.segments.size();
     const LineMatchScore score =
         ScoreLineMatches(a.lbd.segments, b.lbd.segments, matches, id_a, id_b, line_in_a, line_in_b, F_true,
-                         FLAGS_epipolar_tolerance);
+                         bench.epipolar_tolerance);
     stats->verdicts.Add(score.verdicts);
     stats->recall.Add({score.seen_both, score.matched});
   }
@@ -612,7 +554,7 @@ struct Sweep {
   std::vector<std::vector<SweepCell>> cells;  // [R][tau2]
 };
 
-Sweep RunSweep(const LoadedFrame& a, const LoadedFrame& b, const PairInput& F, const Eigen::Matrix3d& F_true,
+Sweep RunSweep(const MatchingBenchmarkOptions& bench, const LoadedFrame& a, const LoadedFrame& b, const PairInput& F, const Eigen::Matrix3d& F_true,
                const SameFeature& same, const MatchingOptions& base, const std::vector<double>& R_values,
                const std::vector<double>& tau2_values) {
   Sweep sweep{R_values, tau2_values, {}};
@@ -630,7 +572,7 @@ Sweep RunSweep(const LoadedFrame& a, const LoadedFrame& b, const PairInput& F, c
         options.use_topology = topology;
         const std::vector<JunctionMatch> matches = Match(a, b, F, options);
         (topology ? cell.sigma : cell.rho) =
-            JudgeMatches(MatchPairs(matches), pa, pb, F_true, FLAGS_epipolar_tolerance, same);
+            JudgeMatches(MatchPairs(matches), pa, pb, F_true, bench.epipolar_tolerance, same);
       }
       sweep.cells.back().push_back(cell);
     }
@@ -674,7 +616,7 @@ std::string SweepTable(const Sweep& s) {
 }
 
 // A Fig. 6-style picture with each match's verdict.
-Status WriteVerdictPicture(const std::string& path, const LoadedFrame& a, const LoadedFrame& b,
+Status WriteVerdictPicture(const MatchingBenchmarkOptions& bench, const std::string& path, const LoadedFrame& a, const LoadedFrame& b,
                            const std::vector<JunctionMatch>& matches, const Eigen::Matrix3d& F_true,
                            const SameFeature& same) {
   std::vector<bool> correct;
@@ -683,7 +625,7 @@ Status WriteVerdictPicture(const std::string& path, const LoadedFrame& a, const 
   // left-out one in grey.
   for (const JunctionMatch& m : matches) {
     const MatchVerdicts v =
-        JudgeMatches({{m.index_a, m.index_b}}, judged_a, judged_b, F_true, FLAGS_epipolar_tolerance, same);
+        JudgeMatches({{m.index_a, m.index_b}}, judged_a, judged_b, F_true, bench.epipolar_tolerance, same);
     correct.push_back(v.correct == 1);
   }
   return WritePng(path, DrawMatchOverlay(a.grey, a.features.junctions, b.grey, b.features.junctions, matches,
@@ -701,7 +643,7 @@ struct WrongTally {
 
 // Counts the wrong matches: with identity_only, those ground truth identifies as two different
 // features; else those JudgeMatches does not call correct.
-void TallyWrong(const LoadedFrame& a, const LoadedFrame& b, const std::vector<JunctionMatch>& matches,
+void TallyWrong(const MatchingBenchmarkOptions& bench, const LoadedFrame& a, const LoadedFrame& b, const std::vector<JunctionMatch>& matches,
                 const Eigen::Matrix3d& F_true, const SameFeature& same, bool identity_only, WrongTally* tally) {
   auto near_border = [](const cv::Mat& image, const Eigen::Vector2d& p) {
     return p.x() < 5 || p.y() < 5 || p.x() > image.cols - 6 || p.y() > image.rows - 6;
@@ -712,7 +654,7 @@ void TallyWrong(const LoadedFrame& a, const LoadedFrame& b, const std::vector<Ju
     const int type = static_cast<int>(ja.type);
     const int identity = same(m.index_a, m.index_b);
     const bool epipolar_ok = EpipolarConsistent(F_true, JudgedPixel(a, ja.location), JudgedPixel(b, jb.location),
-                                                FLAGS_epipolar_tolerance);
+                                                bench.epipolar_tolerance);
     if (identity_only && identity < 0) continue;
     ++tally->matches;
     ++tally->matches_by_type[type];
@@ -725,9 +667,9 @@ void TallyWrong(const LoadedFrame& a, const LoadedFrame& b, const std::vector<Ju
   }
 }
 
-std::string WrongTable(const WrongTally& t) {
+std::string WrongTable(const MatchingBenchmarkOptions& bench, const WrongTally& t) {
   std::ostringstream table;
-  table << "| | L | Y | ARROW | T | X | N | all | within " << FLAGS_epipolar_tolerance
+  table << "| | L | Y | ARROW | T | X | N | all | within " << bench.epipolar_tolerance
         << " px of the true epipolar lines | within 5 px of the border |\n|---|---|---|---|---|---|---|---|---|---|\n"
         << "| matches |";
   for (int k = 0; k < 6; ++k) table << " " << t.matches_by_type[k] << " |";
@@ -741,7 +683,7 @@ std::string WrongTable(const WrongTally& t) {
 // One CSV row per match of a VGG pair, for the analysis of the wrong ones: the verdict, the two
 // junctions, their distances from the true and from the used epipolar lines, the band of the pass
 // that made the match, rho and sigma, and where the true partner of junction a was.
-void AppendVggMatchRows(const VggData& d, int i, int j, const PairInput& input,
+void AppendVggMatchRows(const MatchingBenchmarkOptions& bench, const VggData& d, int i, int j, const PairInput& input,
                         const MatchingOptions& options, const std::vector<JunctionMatch>& matches,
                         const MatchingDiagnostics& diagnostics, std::string* csv) {
   const Junctions& a = d.frames[i].features.junctions;
@@ -786,7 +728,7 @@ void AppendVggMatchRows(const VggData& d, int i, int j, const PairInput& input,
     const Junction& jb = b[m.index_b];
     const int identity = same(m.index_a, m.index_b);
     const Eigen::Vector2d ta = JudgedPixel(d.frames[i], ja.location), tb = JudgedPixel(d.frames[j], jb.location);
-    const bool epipolar_ok = EpipolarConsistent(F_true, ta, tb, FLAGS_epipolar_tolerance);
+    const bool epipolar_ok = EpipolarConsistent(F_true, ta, tb, bench.epipolar_tolerance);
     const double true_d2 = PointLineDistance(EpipolarLineInImage2(F_true, ta), tb);
     const double true_d1 = PointLineDistance(EpipolarLineInImage1(F_true, tb), ta);
     const double used_d2 = PointLineDistance(EpipolarLineInImage2(F_used, ja.location), jb.location);
@@ -813,7 +755,7 @@ void AppendVggMatchRows(const VggData& d, int i, int j, const PairInput& input,
         << "," << (true_b >= 0 ? partner_of_b[true_b] : -2) << ","
         << (true_b >= 0 && true_b != m.index_b && neighbours(m.index_b, true_b) ? 1 : 0) << ","
         << Fixed(true_b_rho, 4) << "," << lengths(ja) << "," << lengths(jb);
-    const Eigen::Matrix3d F_truepose = PairInputOf(d.sequence, i, j, true).F;
+    const Eigen::Matrix3d F_truepose = PairInputOf(bench, d.sequence, i, j, true).F;
     const Eigen::Matrix3d F_odometry = input.F;
     for (const Eigen::Matrix3d* F : {&F_true, &F_used, &F_truepose, &F_odometry}) {
       // The epipoles (right and left null vectors of F), pixels.
@@ -828,75 +770,38 @@ void AppendVggMatchRows(const VggData& d, int i, int j, const PairInput& input,
 }
 
 }  // namespace
-}  // namespace sfm
 
-int main(int argc, char** argv) {
-  using namespace sfm;
-  gflags::SetUsageMessage(
-      "junction matching against ground truth, Table 2, LSD + LBD, speed (docs/matching_results.md).\n"
-      "  benchmark_matching --generated <seq>,<seq> --vgg_sequence <imported vgg> --output report.md");
-  gflags::ParseCommandLineFlags(&argc, &argv, true);
-  FLAGS_logtostderr = true;
-  google::InitGoogleLogging(argv[0]);
-  cv::setNumThreads(1);
-  auto fail = [](int code, const std::string& message) {
-    std::fprintf(stderr, "benchmark_matching: %s\n", message.c_str());
-    return code;
-  };
+std::vector<std::string> SplitCommaList(const std::string& text) { return Split(text); }
+bool ParseNumberList(const std::string& text, std::vector<double>* values) { return ParseNumbers(text, values); }
+bool ParseFramePair(const std::string& text, int* a, int* b) { return ParsePair(text, a, b); }
 
-  // Flags.
-  if (argc > 1) return fail(2, std::string("unexpected argument '") + argv[1] + "' (flags are --name=value)");
-  const std::vector<std::string> generated_dirs = Split(FLAGS_generated);
-  if (generated_dirs.empty() && FLAGS_vgg_sequence.empty()) {
-    return fail(2, "give --generated and/or --vgg_sequence (scripts/benchmark_matching.sh prepares both)");
-  }
-  Settings settings;
-  std::string error;
-  if (!SegmentMethodFromFlags(&settings.segments, &error)) return fail(2, error);
-  if (!UndistortInterpolationFromFlags(&settings.undistort_interpolation, &error)) return fail(2, error);
-  MatchingOptions& matching = settings.matching;
-  if (!MatchingFromFlags(&settings.junctions, &matching, &error)) return fail(2, error);
-  MatchingRefineFromFlags(&matching);
-  matching.location_sigma_px = FLAGS_match_location_sigma;
-  matching.depth_range_neighbours = FLAGS_match_depth_range_neighbours;
-  for (const Status& check : {settings.segments.Check(), settings.junctions.Check(), matching.Check()}) {
-    if (!check.ok()) return fail(2, check.message());
-  }
-  std::vector<double> sweep_R, sweep_tau2;
-  if (!ParseNumbers(FLAGS_table2_R, &sweep_R)) return fail(2, "--table2_R must list numbers, e.g. 4,6,10,15");
-  if (!ParseNumbers(FLAGS_table2_tau2, &sweep_tau2)) return fail(2, "--table2_tau2 must list numbers");
-  int vgg_a = 0, vgg_b = 0, gen_a = 0, gen_b = 0;
-  if (!ParsePair(FLAGS_table2_vgg_pair, &vgg_a, &vgg_b)) return fail(2, "--table2_vgg_pair must be two frames, e.g. 0,1");
-  if (!ParsePair(FLAGS_table2_generated_pair, &gen_a, &gen_b)) {
-    return fail(2, "--table2_generated_pair must be two frames, e.g. 10,11");
-  }
-  if (FLAGS_radius <= 0 || FLAGS_epipolar_tolerance <= 0 || FLAGS_speed_repeats < 1 || FLAGS_max_gap < 1 ||
-      FLAGS_speed_junctions < 1) {
-    return fail(2, "--radius and --epipolar_tolerance must be > 0, --speed_repeats, --speed_junctions and --max_gap >= 1");
-  }
-  if (!FLAGS_image_dir.empty()) {
-    if (const Status s = EnsureWritableDirectory(FLAGS_image_dir); !s.ok()) return fail(1, s.message());
-  }
-
+Status MatchingBenchmarkReport(const MatchingBenchmarkOptions& bench, const MatchingBenchmarkSettings& settings,
+                               std::string* text) {
+  const std::vector<std::string>& generated_dirs = bench.generated;
+  const MatchingOptions& matching = settings.matching;
+  const std::vector<double>& sweep_R = bench.table2_R;
+  const std::vector<double>& sweep_tau2 = bench.table2_tau2;
+  const int vgg_a = bench.table2_vgg_pair[0], vgg_b = bench.table2_vgg_pair[1];
+  const int gen_a = bench.table2_generated_pair[0], gen_b = bench.table2_generated_pair[1];
   // Data.
   std::vector<GeneratedData> generated(generated_dirs.size());
   for (size_t k = 0; k < generated_dirs.size(); ++k) {
     std::fprintf(stderr, "benchmark_matching: loading %s\n", generated_dirs[k].c_str());
-    if (const Status s = LoadGenerated(generated_dirs[k], settings, &generated[k]); !s.ok()) return fail(1, s.message());
+    if (const Status s = LoadGenerated(bench, generated_dirs[k], settings, &generated[k]); !s.ok()) return s;
   }
   VggData vgg;
-  const bool have_vgg = !FLAGS_vgg_sequence.empty();
+  const bool have_vgg = !bench.vgg_sequence.empty();
   if (have_vgg) {
-    std::fprintf(stderr, "benchmark_matching: loading %s and %s\n", FLAGS_vgg_sequence.c_str(), FLAGS_vgg_dir.c_str());
-    if (const Status s = LoadVgg(FLAGS_vgg_sequence, FLAGS_vgg_dir, settings, &vgg); !s.ok()) return fail(1, s.message());
+    std::fprintf(stderr, "benchmark_matching: loading %s and %s\n", bench.vgg_sequence.c_str(), bench.vgg_dir.c_str());
+    if (const Status s = LoadVgg(bench, bench.vgg_sequence, bench.vgg_dir, settings, &vgg); !s.ok()) return s;
   }
 
   std::ostringstream report;
-  report << "Settings: " << FLAGS_segments << " segments; R = " << matching.max_epipolar_distance_px
+  report << "Settings: " << bench.segments << " segments; R = " << matching.max_epipolar_distance_px
          << " px, tau1 = " << matching.tau1 << ", tau2 = " << matching.tau2 << ", rho1 "
          << ToString(matching.rho1_kind) << ", " << (matching.use_topology ? "sigma (topology)" : "rho")
          << ", lambda = " << matching.endpoint_model.lambda << ", mu = " << matching.endpoint_model.mu
-         << " /px. Radius " << FLAGS_radius << " px, epipolar tolerance " << FLAGS_epipolar_tolerance
+         << " /px. Radius " << bench.radius << " px, epipolar tolerance " << bench.epipolar_tolerance
          << " px. Single thread.\n";
 
   // ---- a. Generated sequences ----
@@ -908,13 +813,13 @@ int main(int argc, char** argv) {
     report
         << "\n## a. Generated sequences: matches at true vertices\n\n"
         << "Consecutive pairs. A junction is at a vertex when a visible wireframe vertex lies within "
-        << FLAGS_radius
+        << bench.radius
         << " px of it (two vertices can: a poster corner 5 mm in front of a cabinet corner, far door "
            "frames). "
         << "Precision: of the matches whose two junctions are both at vertices, those at one same vertex "
         << "(\"nearest\": the nearest vertices are the same, stricter). Recall: of the vertices with a "
            "junction "
-        << "within " << FLAGS_radius << " px in both frames, those joined by a match between such junctions; "
+        << "within " << bench.radius << " px in both frames, those joined by a match between such junctions; "
         << "\"equal counts\": of those, the ones whose junctions have the same number of segments in both "
            "frames; "
         << "\"recall, equal counts\": of these, the ones joined by a full match (junctions of equal counts, "
@@ -955,7 +860,7 @@ int main(int argc, char** argv) {
         std::vector<double> errors;
         for (size_t i = 0; i + 1 < d.frames.size(); ++i) {
           const int j = static_cast<int>(i) + 1;
-          const PairInput input = PairInputOf(d.sequence, i, j, use_truth);
+          const PairInput input = PairInputOf(bench, d.sequence, i, j, use_truth);
           const Eigen::Matrix3d& F = input.F;
           double match_ms = 0;
           MatchingDiagnostics diagnostics;
@@ -963,7 +868,7 @@ int main(int argc, char** argv) {
               Match(d.frames[i], d.frames[j], input, matching, &match_ms, &diagnostics);
           if (!use_truth && input.geometry && matching.refine_geometry) {
             refinement_generated.Add(diagnostics, *input.geometry,
-                                     PairInputOf(d.sequence, i, j, true).geometry->camera2_T_camera1,
+                                     PairInputOf(bench, d.sequence, i, j, true).geometry->camera2_T_camera1,
                                      [&](const Eigen::Matrix3d& F_used, std::vector<double>* errors) {
                                        TrueVertexEpipolarErrors(d.truth.frames[i], d.truth.frames[j], F_used, errors);
                                      });
@@ -981,13 +886,13 @@ int main(int argc, char** argv) {
             ours_generated.features += d.frames[i].features.junctions.size() + d.frames[j].features.junctions.size();
             ours_generated.verdicts.Add(JudgeMatches(MatchPairs(matches), JudgedLocations(d.frames[i]),
                                                      JudgedLocations(d.frames[j]), F_true,
-                                                     FLAGS_epipolar_tolerance, same));
+                                                     bench.epipolar_tolerance, same));
             ours_generated.recall.Add({pair_counts.seen_both, pair_counts.matched});
             ours_generated.detect_ms.push_back(d.frames[i].features.detect_ms + d.frames[j].features.detect_ms);
             ours_generated.match_ms.push_back(match_ms);
-            AddLbdPair(d.frames[i], d.frames[j], d.lbd_line_id[i], d.lbd_line_id[j], GeneratedLineOf(d, i),
+            AddLbdPair(bench, d.frames[i], d.frames[j], d.lbd_line_id[i], d.lbd_line_id[j], GeneratedLineOf(d, i),
                        GeneratedLineOf(d, j), F_true, &lbd_generated, &lbd_mutual_generated);
-            TallyWrong(d.frames[i], d.frames[j], matches, F_true, same, /*identity_only=*/true, &wrong_generated);
+            TallyWrong(bench, d.frames[i], d.frames[j], matches, F_true, same, /*identity_only=*/true, &wrong_generated);
           }
         }
         totals[use_truth].Add(counts);
@@ -1003,7 +908,7 @@ int main(int argc, char** argv) {
     }
     report << misses.str() << "\nThe wrong matches of the precision column (odometry F), by junction type in the "
            << "first frame, with their distance from the true epipolar geometry:\n\n"
-           << WrongTable(wrong_generated);
+           << WrongTable(bench, wrong_generated);
   }
 
   // ---- b. VGG Corridor ----
@@ -1022,13 +927,13 @@ int main(int argc, char** argv) {
     report << "\n## b. VGG Corridor: precision against the true projection matrices\n\n"
            << "Matches made with F from the imported sequence (its median K with the simulated odometry, or with its "
            << "true poses) or from bt.NNN.P; judged with F = FundamentalFromProjections(bt.i.P, bt.j.P): correct when "
-           << "both locations lie within " << FLAGS_epipolar_tolerance << " px of the other's epipolar line and, where "
+           << "both locations lie within " << bench.epipolar_tolerance << " px of the other's epipolar line and, where "
            << "ground truth identifies both junctions, they are the same. Identity: the reconstructed Harris corners "
            << "(bt.NNN.corners on a bt.nview-corners track, i.e. a bt.p3d point; " << tracked << " of " << corners
-           << " corners) within " << FLAGS_radius << " px of the junction, and ground-truth junctions (JunctionsFromSegments "
+           << " corners) within " << bench.radius << " px of the junction, and ground-truth junctions (JunctionsFromSegments "
            << "on bt.NNN.lines, contact 3 px: " << gt_junctions << " in " << vgg.truth.views.size() << " views, "
-           << identified << " of them identified by two 3D lines of bt_original.nview-lines) within " << FLAGS_radius
-           << " px. Recall: 3D points with a junction within " << FLAGS_radius
+           << identified << " of them identified by two 3D lines of bt_original.nview-lines) within " << bench.radius
+           << " px. Recall: 3D points with a junction within " << bench.radius
            << " px of one of their corners in both views, joined by a match.\n\n"
            << "| frames apart | F from | pairs | junctions/frame | matches | wrong: epipolar (of which the same 3D point) "
            << "| wrong: identity | "
@@ -1057,7 +962,7 @@ int main(int argc, char** argv) {
         "true_b_neighbour_of_b,true_b_rho,lengths_a,lengths_b,e1x_true,e1y_true,e2x_true,e2y_true,e1x,e1y,"
         "e2x,e2y,e1x_tp,e1y_tp,e2x_tp,e2y_tp,e1x_od,e1y_od,e2x_od,e2y_od\n";
     const int n = static_cast<int>(vgg.frames.size());
-    for (int gap = 1; gap <= FLAGS_max_gap; ++gap) {
+    for (int gap = 1; gap <= bench.max_gap; ++gap) {
       for (const Variant& variant : variants) {
         const VggData& d = *variant.data;
         const std::string source = variant.source;
@@ -1071,22 +976,22 @@ int main(int argc, char** argv) {
           const int j = i + gap;
           const Eigen::Matrix3d F_true = d.TrueF(i, j);
           const PairInput F =
-              source == "bt.NNN.P" ? PairInputOf(F_true) : PairInputOf(d.sequence, i, j, source == "true poses");
+              source == "bt.NNN.P" ? PairInputOf(bench, F_true) : PairInputOf(bench, d.sequence, i, j, source == "true poses");
           double match_ms = 0;
           MatchingDiagnostics diagnostics;
           const std::vector<JunctionMatch> matches = Match(d.frames[i], d.frames[j], F, matching, &match_ms, &diagnostics);
           if (variant.data == &vgg && source == "odometry" && F.geometry && matching.refine_geometry) {
             if (refinement_vgg.empty() || refinement_vgg.back().first != gap) refinement_vgg.emplace_back(gap, RefinementTally());
             refinement_vgg.back().second.Add(
-                diagnostics, *F.geometry, PairInputOf(d.sequence, i, j, true).geometry->camera2_T_camera1,
+                diagnostics, *F.geometry, PairInputOf(bench, d.sequence, i, j, true).geometry->camera2_T_camera1,
                 [&](const Eigen::Matrix3d& F_used, std::vector<double>* errors) {
                   VggCornerEpipolarErrors(d.truth.views[i], d.truth.views[j], d.sequence.calibration.camera, F_used, errors);
                 });
-            refinement_cases.push_back(VggRefinementCase(d, i, j, *F.geometry, diagnostics.refinement, matching));
+            refinement_cases.push_back(VggRefinementCase(bench, d, i, j, *F.geometry, diagnostics.refinement, matching));
           }
           const MatchVerdicts v = JudgeMatches(MatchPairs(matches), JudgedLocations(d.frames[i]),
                                                JudgedLocations(d.frames[j]), F_true,
-                                               FLAGS_epipolar_tolerance, VggSame(d, i, j));
+                                               bench.epipolar_tolerance, VggSame(d, i, j));
           const VertexMatchCounts points = ScoreVertexMatches(d.frames[i].features.junctions, d.frames[j].features.junctions,
                                                               d.near_points[i], d.near_points[j], matches, F, matching);
           const FeatureRecall r{points.seen_both, points.matched};
@@ -1101,11 +1006,11 @@ int main(int argc, char** argv) {
             ours_vgg.recall.Add(r);
             ours_vgg.detect_ms.push_back(d.frames[i].features.detect_ms + d.frames[j].features.detect_ms);
             ours_vgg.match_ms.push_back(match_ms);
-            AddLbdPair(d.frames[i], d.frames[j], d.lbd_line_id[i], d.lbd_line_id[j], VggLineOf(d, i), VggLineOf(d, j),
+            AddLbdPair(bench, d.frames[i], d.frames[j], d.lbd_line_id[i], d.lbd_line_id[j], VggLineOf(d, i), VggLineOf(d, j),
                        F_true, &lbd_vgg, &lbd_mutual_vgg);
-            TallyWrong(d.frames[i], d.frames[j], matches, F_true, VggSame(d, i, j), /*identity_only=*/false, &wrong_vgg);
-            if (!FLAGS_vgg_matches_csv.empty() && F.geometry) {
-              AppendVggMatchRows(d, i, j, F, matching, matches, diagnostics, &vgg_matches_csv);
+            TallyWrong(bench, d.frames[i], d.frames[j], matches, F_true, VggSame(d, i, j), /*identity_only=*/false, &wrong_vgg);
+            if (!bench.vgg_matches_csv.empty() && F.geometry) {
+              AppendVggMatchRows(bench, d, i, j, F, matching, matches, diagnostics, &vgg_matches_csv);
             }
           }
         }
@@ -1120,11 +1025,11 @@ int main(int argc, char** argv) {
                << recall.matched << " | " << Percent(recall.matched, recall.seen_both) << " |\n";
       }
     }
-    if (!FLAGS_vgg_matches_csv.empty()) {
-      if (const Status s = WriteFileAtomically(FLAGS_vgg_matches_csv, vgg_matches_csv); !s.ok())
-        return fail(1, s.message());
+    if (!bench.vgg_matches_csv.empty()) {
+      if (const Status s = WriteFileAtomically(bench.vgg_matches_csv, vgg_matches_csv); !s.ok())
+        return s;
     }
-    report << "\nThe wrong matches of the first row, by junction type in the first frame:\n\n" << WrongTable(wrong_vgg);
+    report << "\nThe wrong matches of the first row, by junction type in the first frame:\n\n" << WrongTable(bench, wrong_vgg);
     // How many of the wrong ones are just beyond the tolerance.
     report << "\nPrecision of the consecutive pairs (odometry F) against the epipolar tolerance of the judgement:\n\n"
            << "| matches of | 1 px | 2 px | 3 px | 5 px |\n|---|---|---|---|---|\n";
@@ -1135,7 +1040,7 @@ int main(int argc, char** argv) {
         MatchVerdicts verdicts;
         for (int i = 0; i + 1 < n; ++i) {
           const std::vector<JunctionMatch> matches =
-              Match(d.frames[i], d.frames[i + 1], PairInputOf(d.sequence, i, i + 1, false), matching);
+              Match(d.frames[i], d.frames[i + 1], PairInputOf(bench, d.sequence, i, i + 1, false), matching);
           verdicts.Add(JudgeMatches(MatchPairs(matches), JudgedLocations(d.frames[i]),
                                     JudgedLocations(d.frames[i + 1]), d.TrueF(i, i + 1), tolerance,
                                     VggSame(d, i, i + 1)));
@@ -1149,49 +1054,49 @@ int main(int argc, char** argv) {
   // ---- c. Table 2 ----
   report << "\n## c. The paper's Table 2: rho against sigma over tau2 and R\n\n"
          << "F from the odometry; tau1 = " << matching.tau1 << ", rho1 " << ToString(matching.rho1_kind)
-         << "; correct as in b (true epipolar geometry within " << FLAGS_epipolar_tolerance
+         << "; correct as in b (true epipolar geometry within " << bench.epipolar_tolerance
          << " px, and the same true vertex / ground-truth junction where known); mismatches = matches - "
             "correct.\n";
   if (have_vgg) {
     if (vgg_a >= static_cast<int>(vgg.frames.size()) || vgg_b >= static_cast<int>(vgg.frames.size())) {
-      return fail(2, "--table2_vgg_pair names a frame the VGG sequence does not have");
+      return Status::Error("--table2_vgg_pair names a frame the VGG sequence does not have");
     }
-    const PairInput F = PairInputOf(vgg.sequence, vgg_a, vgg_b, false);
-    const Sweep sweep = RunSweep(vgg.frames[vgg_a], vgg.frames[vgg_b], F, vgg.TrueF(vgg_a, vgg_b), VggSame(vgg, vgg_a, vgg_b),
+    const PairInput F = PairInputOf(bench, vgg.sequence, vgg_a, vgg_b, false);
+    const Sweep sweep = RunSweep(bench, vgg.frames[vgg_a], vgg.frames[vgg_b], F, vgg.TrueF(vgg_a, vgg_b), VggSame(vgg, vgg_a, vgg_b),
                                  matching, sweep_R, sweep_tau2);
     report << "\n### VGG Corridor, frames " << vgg_a << " and " << vgg_b << " ("
            << vgg.frames[vgg_a].features.junctions.size() << " and " << vgg.frames[vgg_b].features.junctions.size()
            << " junctions)\n\n"
            << SweepTable(sweep);
-    if (!FLAGS_image_dir.empty()) {
+    if (!bench.image_dir.empty()) {
       const std::vector<JunctionMatch> matches = Match(vgg.frames[vgg_a], vgg.frames[vgg_b], F, matching);
-      const std::string path = FLAGS_image_dir + "/vgg_" + std::to_string(vgg_a) + "_" + std::to_string(vgg_b) + ".png";
-      if (const Status s = WriteVerdictPicture(path, vgg.frames[vgg_a], vgg.frames[vgg_b], matches,
+      const std::string path = bench.image_dir + "/vgg_" + std::to_string(vgg_a) + "_" + std::to_string(vgg_b) + ".png";
+      if (const Status s = WriteVerdictPicture(bench, path, vgg.frames[vgg_a], vgg.frames[vgg_b], matches,
                                                vgg.TrueF(vgg_a, vgg_b), VggSame(vgg, vgg_a, vgg_b));
           !s.ok()) {
-        return fail(1, s.message());
+        return s;
       }
     }
   }
   if (!generated.empty()) {
     const GeneratedData& d = generated[0];
     if (gen_a >= static_cast<int>(d.frames.size()) || gen_b >= static_cast<int>(d.frames.size())) {
-      return fail(2, "--table2_generated_pair names a frame " + d.name + " does not have");
+      return Status::Error("--table2_generated_pair names a frame " + d.name + " does not have");
     }
-    const PairInput F = PairInputOf(d.sequence, gen_a, gen_b, false);
+    const PairInput F = PairInputOf(bench, d.sequence, gen_a, gen_b, false);
     const Eigen::Matrix3d F_true = FundamentalOf(d.sequence, gen_a, gen_b, true);
     const SameFeature same = GeneratedSame(d.near_vertices[gen_a], d.near_vertices[gen_b]);
-    const Sweep sweep = RunSweep(d.frames[gen_a], d.frames[gen_b], F, F_true, same, matching, sweep_R, sweep_tau2);
+    const Sweep sweep = RunSweep(bench, d.frames[gen_a], d.frames[gen_b], F, F_true, same, matching, sweep_R, sweep_tau2);
     report << "\n### Generated " << d.name << ", frames " << gen_a << " and " << gen_b << " ("
            << d.frames[gen_a].features.junctions.size() << " and " << d.frames[gen_b].features.junctions.size()
            << " junctions)\n\n"
            << SweepTable(sweep);
-    if (!FLAGS_image_dir.empty()) {
+    if (!bench.image_dir.empty()) {
       const std::vector<JunctionMatch> matches = Match(d.frames[gen_a], d.frames[gen_b], F, matching);
       const std::string path =
-          FLAGS_image_dir + "/" + d.name + "_" + std::to_string(gen_a) + "_" + std::to_string(gen_b) + ".png";
-      if (const Status s = WriteVerdictPicture(path, d.frames[gen_a], d.frames[gen_b], matches, F_true, same); !s.ok()) {
-        return fail(1, s.message());
+          bench.image_dir + "/" + d.name + "_" + std::to_string(gen_a) + "_" + std::to_string(gen_b) + ".png";
+      if (const Status s = WriteVerdictPicture(bench, path, d.frames[gen_a], d.frames[gen_b], matches, F_true, same); !s.ok()) {
+        return s;
       }
     }
   }
@@ -1200,11 +1105,11 @@ int main(int argc, char** argv) {
   report << "\n## d. Against OpenCV line_descriptor (LSD + binary LBD, brute-force Hamming)\n\n"
          << "Same pairs (generated: all consecutive pairs of the sequences above; VGG: consecutive pairs), same "
          << "ground truth. Ours: junction matches with the odometry F. LBD: LSDDetector (scale 2, one octave, "
-         << "segments >= " << FLAGS_lbd_min_length << " px), BinaryDescriptor::compute, "
+         << "segments >= " << bench.lbd_min_length << " px), BinaryDescriptor::compute, "
          << "BinaryDescriptorMatcher::match (each line of image 1 to its nearest; mutual: kept when each is the "
          << "other's nearest); no epipolar information. A line match is correct when the epipolar band of each "
          << "segment (between its end-points' epipolar lines under the true F) meets the other segment within "
-         << FLAGS_epipolar_tolerance << " px and, where either segment lies on a true segment with a known 3D line "
+         << bench.epipolar_tolerance << " px and, where either segment lies on a true segment with a known 3D line "
          << "(generated: the wireframe edge's line; VGG: bt_original.nview-lines, bt.l3d), the other lies on that "
          << "line's image (both ends within 2 px, within 3 degrees). A detected segment lies on a true one when "
          << "both ends are within 2 px of its line, within 3 degrees, overlapping it by half its length. Junction "
@@ -1270,8 +1175,8 @@ int main(int argc, char** argv) {
   // ---- e. Speed ----
   report << "\n## e. Speed of MatchJunctions\n\n"
          << "One pair of frames, processor time of the one thread, odometry F, junctions and topology graphs given (detection not "
-         << "included); median of " << FLAGS_speed_repeats << " runs per pair. The goal is for about "
-         << FLAGS_speed_junctions << " junctions per frame: the VGG frames cut to their " << FLAGS_speed_junctions
+         << "included); median of " << bench.speed_repeats << " runs per pair. The goal is for about "
+         << bench.speed_junctions << " junctions per frame: the VGG frames cut to their " << bench.speed_junctions
          << " highest-scoring junctions (topology graphs rebuilt).\n\n"
          << "| data | pairs | junctions per frame (min..max) | sigma: median over pairs (ms) | max (ms) | "
          << "sigma, first pass only: median (ms) | max (ms) | rho: median (ms) | max (ms) | goal |\n"
@@ -1282,13 +1187,13 @@ int main(int argc, char** argv) {
     std::vector<double> ms_of[3];
     size_t fewest = SIZE_MAX, most = 0;
     for (size_t i = 0; i + 1 < frames.size(); ++i) {
-      const PairInput F = PairInputOf(sequence, i, i + 1, false);
+      const PairInput F = PairInputOf(bench, sequence, i, i + 1, false);
       for (int config = 0; config < 3; ++config) {
         MatchingOptions options = matching;
         options.use_topology = config < 2;
         if (config == 1) options.refine_geometry = false;
         std::vector<double> runs;
-        for (int r = 0; r < FLAGS_speed_repeats; ++r) {
+        for (int r = 0; r < bench.speed_repeats; ++r) {
           double ms = 0;
           Match(frames[i], frames[i + 1], F, options, &ms);
           runs.push_back(ms);
@@ -1309,16 +1214,14 @@ int main(int argc, char** argv) {
     report << " | " << (!goal ? "" : sigma_median < 1.0 ? "pass (< 1 ms)" : "**miss** (>= 1 ms)") << " |\n";
   };
   if (have_vgg) {
-    time_pairs("VGG Corridor, the " + std::to_string(FLAGS_speed_junctions) + " strongest junctions of each frame",
-               StrongestJunctions(vgg.frames, FLAGS_speed_junctions), vgg.sequence, true);
+    time_pairs("VGG Corridor, the " + std::to_string(bench.speed_junctions) + " strongest junctions of each frame",
+               StrongestJunctions(vgg.frames, bench.speed_junctions), vgg.sequence, true);
     time_pairs("VGG Corridor, all junctions", vgg.frames, vgg.sequence, false);
   }
   for (const GeneratedData& d : generated) time_pairs(d.name + ", all junctions", d.frames, d.sequence, false);
 
-  const std::string text = report.str();
-  std::fputs(text.c_str(), stdout);
-  if (!FLAGS_output.empty()) {
-    if (const Status s = WriteFileAtomically(FLAGS_output, text); !s.ok()) return fail(1, s.message());
-  }
-  return 0;
+  *text = report.str();
+  return Status::Ok();
 }
+
+}  // namespace sfm
