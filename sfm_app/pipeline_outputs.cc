@@ -157,7 +157,7 @@ std::string InitializationJson(const PipelineResult& result) {
        << ", \"pairs_without_pose\": {\"too_few_matches\": " << pairs.too_few_matches
        << ", \"too_few_inliers\": " << pairs.too_few_inliers
        << ", \"beyond_odometry_gate\": " << pairs.inconsistent_with_prior
-       << ", \"no_information\": " << pairs.no_information << "}"
+       << ", \"matches_add_nothing\": " << pairs.no_information << "}"
        << ", \"odometry_noise_declared\": {\"translation_sigma\": " << JsonNumber(summary.declared.translation_sigma)
        << ", \"rotation_sigma_rad\": " << JsonNumber(summary.declared.rotation_sigma) << "}"
        << ", \"odometry_noise_used\": {\"translation_sigma\": " << JsonNumber(summary.used.translation_sigma)
