@@ -356,10 +356,10 @@ TEST_F(JunctionSfmBadInput, OutOfMemoryIsOneLineAndWritesNothing) {
   EXPECT_EQ(Beside(output_), (std::vector<std::string>{"sequence", "stderr.txt"}));
 }
 
-// What junction_sfm prints on stdout with `arguments`, checking its exit status (--help: 0; gflags'
-// own listings, --helpfull and --helpxml, exit 1).
-std::string JunctionSfmStdout(const std::string& arguments, int expected_exit = 0) {
-  const std::string command = std::string(SFM_JUNCTION_SFM_BINARY) + " " + arguments + " 2>/dev/null";
+// What `program` (in build/bin) prints on stdout with `arguments`, checking its exit status
+// (junction_sfm --help: 0; gflags' own listings, --helpfull and --helpxml, exit 1).
+std::string ProgramStdout(const std::string& program, const std::string& arguments, int expected_exit) {
+  const std::string command = std::string(SFM_BIN_DIR) + "/" + program + " " + arguments + " 2>/dev/null";
   std::string text;
   FILE* pipe = popen(command.c_str(), "r");
   if (pipe == nullptr) return text;
@@ -368,6 +368,10 @@ std::string JunctionSfmStdout(const std::string& arguments, int expected_exit = 
   const int status = pclose(pipe);
   EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == expected_exit) << command;
   return text;
+}
+
+std::string JunctionSfmStdout(const std::string& arguments, int expected_exit = 0) {
+  return ProgramStdout("junction_sfm", arguments, expected_exit);
 }
 
 std::vector<std::string> Lines(const std::string& text) {
@@ -409,6 +413,38 @@ TEST(JunctionSfmHelp, ShortGroupedAndComplete) {
   }
   // Only the program's flags: glog's are left to --helpfull.
   EXPECT_THAT(text, ::testing::Not(HasSubstr("--stderrthreshold")));
+}
+
+// Item 8: one concept, one flag name in every program. detect_junctions named the end-point model
+// and the junction threshold --lambda, --mu, --min_probability; match_junctions's picture was
+// --image / --image_scale (detect_junctions's --image is its input); import_sequence's heading drift
+// was --odometry_rotation_bias (junction_sfm's flag of that name switches the estimate of a bias).
+TEST(JunctionSfmHelp, OneConceptOneFlagNameInEveryProgram) {
+  const std::map<std::string, std::vector<std::string>> kNames = {
+      {"junction_sfm", {"endpoint_lambda", "endpoint_mu", "junction_min_probability", "sequence", "output"}},
+      {"detect_junctions",
+       {"endpoint_lambda", "endpoint_mu", "junction_min_probability", "overlay", "overlay_scale"}},
+      {"match_junctions",
+       {"endpoint_lambda", "endpoint_mu", "junction_min_probability", "sequence", "overlay",
+        "overlay_scale"}},
+      {"import_sequence", {"output", "seed", "overwrite", "odometry_scale_error", "odometry_heading_bias"}},
+      {"make_sequence", {"output", "seed", "overwrite", "odometry_scale_error", "odometry_heading_bias"}},
+  };
+  const std::vector<std::string> kRetired = {"lambda", "mu", "min_probability", "image_scale"};
+  for (const auto& [program, names] : kNames) {
+    const std::string xml = ProgramStdout(program, "--helpxml", 1);
+    for (const std::string& name : names) {
+      EXPECT_THAT(xml, HasSubstr("<name>" + name + "</name>")) << program << " lacks --" << name;
+    }
+    for (const std::string& name : kRetired) {
+      EXPECT_THAT(xml, ::testing::Not(HasSubstr("<name>" + name + "</name>")))
+          << program << " has --" << name;
+    }
+  }
+  EXPECT_THAT(ProgramStdout("import_sequence", "--helpxml", 1),
+              ::testing::Not(HasSubstr("<name>odometry_rotation_bias</name>")));
+  EXPECT_THAT(ProgramStdout("match_junctions", "--helpxml", 1),
+              ::testing::Not(HasSubstr("<name>image</name>")));
 }
 
 // --helpfull keeps gflags' full listing, glog's flags included.
