@@ -40,9 +40,10 @@ DEFINE_double(odometry_distance_sigma, kDefaults.odometry.distance_sigma,
 DEFINE_double(odometry_rotation_sigma, kDefaults.odometry.rotation_sigma,
               "Odometry rotation noise per step, Gaussian sigma of each rotation-vector component, radians "
               "(0.0052 rad = 0.3 deg).");
-DEFINE_double(odometry_heading_bias, kDefaults.odometry.rotation_bias,
-              "Odometry heading drift per step: a rotation about the camera's y axis, radians (make_sequence's "
-              "--odometry_heading_bias for the generated robot).");
+DEFINE_double(
+    odometry_heading_bias, kDefaults.odometry.rotation_bias,
+    "Odometry heading drift per step: a rotation about the camera's y axis, radians (make_sequence's "
+    "--odometry_heading_bias for the generated robot).");
 DEFINE_double(odometry_noise_scale, 1,
               "Multiplies every odometry noise term above (scale error, distance sigma, rotation sigma, "
               "heading bias), after they are set; >= 0 (0: noise-free odometry, 3: three times the noise).");

@@ -91,7 +91,8 @@ bool OptionsFromFlags(sfm::SegmentDetectorOptions* segments, sfm::JunctionDetect
 int main(int argc, char** argv) {
   gflags::SetUsageMessage(
       "junction matches between two frames of a sequence, as CSV and a Fig. 6-style picture.\n"
-      "  match_junctions --sequence <dir> --frame_a i --frame_b j [--csv out.csv] [--overlay out.png] [flags]");
+      "  match_junctions --sequence <dir> --frame_a i --frame_b j [--csv out.csv] [--overlay out.png] "
+      "[flags]");
   gflags::ParseCommandLineFlags(&argc, &argv, true);
   FLAGS_logtostderr = true;
   google::InitGoogleLogging(argv[0]);
@@ -194,7 +195,8 @@ int main(int argc, char** argv) {
         sfm::DrawMatchOverlay(grey_a, junctions_a, grey_b, junctions_b, matches, FLAGS_overlay_scale);
     std::vector<uchar> png;
     if (!cv::imencode(".png", picture, png)) return Fail(1, FLAGS_overlay + ": PNG encoding failed");
-    if (const sfm::Status s = sfm::WriteFileAtomically(FLAGS_overlay, std::string(png.begin(), png.end())); !s.ok()) {
+    if (const sfm::Status s = sfm::WriteFileAtomically(FLAGS_overlay, std::string(png.begin(), png.end()));
+        !s.ok()) {
       return Fail(1, s.message());
     }
   }

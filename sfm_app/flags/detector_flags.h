@@ -37,8 +37,8 @@ bool UndistortInterpolationFromFlags(UndistortInterpolation* interpolation, std:
 // Same group: --undistort_full_view (default kDetectionView, the full view).
 UndistortView UndistortViewFromFlags();
 
-// Group sfm_flags_junction_detector: --endpoint_lambda, --endpoint_mu, --junction_min_probability, --max_gap_px,
-// --collinear_tolerance_deg, --collinear_max_offset_px, --min_arm_px.
+// Group sfm_flags_junction_detector: --endpoint_lambda, --endpoint_mu, --junction_min_probability,
+// --max_gap_px, --collinear_tolerance_deg, --collinear_max_offset_px, --min_arm_px.
 void JunctionDetectorFromFlags(JunctionDetectorOptions* options);
 
 // Group sfm_flags_matching: --endpoint_lambda and --endpoint_mu (the end-point model of both
