@@ -198,8 +198,6 @@ const std::vector<std::pair<std::string, std::string>> kOptionFlags = {
     {"min_probability", "junction_min_probability"},
     {"lambda", "endpoint_lambda"},
     {"mu", "endpoint_mu"},
-    {"acute_shortfall_px", "acute_shortfall_px"},
-    {"min_contact_length", "min_contact_length"},
 };
 
 // More threads than this are refused: each is a Ceres worker with its own stack, and beyond the

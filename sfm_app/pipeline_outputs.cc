@@ -303,8 +303,11 @@ Status WriteOutputs(const Sequence& sequence, const PipelineResult& result, cons
                                            Stamped(sequence, *result.world_T_camera_truth)));
   }
   SFM_RETURN_IF_ERROR(WritePly((out / "wireframe.ply").string(), WireframeOf(result.wireframe_landmarks)));
-  const std::vector<Pose3>& poses =
-      result.world_T_camera_refined.empty() ? result.world_T_camera_odometry : result.world_T_camera_refined;
+  // The poses the landmarks were made on: the refined ones, or without the bundle adjustment the
+  // initial trajectory they were triangulated on.
+  const std::vector<Pose3>& poses = !result.world_T_camera_refined.empty() ? result.world_T_camera_refined
+                                    : !result.world_T_camera_initial.empty() ? result.world_T_camera_initial
+                                                                             : result.world_T_camera_odometry;
   SFM_RETURN_IF_ERROR(WriteColmapModel((out / "colmap").string(), ColmapModelOf(sequence, poses, result.landmarks)));
   return WriteFileAtomically((out / "metrics.json").string(), MetricsJson(sequence, result));
 }
