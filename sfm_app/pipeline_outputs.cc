@@ -188,11 +188,21 @@ std::string EvidenceJson(const PipelineResult& result) {
   for (size_t i = 0; i < evidence.frames_disagreeing_with_odometry.size(); ++i) {
     frames += (i ? ", " : "") + std::to_string(evidence.frames_disagreeing_with_odometry[i]);
   }
+  std::string warnings;
+  for (size_t i = 0; i < evidence.warnings.size(); ++i) warnings += (i ? ", " : "") + JsonString(evidence.warnings[i]);
   return "{\"epipolar_px\": {\"odometry\": " + JsonNumber(evidence.epipolar_px_odometry) +
          ", \"initial\": " + JsonNumber(evidence.epipolar_px_initial) +
          ", \"refined\": " + JsonNumber(evidence.epipolar_px_refined) + "}" +
          ", \"frames_disagreeing_with_odometry\": [" + frames + "]" +
-         ", \"refined_worse_than_odometry\": " + (evidence.refined_worse_than_odometry ? "true" : "false") + "}";
+         ", \"refined_worse_than_odometry\": " + (evidence.refined_worse_than_odometry ? "true" : "false") +
+         ", \"reprojection_rms_px\": {\"points\": " + JsonNumber(evidence.point_rms_px) +
+         ", \"lines\": " + JsonNumber(evidence.line_rms_px) + "}" +
+         ", \"adjustment_converged\": " + (evidence.adjustment_converged ? "true" : "false") +
+         ", \"pair_inliers\": " + JsonCountList(evidence.pair_inliers, [](int n) { return n; }) +
+         ", \"moved_from_odometry_m\": {\"median\": " + JsonNumber(evidence.moved_from_odometry_median_m) +
+         ", \"max\": " + JsonNumber(evidence.moved_from_odometry_max_m) + "}" +
+         ", \"moved_by_adjustment_max_m\": " + JsonNumber(evidence.moved_by_adjustment_max_m) +
+         ", \"warnings\": [" + warnings + "]}";
 }
 
 }  // namespace
