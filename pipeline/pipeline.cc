@@ -6,6 +6,7 @@
 #include <chrono>
 #include <filesystem>
 #include <opencv2/core.hpp>
+#include <sstream>
 #include <string>
 #include <utility>
 #include <vector>
@@ -119,6 +120,10 @@ std::vector<Pose3> BasesFromCameras(const std::vector<Pose3>& world_T_camera, co
 // images' own (the spread of a pair's rotation from 20-100 junction matches).
 constexpr double kImageRotationSigmaFloor = 2e-4;
 
+// A run whose points reproject with an RMS beyond this many junction location sigmas is flagged
+// as unreliable: the location noise alone gives about one.
+constexpr double kUnreliableRmsLocationSigmas = 3;
+
 // A measured odometry rotation noise this many times the declared one widens the matcher's gates
 // (MeasureOdometryNoise).
 constexpr double kRematchNoiseFactor = 1.5;
@@ -192,6 +197,8 @@ Status InitialTrajectory(const Sequence& sequence, const PipelineOptions& option
                          const std::vector<MatchingDiagnostics>& diagnostics, PipelineResult* result) {
   const Clock::time_point start = Clock::now();
   InitializationSummary& summary = result->initialization;
+  result->evidence.pair_inliers.clear();
+  for (const MatchingDiagnostics& pair : diagnostics) result->evidence.pair_inliers.push_back(pair.refinement.inliers);
   const std::vector<RelativePoseConstraint> constraints = VisualConstraints(
       result->pairs, result->junctions, diagnostics, RefinementSettings(options.Matching()), &summary.pairs);
   // The pose graph solves for the odometry's rotation bias: its odometry factors are weighted by
@@ -426,11 +433,46 @@ void WeighTheEvidence(const Sequence& sequence, const PipelineOptions& options, 
             << evidence.epipolar_px_initial << ", refined " << evidence.epipolar_px_refined << "; "
             << evidence.frames_disagreeing_with_odometry.size()
             << " refined steps beyond 3 sigma of the odometry's noise";
-  if (evidence.refined_worse_than_odometry) {
-    LOG(WARNING) << "the matches fit the odometry better than the refined trajectory ("
-                 << evidence.epipolar_px_odometry << " px against " << evidence.epipolar_px_refined
-                 << " px): the refined trajectory may be worse than the odometry";
+  const BundleAdjustmentSummary& adjustment = result->bundle_adjustment;
+  evidence.point_rms_px = adjustment.point_rms_px;
+  evidence.line_rms_px = adjustment.line_rms_px;
+  evidence.adjustment_converged = adjustment.converged;
+  std::vector<double> moved;
+  for (size_t f = 0; f < result->world_T_camera_refined.size(); ++f) {
+    const Eigen::Vector3d refined = result->world_T_camera_refined[f].translation;
+    moved.push_back((refined - result->world_T_camera_odometry[f].translation).norm());
+    evidence.moved_by_adjustment_max_m = std::max(evidence.moved_by_adjustment_max_m,
+                                                  (refined - result->world_T_camera_initial[f].translation).norm());
   }
+  if (!moved.empty()) {
+    evidence.moved_from_odometry_max_m = *std::max_element(moved.begin(), moved.end());
+    std::nth_element(moved.begin(), moved.begin() + moved.size() / 2, moved.end());
+    evidence.moved_from_odometry_median_m = moved[moved.size() / 2];
+  }
+  std::ostringstream text;
+  if (evidence.refined_worse_than_odometry) {
+    text << "the matches fit the odometry better than the refined trajectory (" << evidence.epipolar_px_odometry
+         << " px against " << evidence.epipolar_px_refined << " px): the refined trajectory may be worse than the odometry";
+    evidence.warnings.push_back(text.str());
+  }
+  if (!adjustment.converged) {
+    evidence.warnings.push_back("the bundle adjustment stopped at its iteration limit, not at a minimum");
+  }
+  const double rms_limit = kUnreliableRmsLocationSigmas * options.Matching().location_sigma_px;
+  if (adjustment.point_rms_px > rms_limit) {
+    text.str("");
+    text << "the points' reprojection RMS is " << adjustment.point_rms_px << " px (above " << rms_limit
+         << "): wrong matches or a wrong calibration";
+    evidence.warnings.push_back(text.str());
+  }
+  const VisualConstraintCounts& pairs = result->initialization.pairs;
+  if (2 * pairs.constraints < pairs.pairs) {
+    text.str("");
+    text << "only " << pairs.constraints << " of " << pairs.pairs
+         << " image pairs gave a relative pose: the odometry alone carries the rest";
+    evidence.warnings.push_back(text.str());
+  }
+  for (const std::string& warning : evidence.warnings) LOG(WARNING) << warning;
 }
 
 // The landmarks the wireframe draws (docs/tracks_and_triangulation.md, "Wireframe vertices"):

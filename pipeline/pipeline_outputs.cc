@@ -157,7 +157,7 @@ std::string InitializationJson(const PipelineResult& result) {
        << ", \"pairs_without_pose\": {\"too_few_matches\": " << pairs.too_few_matches
        << ", \"too_few_inliers\": " << pairs.too_few_inliers
        << ", \"beyond_odometry_gate\": " << pairs.inconsistent_with_prior
-       << ", \"no_information\": " << pairs.no_information << "}"
+       << ", \"matches_add_nothing\": " << pairs.no_information << "}"
        << ", \"odometry_noise_declared\": {\"translation_sigma\": " << JsonNumber(summary.declared.translation_sigma)
        << ", \"rotation_sigma_rad\": " << JsonNumber(summary.declared.rotation_sigma) << "}"
        << ", \"odometry_noise_used\": {\"translation_sigma\": " << JsonNumber(summary.used.translation_sigma)
@@ -188,11 +188,21 @@ std::string EvidenceJson(const PipelineResult& result) {
   for (size_t i = 0; i < evidence.frames_disagreeing_with_odometry.size(); ++i) {
     frames += (i ? ", " : "") + std::to_string(evidence.frames_disagreeing_with_odometry[i]);
   }
+  std::string warnings;
+  for (size_t i = 0; i < evidence.warnings.size(); ++i) warnings += (i ? ", " : "") + JsonString(evidence.warnings[i]);
   return "{\"epipolar_px\": {\"odometry\": " + JsonNumber(evidence.epipolar_px_odometry) +
          ", \"initial\": " + JsonNumber(evidence.epipolar_px_initial) +
          ", \"refined\": " + JsonNumber(evidence.epipolar_px_refined) + "}" +
          ", \"frames_disagreeing_with_odometry\": [" + frames + "]" +
-         ", \"refined_worse_than_odometry\": " + (evidence.refined_worse_than_odometry ? "true" : "false") + "}";
+         ", \"refined_worse_than_odometry\": " + (evidence.refined_worse_than_odometry ? "true" : "false") +
+         ", \"reprojection_rms_px\": {\"points\": " + JsonNumber(evidence.point_rms_px) +
+         ", \"lines\": " + JsonNumber(evidence.line_rms_px) + "}" +
+         ", \"adjustment_converged\": " + (evidence.adjustment_converged ? "true" : "false") +
+         ", \"pair_inliers\": " + JsonCountList(evidence.pair_inliers, [](int n) { return n; }) +
+         ", \"moved_from_odometry_m\": {\"median\": " + JsonNumber(evidence.moved_from_odometry_median_m) +
+         ", \"max\": " + JsonNumber(evidence.moved_from_odometry_max_m) + "}" +
+         ", \"moved_by_adjustment_max_m\": " + JsonNumber(evidence.moved_by_adjustment_max_m) +
+         ", \"warnings\": [" + warnings + "]}";
 }
 
 }  // namespace
@@ -303,8 +313,11 @@ Status WriteOutputs(const Sequence& sequence, const PipelineResult& result, cons
                                            Stamped(sequence, *result.world_T_camera_truth)));
   }
   SFM_RETURN_IF_ERROR(WritePly((out / "wireframe.ply").string(), WireframeOf(result.wireframe_landmarks)));
-  const std::vector<Pose3>& poses =
-      result.world_T_camera_refined.empty() ? result.world_T_camera_odometry : result.world_T_camera_refined;
+  // The poses the landmarks were made on: the refined ones, or without the bundle adjustment the
+  // initial trajectory they were triangulated on.
+  const std::vector<Pose3>& poses = !result.world_T_camera_refined.empty() ? result.world_T_camera_refined
+                                    : !result.world_T_camera_initial.empty() ? result.world_T_camera_initial
+                                                                             : result.world_T_camera_odometry;
   SFM_RETURN_IF_ERROR(WriteColmapModel((out / "colmap").string(), ColmapModelOf(sequence, poses, result.landmarks)));
   return WriteFileAtomically((out / "metrics.json").string(), MetricsJson(sequence, result));
 }

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "backend/bundle_adjustment/bundle_adjustment_options.h"
@@ -54,6 +55,18 @@ struct TrajectoryEvidence {
   std::vector<int> frames_disagreeing_with_odometry;
   // The matches fit the odometry better than the refined trajectory (the run warns).
   bool refined_worse_than_odometry = false;
+  // The adjustment's RMS reprojection errors (points, lines), pixels, and whether every solve
+  // ended by a convergence test.
+  double point_rms_px = 0, line_rms_px = 0;
+  bool adjustment_converged = false;
+  // Inliers of each matched pair's pose (the matcher's refinement; 0 without one), in the order
+  // of PipelineResult::pairs.
+  std::vector<int> pair_inliers;
+  // How far the camera centres moved: from the odometry to the refined trajectory (median and
+  // largest over the frames), and in the adjustment (largest), metres.
+  double moved_from_odometry_median_m = 0, moved_from_odometry_max_m = 0, moved_by_adjustment_max_m = 0;
+  // What says the run may be unreliable, one sentence each (also logged as warnings).
+  std::vector<std::string> warnings;
 };
 
 struct PipelineResult {

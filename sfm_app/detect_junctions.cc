@@ -43,8 +43,8 @@ DEFINE_string(overlay, "", "Write an overlay PNG here (segments, junctions colou
 DEFINE_int32(overlay_scale, 1, "Enlarge the overlay this many times (1..8), for sub-pixel detail.");
 DEFINE_int32(frame, 0, "Frame index written into the JSON.");
 DEFINE_double(min_segment_length, kSegmentDefaults.min_length, "Shortest segment kept, px.");
-// --segments and the junction flags (--lambda, --mu, --min_probability, ...) are shared with the other apps:
-// sfm_app/flags/detector_flags.h.
+// --segments and the junction flags (--endpoint_lambda, --endpoint_mu, --junction_min_probability, ...) are
+// shared with the other apps: sfm_app/flags/detector_flags.h.
 
 namespace {
 

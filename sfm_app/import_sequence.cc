@@ -40,11 +40,13 @@ DEFINE_double(odometry_distance_sigma, kDefaults.odometry.distance_sigma,
 DEFINE_double(odometry_rotation_sigma, kDefaults.odometry.rotation_sigma,
               "Odometry rotation noise per step, Gaussian sigma of each rotation-vector component, radians "
               "(0.0052 rad = 0.3 deg).");
-DEFINE_double(odometry_rotation_bias, kDefaults.odometry.rotation_bias,
-              "Odometry rotation bias per step about the camera's y axis (a heading drift), radians.");
+DEFINE_double(
+    odometry_heading_bias, kDefaults.odometry.rotation_bias,
+    "Odometry heading drift per step: a rotation about the camera's y axis, radians (make_sequence's "
+    "--odometry_heading_bias for the generated robot).");
 DEFINE_double(odometry_noise_scale, 1,
               "Multiplies every odometry noise term above (scale error, distance sigma, rotation sigma, "
-              "rotation bias), after they are set; >= 0 (0: noise-free odometry, 3: three times the noise).");
+              "heading bias), after they are set; >= 0 (0: noise-free odometry, 3: three times the noise).");
 DEFINE_bool(
     vgg_refit_poses, sfm::VggImportOptions().refit_poses,
     "vgg: re-estimate the poses for the sequence's one K (by --vgg_refit); false keeps R, C of each P's "
@@ -146,7 +148,7 @@ int main(int argc, char** argv) {
   options.odometry.scale_error = FLAGS_odometry_scale_error;
   options.odometry.distance_sigma = FLAGS_odometry_distance_sigma;
   options.odometry.rotation_sigma = FLAGS_odometry_rotation_sigma;
-  options.odometry.rotation_bias = FLAGS_odometry_rotation_bias;
+  options.odometry.rotation_bias = FLAGS_odometry_heading_bias;
   if (!(FLAGS_odometry_noise_scale >= 0 && std::isfinite(FLAGS_odometry_noise_scale))) {
     std::fprintf(stderr, "import_sequence: --odometry_noise_scale must be a finite number >= 0 (found %g)\n",
                  FLAGS_odometry_noise_scale);

@@ -2,19 +2,22 @@
 //
 //   build/bin/junction_sfm --sequence <sequence dir> --output <output dir>
 //
-// Without --sequence it runs the default sequence shipped under sequences/default. Flag defaults
-// are taken from the option structs, so --help always shows the values the code uses; docs/ says
-// how each was chosen.
+// Without --sequence it runs the default sequence shipped under sequences/default (installed under
+// share/junction_sfm/default). Flag defaults are taken from the option structs, so --help always
+// shows the values the code uses; docs/ says how each was chosen.
 #include <gflags/gflags.h>
 #include <glog/logging.h>
 
 #include <cstdio>
+#include <filesystem>
 #include <string>
+#include <system_error>
 #include <utility>
 #include <vector>
 
 #include "sfm_app/flags/detector_flags.h"
 #include "pipeline/pipeline.h"
+#include "sfm_app/help.h"
 #include "sfm_app/run_junction_sfm.h"
 
 namespace {
@@ -29,9 +32,22 @@ const char* FloorPriorName(sfm::FloorPriorMode mode) {
   return "auto";
 }
 
+// The shipped sequence: beside an installed program (bin/../share/junction_sfm/default, the install
+// rule of sfm_app/CMakeLists.txt), else the source tree's sequences/default the program was built from.
+std::string DefaultSequence() {
+  std::error_code error;
+  const std::filesystem::path program = std::filesystem::read_symlink("/proc/self/exe", error);
+  if (!error) {
+    const std::filesystem::path installed = program.parent_path() / SFM_INSTALLED_SEQUENCE_FROM_BIN;
+    if (std::filesystem::is_regular_file(installed / "sequence.yaml", error))
+      return installed.lexically_normal();
+  }
+  return SFM_DEFAULT_SEQUENCE;
+}
+
 }  // namespace
 
-DEFINE_string(sequence, SFM_DEFAULT_SEQUENCE,
+DEFINE_string(sequence, DefaultSequence(),
               "Sequence directory (SPEC section 1: sequence.yaml, images.txt, odometry.txt, optional "
               "groundtruth.txt). Default: the sequence shipped in sequences/default.");
 DEFINE_string(output, "output",
@@ -104,6 +120,60 @@ DEFINE_int32(wireframe_line_end_along_sigma, kDefaults.triangulation.wireframe.l
 
 namespace {
 
+// --help: the program's flags by stage, one line each (sfm_app/help.h). tests/app checks that every
+// flag of the program is listed here.
+constexpr const char* kRun = "Input, output and run";
+constexpr const char* kDetection = "Detection (segments and junctions)";
+constexpr const char* kMatching = "Matching (pairs of frames)";
+constexpr const char* kBackEnd = "Back end (tracks and bundle adjustment)";
+constexpr const char* kWireframe = "Output: wireframe selection";
+const std::vector<sfm::HelpFlag> kHelpTable = {
+    {"sequence", kRun, "Sequence directory (docs/formats.md); default: the shipped example."},
+    {"output", kRun, "Output directory, replaced whole when the run succeeds."},
+    {"threads", kRun, "Threads for the bundle adjustment (1..256)."},
+    {"progress", kRun, "Progress line on stderr when it is a terminal."},
+    {"segments", kDetection, "Line segment detector: fast | reference."},
+    {"undistort_interpolation", kDetection, "Resampling of distorted frames: linear | cubic | lanczos4."},
+    {"undistort_full_view", kDetection, "Detect on a canvas holding the distorted image's whole view."},
+    {"endpoint_lambda", kDetection, "End-point model: decay beyond the true end-point, 1/px."},
+    {"endpoint_mu", kDetection, "End-point model: decay short of the true end-point, 1/px."},
+    {"junction_min_probability", kDetection, "Least junction probability of a pair of segments, (0, 1]."},
+    {"match_pose_band", kMatching,
+     "Search band from the odometry's uncertainty (false: --match_max_distance)."},
+    {"match_band_sigmas", kMatching, "Search band width, standard deviations of the epipolar distance."},
+    {"match_max_distance", kMatching, "Fixed search band half-width, px (with --match_pose_band=false)."},
+    {"match_tau1", kMatching, "Least similarity of a match."},
+    {"match_tau2", kMatching, "How much the best candidate must beat the second."},
+    {"match_rho1", kMatching, "Epipolar similarity term: exponential | linear."},
+    {"match_cheirality", kMatching, "Reject matches that would triangulate behind a camera."},
+    {"match_topology", kMatching, "Match on junction topology rather than on plain similarity."},
+    {"match_refine", kMatching, "Refine each pair's pose from its matches, then match again."},
+    {"match_refine_gate", kMatching, "With --match_refine: band of the second pass, sigmas."},
+    {"match_refine_min_inliers", kMatching, "With --match_refine: fewest matches to trust the refined pose."},
+    {"bundle_adjustment", kBackEnd, "Refine poses, points and lines (false: outputs use the odometry)."},
+    {"ba_outlier_threshold", kBackEnd,
+     "Observations with a larger error (px) are removed, then solved again."},
+    {"ba_loss_scale", kBackEnd, "Scale of the robust loss on image residuals, px."},
+    {"floor_prior", kBackEnd, "Ground-plane prior fixing the odometry's scale: auto | on | off."},
+    {"floor_base_prior", kBackEnd, "With the floor prior: hold each base pose's height and tilt on it."},
+    {"floor_scale_line_search", kBackEnd, "With the floor prior: line search on the odometry's scale."},
+    {"odometry_rotation_bias", kBackEnd,
+     "Estimate the odometry's constant rotation per step: auto | on | off."},
+    {"extend_tracks", kBackEnd, "Extend tracks into the frames they miss during the adjustment."},
+    {"extend_tracks_merge", kBackEnd, "Track extension: merge two tracks that meet."},
+    {"extend_tracks_pixel_sigma", kBackEnd, "Track extension: junction location noise, px."},
+    {"extend_tracks_rotation_step", kBackEnd, "Track extension: pose rotation error per frame, rad."},
+    {"extend_tracks_max_gate_px", kBackEnd, "Track extension: largest search radius, px."},
+    {"extend_tracks_max_angle_deg", kBackEnd, "Track extension: largest segment direction error, degrees."},
+    {"wireframe_tolerance_m", kWireframe, "Accuracy asked of the drawn map, m (0: off)."},
+    {"wireframe_tolerance_share", kWireframe, "Share of drawn vertices asked to be within it."},
+    {"wireframe_plane_noise", kWireframe, "A line's sigma discounts its planes' own noise."},
+    {"wireframe_far_end_at_point_px", kWireframe,
+     "Take a line's far end at a junction point within px (0: off)."},
+    {"wireframe_far_end_along_px", kWireframe, "Largest distance along the line for that, px."},
+    {"wireframe_line_end_along_sigma", kWireframe, "Line end sigma along the line: 0 off, 1 end0, 2 both."},
+};
+
 // The option fields the flags set, with their flags, so that a Check() message names the flag
 // (FlagMessage): "--threads=0: must be >= 1", not the option struct's field.
 const std::vector<std::pair<std::string, std::string>> kOptionFlags = {
@@ -128,8 +198,6 @@ const std::vector<std::pair<std::string, std::string>> kOptionFlags = {
     {"min_probability", "junction_min_probability"},
     {"lambda", "endpoint_lambda"},
     {"mu", "endpoint_mu"},
-    {"acute_shortfall_px", "acute_shortfall_px"},
-    {"min_contact_length", "min_contact_length"},
 };
 
 // More threads than this are refused: each is a Ceres worker with its own stack, and beyond the
@@ -195,11 +263,14 @@ bool OptionsFromFlags(sfm::PipelineOptions* options, std::string* error) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  gflags::SetUsageMessage(
-      "junction-based structure from motion.\n"
-      "  junction_sfm --sequence <sequence dir> --output <output dir> [flags]");
-  gflags::SetVersionString("0.1.0");
-  gflags::ParseCommandLineFlags(&argc, &argv, true);
+  gflags::SetVersionString(SFM_VERSION);
+  sfm::ParseFlagsWithProgramHelp(
+      &argc, &argv,
+      "junction_sfm: junction-based structure from motion for a ground robot's camera and odometry.\n"
+      "  junction_sfm --sequence <sequence dir> --output <output dir> [flags]",
+      kHelpTable,
+      "Log: junction_sfm.log in the output directory; --v=1 adds detail and copies it to stderr.\n"
+      "Version: --version. Guide: docs/user_guide.md.\n");
   google::InitGoogleLogging(argv[0]);
   sfm::ConfigureLogging();
 

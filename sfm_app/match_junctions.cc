@@ -1,7 +1,7 @@
 // match_junctions: junction matches between any two frames of a sequence (docs/matching.md,
 // docs/matching_results.md).
 //
-//   build/bin/match_junctions --sequence <dir> --frame_a i --frame_b j [--csv out.csv] [--image out.png]
+//   build/bin/match_junctions --sequence <dir> --frame_a i --frame_b j [--csv out.csv] [--overlay out.png]
 //                             [--fundamental odometry|groundtruth] [detection and matching flags]
 //
 // Both images are undistorted (ImageUndistorter), segments, junctions and topology graphs are
@@ -47,8 +47,8 @@ DEFINE_string(sequence, "", "Sequence directory (SPEC section 1). Required.");
 DEFINE_int32(frame_a, -1, "First frame (0-based index into images.txt). Required.");
 DEFINE_int32(frame_b, -1, "Second frame, any other frame of the sequence. Required.");
 DEFINE_string(csv, "", "Write the matches here (SPEC section 3: id_a,id_b,similarity).");
-DEFINE_string(image, "", "Write the side-by-side match picture here (.png).");
-DEFINE_int32(image_scale, 1, "Enlarge the picture this many times (1..4).");
+DEFINE_string(overlay, "", "Write the side-by-side match picture here (.png).");
+DEFINE_int32(overlay_scale, 1, "Enlarge the picture this many times (1..4).");
 DEFINE_string(fundamental, "odometry",
               "Where F comes from: 'odometry' (odometry.txt, as junction_sfm) or 'groundtruth' (groundtruth.txt).");
 // The detector and matching flags shared with the other apps (--segments, --endpoint_lambda,
@@ -91,7 +91,8 @@ bool OptionsFromFlags(sfm::SegmentDetectorOptions* segments, sfm::JunctionDetect
 int main(int argc, char** argv) {
   gflags::SetUsageMessage(
       "junction matches between two frames of a sequence, as CSV and a Fig. 6-style picture.\n"
-      "  match_junctions --sequence <dir> --frame_a i --frame_b j [--csv out.csv] [--image out.png] [flags]");
+      "  match_junctions --sequence <dir> --frame_a i --frame_b j [--csv out.csv] [--overlay out.png] "
+      "[flags]");
   gflags::ParseCommandLineFlags(&argc, &argv, true);
   FLAGS_logtostderr = true;
   google::InitGoogleLogging(argv[0]);
@@ -101,9 +102,9 @@ int main(int argc, char** argv) {
   if (FLAGS_sequence.empty()) return Fail(2, "--sequence is required: the sequence directory");
   if (FLAGS_frame_a < 0 || FLAGS_frame_b < 0) return Fail(2, "--frame_a and --frame_b are required: frame indices >= 0");
   if (FLAGS_frame_a == FLAGS_frame_b) return Fail(2, "--frame_a and --frame_b must be two different frames");
-  if (FLAGS_image_scale < 1 || FLAGS_image_scale > 4) return Fail(2, "--image_scale must be in 1..4");
-  if (!FLAGS_image.empty() && std::filesystem::path(FLAGS_image).extension() != ".png") {
-    return Fail(2, "--image must name a .png file, not '" + FLAGS_image + "'");
+  if (FLAGS_overlay_scale < 1 || FLAGS_overlay_scale > 4) return Fail(2, "--overlay_scale must be in 1..4");
+  if (!FLAGS_overlay.empty() && std::filesystem::path(FLAGS_overlay).extension() != ".png") {
+    return Fail(2, "--overlay must name a .png file, not '" + FLAGS_overlay + "'");
   }
   if (FLAGS_fundamental != "odometry" && FLAGS_fundamental != "groundtruth") {
     return Fail(2, "--fundamental must be 'odometry' or 'groundtruth', not '" + FLAGS_fundamental + "'");
@@ -155,7 +156,7 @@ int main(int argc, char** argv) {
   if (const sfm::Status s = sfm::LoadFrameImage(sequence, FLAGS_frame_a, &image_a); !s.ok()) return Fail(1, s.message());
   if (const sfm::Status s = sfm::LoadFrameImage(sequence, FLAGS_frame_b, &image_b); !s.ok()) return Fail(1, s.message());
   std::error_code fs_error;
-  for (const std::string* output : {&FLAGS_csv, &FLAGS_image}) {
+  for (const std::string* output : {&FLAGS_csv, &FLAGS_overlay}) {
     if (output->empty()) continue;
     if (std::filesystem::is_directory(*output, fs_error)) return Fail(1, *output + ": is a directory, not a file");
     if (const sfm::Status s = sfm::EnsureWritableDirectory(ParentOf(*output)); !s.ok()) return Fail(1, s.message());
@@ -187,14 +188,15 @@ int main(int argc, char** argv) {
       return Fail(1, s.message());
     }
   }
-  if (!FLAGS_image.empty()) {
+  if (!FLAGS_overlay.empty()) {
     const sfm::ImageUndistorter undistorter(calibration.camera, interpolation);
     const cv::Mat grey_a = undistorter.Apply(image_a), grey_b = undistorter.Apply(image_b);
     const cv::Mat picture =
-        sfm::DrawMatchOverlay(grey_a, junctions_a, grey_b, junctions_b, matches, FLAGS_image_scale);
+        sfm::DrawMatchOverlay(grey_a, junctions_a, grey_b, junctions_b, matches, FLAGS_overlay_scale);
     std::vector<uchar> png;
-    if (!cv::imencode(".png", picture, png)) return Fail(1, FLAGS_image + ": PNG encoding failed");
-    if (const sfm::Status s = sfm::WriteFileAtomically(FLAGS_image, std::string(png.begin(), png.end())); !s.ok()) {
+    if (!cv::imencode(".png", picture, png)) return Fail(1, FLAGS_overlay + ": PNG encoding failed");
+    if (const sfm::Status s = sfm::WriteFileAtomically(FLAGS_overlay, std::string(png.begin(), png.end()));
+        !s.ok()) {
       return Fail(1, s.message());
     }
   }

@@ -50,7 +50,7 @@ DEFINE_double(log10_nfa_max, sfm::SegmentDetectorOptions().fast.log10_nfa_max, "
 DEFINE_double(presmooth_sigma, sfm::SegmentDetectorOptions().fast.presmooth_sigma,
               "Fast segments: Gaussian pre-smoothing before the Sobel pass, px.");
 DEFINE_double(line_tolerance, sfm::SegmentDetectorOptions().fast.line_tolerance, "Fast segments: splitting tolerance, px.");
-// The junction flags (--lambda, --mu, --min_probability, ...) are
+// The junction flags (--endpoint_lambda, --endpoint_mu, --junction_min_probability, ...) are
 // shared with the other apps: sfm_app/flags/detector_flags.h.
 DEFINE_string(overlay_dir, "", "If set, write overlays there (every 10th generated frame, every VGG image), "
                                "with missed true junctions circled in white.");

@@ -171,6 +171,27 @@ std::string SummarySection(const Context& c) {
     if (!r.drift_refined) html += Note("Bundle adjustment did not run: there is no refined trajectory.");
   }
 
+  const TrajectoryEvidence& e = r.evidence;
+  if (e.computed) {
+    html += "<h3>Quality without ground truth</h3>\n<table>\n" + Row({"", "odometry", "initial", "refined"}, true);
+    html += Row({"the matches' epipolar fit (median over the pairs of their median Sampson distance)",
+                 Num(e.epipolar_px_odometry, "%.2f") + " px", Num(e.epipolar_px_initial, "%.2f") + " px",
+                 Num(e.epipolar_px_refined, "%.2f") + " px"});
+    html += "</table>\n<table>\n";
+    html += Row({"reprojection RMS after the adjustment", Num(e.point_rms_px, "%.2f") + " px (points), " +
+                                                              Num(e.line_rms_px, "%.2f") + " px (lines)"});
+    html += Row({"image pairs with a relative pose", std::to_string(r.initialization.pairs.constraints) + " of " +
+                                                         std::to_string(r.initialization.pairs.pairs)});
+    html += Row({"camera centres moved from the odometry", Num(e.moved_from_odometry_median_m, "%.3f") +
+                                                               " m median, " +
+                                                               Num(e.moved_from_odometry_max_m, "%.3f") + " m at most"});
+    html += Row({"refined steps beyond 3 sigma of the odometry's noise",
+                 std::to_string(e.frames_disagreeing_with_odometry.size())});
+    html += Row({"bundle adjustment", e.adjustment_converged ? "converged" : "stopped at its iteration limit"});
+    html += "</table>\n";
+    for (const std::string& warning : e.warnings) html += Note("Warning: " + warning + ".");
+  }
+
   const StageTimes& t = r.times;
   html += "<h3>Stage times</h3>\n<table>\n" + Row({"stage", "wall time"}, true);
   html += Row({"front end (segments, junctions)", Num(t.frontend, "%.2f") + " s"});

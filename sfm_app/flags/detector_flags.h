@@ -2,9 +2,10 @@
 // the matcher's, each defined once, with functions that copy them into the option structs.
 //
 // The flags come in groups, one .cc and one object library each (sfm_app/CMakeLists.txt), because
-// the apps take different sets (benchmark_junctions's --segments is a list, and it and
-// detect_junctions name the end-point model --lambda / --mu where the matching apps say
-// --endpoint_lambda / --endpoint_mu). An app takes exactly the flags of the groups it links.
+// the apps take different sets (benchmark_junctions's --segments is a list). An app takes exactly
+// the flags of the groups it links. A concept has one flag name in every app: the junction
+// detector's group and the matching group both name the end-point model --endpoint_lambda /
+// --endpoint_mu and the threshold --junction_min_probability (no app links both).
 // Object libraries, not static ones: a static library's object whose symbols an app never used
 // would be dropped by the linker, and its flags with it. Each flag's default is the option
 // struct's default.
@@ -36,8 +37,8 @@ bool UndistortInterpolationFromFlags(UndistortInterpolation* interpolation, std:
 // Same group: --undistort_full_view (default kDetectionView, the full view).
 UndistortView UndistortViewFromFlags();
 
-// Group sfm_flags_junction_detector: --lambda, --mu, --min_probability, --max_gap_px,
-// --collinear_tolerance_deg, --collinear_max_offset_px, --min_arm_px.
+// Group sfm_flags_junction_detector: --endpoint_lambda, --endpoint_mu, --junction_min_probability,
+// --max_gap_px, --collinear_tolerance_deg, --collinear_max_offset_px, --min_arm_px.
 void JunctionDetectorFromFlags(JunctionDetectorOptions* options);
 
 // Group sfm_flags_matching: --endpoint_lambda and --endpoint_mu (the end-point model of both

@@ -4,15 +4,15 @@ namespace {
 const sfm::JunctionDetectorOptions kDefaults;
 }  // namespace
 
-DEFINE_double(
-    lambda, kDefaults.endpoint_model.lambda,
-    "End-point model eq. (5): decay for a detected end-point beyond the junction (t >= 0, too long), "
-    "1/px.");
-DEFINE_double(
-    mu, kDefaults.endpoint_model.mu,
-    "End-point model eq. (5): decay for a detected end-point short of the junction (t < 0, too short), "
-    "1/px.");
-DEFINE_double(min_probability, kDefaults.min_probability, "Pairwise junction probability threshold, (0, 1].");
+// The same names as junction_sfm's and the matching apps' (matching_flags.cc); no app links both groups.
+DEFINE_double(endpoint_lambda, kDefaults.endpoint_model.lambda,
+              "End-point model eq. (5): decay, 1/px, of a detected end-point lying beyond the true one "
+              "(t >= 0).");
+DEFINE_double(endpoint_mu, kDefaults.endpoint_model.mu,
+              "End-point model eq. (5): decay, 1/px, of a detected end-point falling short of the true one "
+              "(t < 0).");
+DEFINE_double(junction_min_probability, kDefaults.min_probability,
+              "Junction threshold: least junction probability of a pair of segments, (0, 1].");
 DEFINE_double(max_gap_px, kDefaults.max_gap_px, "Largest move of an end-point to reach a junction, px.");
 DEFINE_double(collinear_tolerance_deg, kDefaults.collinear_tolerance_deg,
               "Near-parallel limit: lines closer to parallel are never intersected; T tolerance, degrees.");
@@ -26,9 +26,9 @@ DEFINE_double(
 namespace sfm {
 
 void JunctionDetectorFromFlags(JunctionDetectorOptions* options) {
-  options->endpoint_model.lambda = FLAGS_lambda;
-  options->endpoint_model.mu = FLAGS_mu;
-  options->min_probability = FLAGS_min_probability;
+  options->endpoint_model.lambda = FLAGS_endpoint_lambda;
+  options->endpoint_model.mu = FLAGS_endpoint_mu;
+  options->min_probability = FLAGS_junction_min_probability;
   options->max_gap_px = FLAGS_max_gap_px;
   options->collinear_tolerance_deg = FLAGS_collinear_tolerance_deg;
   options->collinear_max_offset_px = FLAGS_collinear_max_offset_px;

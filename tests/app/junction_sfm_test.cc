@@ -8,12 +8,15 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <map>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
+#include <regex>
+#include <set>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -351,6 +354,105 @@ TEST_F(JunctionSfmBadInput, OutOfMemoryIsOneLineAndWritesNothing) {
   EXPECT_THAT(result.stderr_text, HasSubstr("out of memory"));
   EXPECT_FALSE(fs::exists(output_));
   EXPECT_EQ(Beside(output_), (std::vector<std::string>{"sequence", "stderr.txt"}));
+}
+
+// What `program` (in build/bin) prints on stdout with `arguments`, checking its exit status
+// (junction_sfm --help: 0; gflags' own listings, --helpfull and --helpxml, exit 1).
+std::string ProgramStdout(const std::string& program, const std::string& arguments, int expected_exit) {
+  const std::string command = std::string(SFM_BIN_DIR) + "/" + program + " " + arguments + " 2>/dev/null";
+  std::string text;
+  FILE* pipe = popen(command.c_str(), "r");
+  if (pipe == nullptr) return text;
+  char buffer[4096];
+  for (std::size_t n; (n = std::fread(buffer, 1, sizeof(buffer), pipe)) > 0;) text.append(buffer, n);
+  const int status = pclose(pipe);
+  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == expected_exit) << command;
+  return text;
+}
+
+std::string JunctionSfmStdout(const std::string& arguments, int expected_exit = 0) {
+  return ProgramStdout("junction_sfm", arguments, expected_exit);
+}
+
+std::vector<std::string> Lines(const std::string& text) {
+  std::vector<std::string> lines;
+  std::istringstream stream(text);
+  for (std::string line; std::getline(stream, line);) lines.push_back(line);
+  return lines;
+}
+
+// Item 8: --help was 346 lines, glog's and gflags' flags first and the program's grouped under
+// build paths. Now: under 80 lines, the three flags a first run needs in the first 30, no build
+// path, and every flag the program defines (the sfm_app files of --helpxml) listed, so a new flag
+// cannot be left out of the help table.
+TEST(JunctionSfmHelp, ShortGroupedAndComplete) {
+  const std::vector<std::string> help = Lines(JunctionSfmStdout("--help"));
+  EXPECT_LT(help.size(), 80u);
+  for (const std::string flag : {"--sequence=", "--output=", "--threads="}) {
+    const auto line = std::find_if(help.begin(), help.end(),
+                                   [&](const std::string& l) { return l.rfind("  " + flag, 0) == 0; });
+    ASSERT_NE(line, help.end()) << flag;
+    EXPECT_LT(line - help.begin(), 30) << flag;
+  }
+  const std::string text = JunctionSfmStdout("--help");
+  EXPECT_THAT(text, ::testing::Not(HasSubstr("Flags from")));
+  EXPECT_THAT(text, ::testing::Not(HasSubstr(".cc")));
+  // A readable default: 6 significant digits, not gflags' 17.
+  EXPECT_FALSE(std::regex_search(text, std::regex("=[0-9.]*[0-9]{9}")));
+
+  const std::string xml = JunctionSfmStdout("--helpxml", 1);
+  const std::regex flag_in_file("<file>([^<]*)</file><name>([^<]*)</name>");
+  std::set<std::string> program_flags;
+  for (auto it = std::sregex_iterator(xml.begin(), xml.end(), flag_in_file); it != std::sregex_iterator();
+       ++it) {
+    if ((*it)[1].str().find("sfm_app/") != std::string::npos) program_flags.insert((*it)[2].str());
+  }
+  EXPECT_GE(program_flags.size(), 40u) << "--helpxml no longer names the program's files";
+  for (const std::string& flag : program_flags) {
+    EXPECT_THAT(text, HasSubstr("\n  --" + flag + "=")) << "--" << flag << " is missing from the help table";
+  }
+  // Only the program's flags: glog's are left to --helpfull.
+  EXPECT_THAT(text, ::testing::Not(HasSubstr("--stderrthreshold")));
+}
+
+// Item 8: one concept, one flag name in every program. detect_junctions named the end-point model
+// and the junction threshold --lambda, --mu, --min_probability; match_junctions's picture was
+// --image / --image_scale (detect_junctions's --image is its input); import_sequence's heading drift
+// was --odometry_rotation_bias (junction_sfm's flag of that name switches the estimate of a bias).
+TEST(JunctionSfmHelp, OneConceptOneFlagNameInEveryProgram) {
+  const std::map<std::string, std::vector<std::string>> kNames = {
+      {"junction_sfm", {"endpoint_lambda", "endpoint_mu", "junction_min_probability", "sequence", "output"}},
+      {"detect_junctions",
+       {"endpoint_lambda", "endpoint_mu", "junction_min_probability", "overlay", "overlay_scale"}},
+      {"match_junctions",
+       {"endpoint_lambda", "endpoint_mu", "junction_min_probability", "sequence", "overlay",
+        "overlay_scale"}},
+      {"import_sequence", {"output", "seed", "overwrite", "odometry_scale_error", "odometry_heading_bias"}},
+      {"make_sequence", {"output", "seed", "overwrite", "odometry_scale_error", "odometry_heading_bias"}},
+  };
+  const std::vector<std::string> kRetired = {"lambda", "mu", "min_probability", "image_scale"};
+  for (const auto& [program, names] : kNames) {
+    const std::string xml = ProgramStdout(program, "--helpxml", 1);
+    for (const std::string& name : names) {
+      EXPECT_THAT(xml, HasSubstr("<name>" + name + "</name>")) << program << " lacks --" << name;
+    }
+    for (const std::string& name : kRetired) {
+      EXPECT_THAT(xml, ::testing::Not(HasSubstr("<name>" + name + "</name>")))
+          << program << " has --" << name;
+    }
+  }
+  EXPECT_THAT(ProgramStdout("import_sequence", "--helpxml", 1),
+              ::testing::Not(HasSubstr("<name>odometry_rotation_bias</name>")));
+  EXPECT_THAT(ProgramStdout("match_junctions", "--helpxml", 1),
+              ::testing::Not(HasSubstr("<name>image</name>")));
+}
+
+// --helpfull keeps gflags' full listing, glog's flags included.
+TEST(JunctionSfmHelp, HelpfullKeepsEveryFlag) {
+  const std::string full = JunctionSfmStdout("--helpfull", 1);
+  EXPECT_THAT(full, HasSubstr("-stderrthreshold"));
+  EXPECT_THAT(full, HasSubstr("-wireframe_line_end_along_sigma"));
+  EXPECT_GT(Lines(full).size(), 80u);
 }
 
 }  // namespace

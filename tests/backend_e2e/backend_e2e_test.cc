@@ -255,6 +255,26 @@ TEST_F(BackendEndToEnd, BlankImagesGiveNoTracks) {
     EXPECT_LT((result.world_T_camera_refined[i].translation - result.world_T_camera_odometry[i].translation).norm(),
               1e-9);
   }
+  // The run says the images told it nothing: no pair gave a pose (metrics.json evidence.warnings).
+  ASSERT_TRUE(result.evidence.computed);
+  EXPECT_EQ(result.initialization.pairs.constraints, 0);
+  bool warned = false;
+  for (const std::string& warning : result.evidence.warnings) warned |= warning.find("only 0 of") == 0;
+  EXPECT_TRUE(warned);
+}
+
+// A textured corridor: the run's own quality figures raise no warning; the points reproject within
+// 3 junction location sigmas (1.5 px; observed 0.5 px on the default sequence).
+TEST_F(BackendEndToEnd, AGoodRunRaisesNoQualityWarning) {
+  ASSERT_TRUE(GenerateCorridor(12).ok());
+  PipelineResult result;
+  const Status status = RunOn(sequence_dir(), output_dir(), &result);
+  ASSERT_TRUE(status.ok()) << status.message();
+  ASSERT_TRUE(result.evidence.computed);
+  EXPECT_TRUE(result.evidence.warnings.empty()) << result.evidence.warnings.front();
+  EXPECT_LT(result.evidence.point_rms_px, 1.5);
+  EXPECT_LT(result.evidence.epipolar_px_refined, result.evidence.epipolar_px_odometry);
+  EXPECT_EQ(result.evidence.pair_inliers.size(), result.pairs.size());
 }
 
 // Two frames of a corridor: one pair, tracks of length two at most.

@@ -188,7 +188,7 @@ TEST(ImportSequenceAppTest, OdometryNoiseScaleMultipliesEveryNoiseTerm) {
   run = RunImport(scratch, base + (scratch / "flags").string() + " --odometry_scale_error " +
                                ShortestNumberText(tripled.scale_error) + " --odometry_distance_sigma " +
                                ShortestNumberText(tripled.distance_sigma) + " --odometry_rotation_sigma " +
-                               ShortestNumberText(tripled.rotation_sigma) + " --odometry_rotation_bias " +
+                               ShortestNumberText(tripled.rotation_sigma) + " --odometry_heading_bias " +
                                ShortestNumberText(tripled.rotation_bias));
   ASSERT_EQ(run.exit_status, 0) << run.stderr_text;
   run = RunImport(scratch, base + (scratch / "default").string());
