@@ -455,7 +455,7 @@ void WeighTheEvidence(const Sequence& sequence, const PipelineOptions& options, 
          << " px against " << evidence.epipolar_px_refined << " px): the refined trajectory may be worse than the odometry";
     evidence.warnings.push_back(text.str());
   }
-  if (!adjustment.converged) {
+  if (adjustment.solves > 0 && !adjustment.converged) {
     evidence.warnings.push_back("the bundle adjustment stopped at its iteration limit, not at a minimum");
   }
   const double rms_limit = kUnreliableRmsLocationSigmas * options.Matching().location_sigma_px;
