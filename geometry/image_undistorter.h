@@ -20,7 +20,7 @@ enum class UndistortInterpolation { kLinear, kCubic, kLanczos4 };
 // stays linear by default: end to end its mean effect over noise draws is nil, but on the project's
 // fixed draws it turns the VGG back-end ATE ratio 0.980 -> 1.018 (a readout of the last 0.1 % of
 // scale) and held-out turns-dist's wireframe 0.908 -> 0.888 (-0.006 +- 0.004 over 19 noise draws):
-// docs/junction_results.md, "Session 8: resampling".
+// docs/decisions.md.
 constexpr UndistortInterpolation kDetectionInterpolation = UndistortInterpolation::kLinear;
 
 // "linear", "cubic" or "lanczos4"; false for any other name.
@@ -47,7 +47,7 @@ enum class UndistortView {
 // (26 of 33 better) and the wireframe share 0.949 -> 0.958 (26 of 33), lifts the one goal miss
 // (0.883 -> 0.900) and leaves the ATE ratio as it was on average (0.086 -> 0.086), though worse on
 // corridor turns (0.068 -> 0.085) and on held-out room-dist's draws (0.107 -> 0.132). About
-// 1.3 ms per 640 x 480 frame more (docs/junction_results.md, "Session 8: full field of view").
+// 1.3 ms per 640 x 480 frame more (docs/decisions.md).
 constexpr UndistortView kDetectionView = UndistortView::kFullView;
 
 class ImageUndistorter {

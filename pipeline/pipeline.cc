@@ -278,7 +278,7 @@ void Reconstruct(const Sequence& sequence, const PipelineOptions& options, Pipel
 }
 
 // With --v=1: every landmark the floor prior held, with its junction types, for the diagnosis of
-// the odometry scale it gives (docs/backend_results.md, "Session 4").
+// the odometry scale it gives (docs/bundle_adjustment.md, "Floor prior").
 void LogFloorLandmarks(const std::string& stage, const PipelineResult& result) {
   if (!VLOG_IS_ON(1)) return;
   const BundleAdjustmentSummary& summary = result.bundle_adjustment;

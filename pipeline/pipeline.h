@@ -25,8 +25,8 @@ struct PipelineOptions {
   UndistortInterpolation undistort_interpolation = kDetectionInterpolation;
   // Detect on a canvas holding the stored image's whole field of view (UndistortView::kFullView)
   // instead of the undistorted image of the stored size; junctions may then lie outside
-  // [0, width) x [0, height) of K's pixel frame. Lens distortion only (docs/junction_results.md,
-  // "Session 8: full field of view"; the default is kDetectionView's).
+  // [0, width) x [0, height) of K's pixel frame. Lens distortion only (docs/decisions.md;
+  // the default is kDetectionView's).
   bool undistort_full_view = kDetectionView == UndistortView::kFullView;
   SegmentDetectorOptions segments;
   JunctionDetectorOptions junctions;

@@ -55,7 +55,7 @@ DEFINE_string(
     vgg_refit, "joint",
     "vgg: how the poses are re-estimated: 'joint' (all poses and the data set's 3D points fitted together "
     "to its matched corners, <name>.nview-corners, for the median K) or 'pnp' (each pose alone by PnP onto "
-    "the fixed 3D points as its P projects them; the import before session 5).");
+    "the fixed 3D points as its P projects them).");
 DEFINE_bool(
     vgg_refit_focal, sfm::VggImportOptions().refit_focal,
     "vgg, --vgg_refit=joint: also estimate fx, fy (self-calibration; nearly unobservable on Corridor).");

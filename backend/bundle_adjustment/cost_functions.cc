@@ -46,7 +46,7 @@ Eigen::Vector3d Rotate(const Eigen::Vector3d& u, double w, const Eigen::Vector3d
 
 // Its derivative df/d[u w] (3 x 4). Apart from Rotate: the solves' inner iterations and the lines
 // solved alone on fixed poses ask for the line's Jacobian only, and this was a third of the
-// residual's work (docs/backend_results.md, "Session 6: the back end's time").
+// residual's work (docs/bundle_adjustment.md).
 Eigen::Matrix<double, 3, 4> RotationDerivative(const Eigen::Vector3d& u, double w, const Eigen::Vector3d& v) {
   const Eigen::Vector3d uv = u.cross(v);
   Eigen::Matrix<double, 3, 4> df_dq;

@@ -153,16 +153,15 @@ struct WireframeOptions {
   double far_end_at_point_px = 1;
   double far_end_along_px = 5;
   double far_end_max_angle_deg = 15;
-  // Rule 2 with a line end's position *along* the line (session 8). A back-projected end (end0 of a
+  // Rule 2 with a line end's position *along* the line . A back-projected end (end0 of a
   // line without a kept junction point: its junction locations; end1: its far end-points) is where
   // the viewing rays meet the 3D line, so it slides along the line by the line's own error across
   // itself divided by the sine of the ray-line angle, and by the pixel noise over the image speed
   // of a point moving along the line (LineEndAlongSigma). The rule-2 sigma of such an end becomes
   // the larger of its across and along sigmas (the worst direction, as for points). 0: off (across
-  // only, as before session 8); 1 (default since session 8): the own end0 only, where session 8
-  // measured the failure (66-75 % of the own end0s seen within 10 degrees of end-on were beyond 5
+  // only); 1 (default): the own end0 only, where the failure was measured (66-75 % of the own end0s seen within 10 degrees of end-on were beyond 5
   // cm on the held-out turns corridors); 2: end0 and end1. docs/tracks_and_triangulation.md, "A
-  // line end's position along the line"; docs/backend_results.md, session 8.
+  // line end's position along the line"; docs/decisions.md.
   int line_end_along_sigma = 1;
 
   Status Check() const {

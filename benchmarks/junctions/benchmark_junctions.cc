@@ -66,8 +66,8 @@ DEFINE_string(miss_dir, "",
 DEFINE_bool(
     truth_in_image, true,
     "Generated: true vertices count only --radius px inside the undistorted image, and a true edge's "
-    "length only inside it (with barrel distortion the stored image sees beyond it); false: as before "
-    "session 7 (only the stored image's border applies).");
+    "length only inside it (with barrel distortion the stored image sees beyond it); false: only the "
+    "stored image's border applies.");
 DEFINE_double(radius, 3.0, "A true junction is found when a detected one lies within this, px.");
 DEFINE_double(min_edge_px, kTruthDefaults.min_edge_px,
               "Generated: a vertex is detectable when at least two visible edges at least this long (px) meet there.");

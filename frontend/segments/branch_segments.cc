@@ -269,7 +269,7 @@ class BranchSearch {
   // that close can meet at a corner within max_gap of each (the reach of the corner rules in
   // fast_segments.cc), and where ends crowd like that, a branch adds a short junction among others.
   // The radius was chosen between max_gap and 2 max_gap on VGG matching precision, a figure of
-  // issue 4 (docs/junction_results.md, "Session 4"): with max_gap, VGG images got 21 branches each
+  // issue 4 (docs/decisions.md): with max_gap, VGG images got 21 branches each
   // instead of 9.5 and consecutive VGG matching precision fell to 97.0-97.7 % (98.1-98.8 % with
   // 2 max_gap); keeping free the ends whose near neighbour cannot meet them at a corner gave the
   // 21 branches back. Bucketed in cells of 4 max_gap.

@@ -1,6 +1,5 @@
 // Segments of a stored frame in K's pixel frame, found on the undistorted image of either view
-// (same size, or the full-view canvas of ImageUndistorter; docs/junction_results.md, "Session 8:
-// full field of view").
+// (same size, or the full-view canvas of ImageUndistorter; docs/segments.md).
 #pragma once
 
 #include <opencv2/core.hpp>

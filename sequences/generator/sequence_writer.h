@@ -34,7 +34,7 @@ struct GeneratorOptions {
   // The frames' sensor noise alone draws from this seed when it is not 0 (0: from `seed`, as every
   // other random number). Another value gives the same scene, trajectory, odometry and noise-free
   // pixels under a fresh noise draw: how an end-to-end comparison tells an effect from the noise of
-  // one draw (docs/junction_results.md, "Session 8: resampling").
+  // one draw (docs/decisions.md).
   std::uint64_t image_noise_seed = 0;
   double frame_rate = 10;   // Hz
   int png_compression = 9;  // zlib level 0..9 (smaller files, same pixels)

@@ -23,7 +23,7 @@ enum class VggRefit {
   // refit_focal / refit_principal_point free it.
   kJoint,
   // Each pose fitted alone by PnP onto the fixed <name>.p3d points at the pixels its P projects
-  // them to, for the median K (the import before session 5).
+  // them to, for the median K .
   kPnpMedianK,
 };
 

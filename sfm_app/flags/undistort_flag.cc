@@ -3,12 +3,12 @@
 DEFINE_string(
     undistort_interpolation, sfm::UndistortInterpolationName(sfm::kDetectionInterpolation),
     "Resampling of each frame to the undistorted image when the camera has lens distortion: 'linear', "
-    "'cubic' or 'lanczos4' (docs/junction_results.md, \"Session 7: lens distortion\").");
+    "'cubic' or 'lanczos4' (docs/decisions.md).");
 
 DEFINE_bool(undistort_full_view, sfm::kDetectionView == sfm::UndistortView::kFullView,
             "With lens distortion: detect on a canvas holding the stored image's whole field of view (same "
             "focal lengths, principal point shifted), so junctions may lie outside the image in K's pixels "
-            "(docs/junction_results.md, \"Session 8: full field of view\").");
+            "(docs/decisions.md).");
 
 namespace sfm {
 

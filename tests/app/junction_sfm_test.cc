@@ -178,7 +178,7 @@ TEST_F(JunctionSfmBadInput, OdometryWithNaN) {
 }
 
 // Finite but absurd odometry overflows the pair geometry (its covariance squares the
-// coordinates); before session 8 this aborted in the matcher's CHECK with exit 134.
+// coordinates); it must be refused in one line, not abort in the matcher's CHECK (exit 134).
 TEST_F(JunctionSfmBadInput, OdometryTooLargeForAFiniteRelativeMotion) {
   WriteText(sequence_ / "odometry.txt", "0.0 0 0 0 0 0 0 1\n0.1 1e160 0 0 0 0 0 1\n0.2 0.4 0 0 0 0 0 1\n");
   ExpectOneLineError({"odometry.txt", "finite relative motion"});

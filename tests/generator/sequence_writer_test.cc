@@ -64,7 +64,7 @@ TEST(SequenceWriterTest, SameSeedSameBytes) {
 // render noise (2 grey levels: 2.83; tolerance 2.5-3.2, the rounding to 8 bits and the clipping at 0
 // and 255 included) with mean 0 (within 0.2 grey levels: no content moved). Without the option the
 // frames would be identical (spread 0). Setting it to the master seed, or leaving it 0, changes
-// nothing. docs/junction_results.md, "Session 8: resampling", used such draws.
+// nothing. docs/decisions.md's resampling row used such draws.
 TEST(SequenceWriterTest, ImageNoiseSeedRedrawsOnlyTheNoise) {
   const std::string a_dir = Generate(SmallOptions(), "generator_noise_a");
   const auto a = ReadTree(a_dir);

@@ -66,7 +66,7 @@ TEST(ImageUndistorterTest, ParsesTheInterpolationNames) {
   }
 }
 
-// Session 7 (docs/junction_results.md, "Session 7: lens distortion"): bilinear resampling blurs the
+// docs/decisions.md (interpolation): bilinear resampling blurs the
 // undistorted image; cubic keeps the edges about as sharp as the stored image had them. Measured
 // when written, at the stretch of the periphery (x = 560.3, d r_u / d r_s about 1.3) and near the
 // centre (x = 380.6): see the printed shares. The test asks cubic for at least 0.93 of the ideal

@@ -79,8 +79,8 @@ TEST(FullViewTest, CanvasHoldsTheWholeFieldOfView) {
 // A strong barrel lens given by k1 alone (-0.25, k2 = 0) folds back at the normalised radius
 // sqrt(4/3) = 1.1547 (where d/dr r (1 + k1 r^2) = 1 + 3 k1 r^2 = 0), inside the stored corners'
 // radius (hypot(320, 240) / 450 = 0.889 distorted, beyond the fold's largest distorted radius 0.770):
-// the corners have no undistorted position, and before session 8's check the
-// canvas grew to 51258 x 43612 px. Protects: the fold radius to 1e-3, the benchmark lens (k2 = 0.07,
+// the corners have no undistorted position, and without the fold check the
+// canvas grows to 51258 x 43612 px. Protects: the fold radius to 1e-3, the benchmark lens (k2 = 0.07,
 // never folds) keeping its full view, and the k1-only lens falling back to the image's own size.
 TEST(FullViewTest, ALensThatFoldsBackFallsBackToTheSameSizeView) {
   Camera folding = BenchmarkLens();

@@ -150,7 +150,7 @@ TEST(TrueJunctionsOfFrameTest, DetectableNeedsTwoLongNonCollinearEdges) {
   EXPECT_EQ(truth.occlusions[0], Eigen::Vector2d(400, 250));
 }
 
-// Session 7 (benchmark_junctions --truth_in_image): with the image size given, an edge counts only
+// benchmark_junctions --truth_in_image: with the image size given, an edge counts only
 // up to where it leaves the image. Vertex 0 at (100, 100) has edges 60 px right and 40 px down; in a
 // 640 x 108 image the downward one keeps 7.5 px (to y = 107.5), under min_edge_px = 10, so vertex
 // 0 is no longer detectable; in 640 x 130 it keeps 29.5 px and its far end is at y = 129.5.

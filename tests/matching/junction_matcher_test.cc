@@ -520,7 +520,7 @@ TEST(JunctionMatcherTest, PartialMatchRefusesAnLThatFitsTwoYsEqually) {
 // topology graphs to the first rectangle corner (its arm-0 segment). The L's match each other,
 // arm 1's segments paired and the unshared segments missing, and every full match is right; without
 // the topology edge they stay unmatched (the support rule). Protects the corridor's recall gain of
-// docs/matching_results.md, "Session 7, part 2"; exact counts, no tolerance.
+// docs/decisions.md (match_one_common); exact counts, no tolerance.
 TEST(JunctionMatcherTest, OneCommonSegmentMatchesTwoCornersOfAVertexWithSupport) {
   std::mt19937 rng(31);
   PartialScene partial = MakePartialScene(&rng);
@@ -590,7 +590,7 @@ namespace {
 // (38) alone neither would be matched; the larger of the two is matched to the Y, and every full match is
 // right; when the second L's segment 0 is another detected segment (no shared arm) neither is
 // matched. Protects the corridor's recall gain of
-// docs/matching_results.md, "Session 8"; exact outcomes, no tolerance.
+// docs/decisions.md (match_rivals_on_one_arm); exact outcomes, no tolerance.
 TEST(JunctionMatcherTest, RivalsOnOneArmDoNotBlockEachOther) {
   std::mt19937 rng(31);
   PartialScene partial = MakePartialScene(&rng);

@@ -126,7 +126,7 @@ TEST(LineEndAlongSigmaTest, TheSelectionDropsAnOwnEndSeenEndOn) {
   landmarks.lines.push_back(line_of({0.5, 0.4, 5}, Eigen::Vector3d(0.5, 0.4, 5) + 1.0 * u));  // end-on
   landmarks.lines.push_back(line_of({0.5, 0.4, 5}, {0.5, -0.6, 5}));                          // a post
   WireframeOptions options;
-  EXPECT_EQ(options.line_end_along_sigma, 1);  // the default since session 8
+  EXPECT_EQ(options.line_end_along_sigma, 1);  // the default
   options.line_end_along_sigma = 0;
   WireframeSelectionReport report;
   Landmarks kept = SelectWireframeLandmarks(K, cameras, landmarks, options, &report);

@@ -101,7 +101,7 @@ TEST(WireframePlaneNoiseTest, AWellDeterminedLineKeepsItsSigma) {
 // BoundLine bounds, as line landmarks given to SelectWireframeLandmarks (no pose drift, 0.3 px).
 // Without the correction nearly all of them are drawn (measured 516 of 560); with it a fifth are
 // (117): stated above 0.8 and below 0.3. Fails without the correction. The along-the-line rule
-// (line_end_along_sigma, session 8) is off here, to test the correction alone: on, it drops every
+// (line_end_along_sigma) is off here, to test the correction alone: on, it drops every
 // one of these estimates even without the correction (their noisy directions run into depth, so
 // their own end0 is seen nearly end-on; measured 0 of 448 drawn).
 TEST(WireframePlaneNoiseTest, TheSelectionDropsMostNoisyEstimatesOfACoplanarEdge) {
