@@ -3,8 +3,7 @@
 
 Reads <miss_dir>/notjoined.csv (one row per pair of segments on two long edges of a missed vertex)
 and, for each crowded missed vertex, takes its most probable pair whose eq. (6) point lies within
-3 px of the vertex and says what the detector did with the pair's two segments (docs/junction_results.md,
-"Session 7"). Usage: scripts/junction_crowded_misses.py <miss_dir>/notjoined.csv [--all] [--list]
+3 px of the vertex and says what the detector did with the pair's two segments. Usage: scripts/junction_crowded_misses.py <miss_dir>/notjoined.csv [--all] [--list]
 (--all: isolated misses too; --list: the vertices of each class).
 """
 import collections

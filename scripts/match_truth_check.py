@@ -8,8 +8,7 @@ poses trajectory_groundtruth.txt (written when the sequence has ground truth) an
 colmap/cameras.txt (COLMAP's pixel convention, centre of the top-left pixel at 0.5, shifted back to
 the project's OpenCV convention). For every pair it prints the number of matches, how many lie more
 than gate_px from the true epipolar lines (the larger of the two point-to-line distances) and the
-median distance; a pair with most matches beyond the gate was matched on a wrong relative pose
-(docs/backend_results.md, "Session 8: Strecha's shape with the junction options"). Plain Python,
+median distance; a pair with most matches beyond the gate was matched on a wrong relative pose. Plain Python,
 no numpy. The distance cannot see a wrong match along its epipolar line.
 """
 import glob

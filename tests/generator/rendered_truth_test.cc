@@ -382,7 +382,7 @@ void ExpectOcclusionEndsOnContours(std::vector<double> gaps, size_t min_count) {
 }
 
 // The sequence scripts/benchmark_junctions.sh calls corridor-distorted (StandardSequences in
-// benchmarks/junctions/benchmark_junctions.cc), where a helper saw vertex 463 drawn "4-5 px higher" than its
+// benchmarks/junctions/benchmark_junctions.cc), where vertex 463 was seen drawn "4-5 px higher" than its
 // truth in frames 17-28.
 GeneratorOptions CorridorDistorted() {
   GeneratorOptions options;
