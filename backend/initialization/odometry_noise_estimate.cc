@@ -5,16 +5,10 @@
 
 #include <Eigen/Geometry>
 
+#include "util/median.h"
+
 namespace sfm {
 namespace {
-
-double Median(std::vector<double> values) {
-  const size_t middle = values.size() / 2;
-  std::nth_element(values.begin(), values.begin() + middle, values.end());
-  const double upper = values[middle];
-  if (values.size() % 2 == 1) return upper;
-  return 0.5 * (upper + *std::max_element(values.begin(), values.begin() + middle));
-}
 
 // 1.4826 times the median absolute deviation from `centre`: the standard deviation of a normal
 // sample, insensitive to a minority of outliers.

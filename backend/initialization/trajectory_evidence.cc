@@ -6,18 +6,9 @@
 
 #include "geometry/epipolar.h"
 #include "frontend/matching/pair_refinement.h"
+#include "util/median.h"
 
 namespace sfm {
-namespace {
-
-double Median(std::vector<double> values) {
-  if (values.empty()) return std::numeric_limits<double>::quiet_NaN();
-  const size_t middle = values.size() / 2;
-  std::nth_element(values.begin(), values.begin() + middle, values.end());
-  return values[middle];
-}
-
-}  // namespace
 
 double EpipolarEvidencePx(const Eigen::Matrix3d& K, const std::vector<Pose3>& world_T_camera,
                           const std::vector<Junctions>& junctions, const std::vector<FramePairMatches>& pairs) {
