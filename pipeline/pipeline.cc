@@ -21,6 +21,7 @@
 #include "backend/triangulation/track_extension.h"
 #include "backend/triangulation/triangulate_tracks.h"
 #include "geometry/image_undistorter.h"
+#include "frontend/batch/sequence_frontend.h"
 #include "frontend/junctions/junction_detector.h"
 #include "frontend/junctions/topology.h"
 #include "frontend/matching/junction_matcher.h"
@@ -29,6 +30,7 @@
 #include "frontend/sequence/sequence.h"
 #include "frontend/tracks/tracks.h"
 #include "util/atomic_file.h"
+#include "util/parallel.h"
 #include "util/progress.h"
 #include "pipeline/pipeline_outputs.h"
 #include "pipeline/report/report.h"
@@ -40,17 +42,6 @@ using Clock = std::chrono::steady_clock;
 
 double SecondsSince(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
-}
-
-Status LoadImages(const Sequence& sequence, Progress* progress, std::vector<cv::Mat>* images) {
-  const int n = static_cast<int>(sequence.frames.size());
-  images->resize(n);
-  for (int i = 0; i < n; ++i) {
-    progress->Update("reading images", "frame", i + 1, n);
-    SFM_RETURN_IF_ERROR(LoadFrameImage(sequence, i, &(*images)[i]));
-  }
-  progress->Finish();
-  return Status::Ok();
 }
 
 // What the frames are undistorted onto (PipelineOptions::undistort_full_view).
@@ -70,21 +61,14 @@ void DetectionBox(const Camera& camera, const PipelineOptions& options, Eigen::V
   *max = Eigen::Vector2d(size.width - 1, size.height - 1) - offset;
 }
 
-// Paper section 2: junctions and topology graph of every frame, in undistorted pixels.
-void DetectJunctionsOfAllFrames(const Sequence& sequence, const std::vector<cv::Mat>& images,
-                                const PipelineOptions& options, Progress* progress, PipelineResult* result) {
+// Paper section 2: junctions and topology graph of every frame, in undistorted pixels, the frames
+// decoded one at a time per thread (DetectSequenceJunctions).
+Status DetectJunctionsOfAllFrames(const Sequence& sequence, const PipelineOptions& options, Progress* progress,
+                                  PipelineResult* result) {
   const ImageUndistorter undistorter(sequence.calibration.camera, options.undistort_interpolation,
                                      DetectionView(options));
-  const int n = static_cast<int>(images.size());
-  result->junctions.resize(n);
-  result->graphs.resize(n);
-  for (int i = 0; i < n; ++i) {
-    progress->Update("junction detection", "frame", i + 1, n);
-    const LineSegments segments = DetectUndistortedSegments(undistorter, images[i], options.segments);
-    result->junctions[i] = DetectJunctions(segments, options.junctions);
-    result->graphs[i] = BuildTopologyGraph(result->junctions[i]);
-  }
-  progress->Finish();
+  return DetectSequenceJunctions(sequence, undistorter, options.segments, options.junctions, progress,
+                                 &result->junctions, &result->graphs);
 }
 
 // F and its uncertainty for every pair to match (every consecutive pair and every pair two apart,
@@ -133,20 +117,8 @@ constexpr double kRematchNoiseFactor = 1.5;
 void MatchFramePairs(const std::vector<std::pair<int, int>>& pairs,
                      const std::vector<PairGeometry>& geometries, const PipelineOptions& options,
                      Progress* progress, PipelineResult* result, std::vector<MatchingDiagnostics>* diagnostics) {
-  const MatchingOptions matching = options.Matching();
-  result->pairs.clear();
-  diagnostics->assign(pairs.size(), MatchingDiagnostics());
-  for (size_t p = 0; p < pairs.size(); ++p) {
-    progress->Update("matching", "pair", static_cast<int>(p) + 1, static_cast<int>(pairs.size()));
-    const auto [a, b] = pairs[p];
-    FramePairMatches matches;
-    matches.frame_a = a;
-    matches.frame_b = b;
-    matches.matches = MatchJunctions(result->junctions[a], result->graphs[a], result->junctions[b],
-                                     result->graphs[b], geometries[p], matching, &(*diagnostics)[p]);
-    result->pairs.push_back(std::move(matches));
-  }
-  progress->Finish();
+  result->pairs = MatchSequencePairs(pairs, geometries, result->junctions, result->graphs, options.Matching(),
+                                     progress, diagnostics);
 }
 
 // The odometry's rotation noise measured against the relative rotations the matches fit
@@ -508,6 +480,7 @@ MatchingOptions PipelineOptions::Matching() const {
 
 Status PipelineOptions::Check() const {
   if (output_dir.empty()) return Status::Error("--output must name a directory");
+  if (threads < 0) return Status::Error("threads must be >= 0");
   SFM_RETURN_IF_ERROR(segments.Check());
   SFM_RETURN_IF_ERROR(junctions.Check());
   SFM_RETURN_IF_ERROR(Matching().Check());
@@ -519,6 +492,7 @@ Status PipelineOptions::Check() const {
 Status RunPipeline(const PipelineOptions& options, PipelineResult* result_out) {
   const Clock::time_point start = Clock::now();
   SFM_RETURN_IF_ERROR(options.Check());
+  const ThreadLimit thread_limit(options.threads);
 
   // 1. Read and validate all input before anything is written.
   Sequence sequence;
@@ -528,8 +502,6 @@ Status RunPipeline(const PipelineOptions& options, PipelineResult* result_out) {
             << sequence.calibration.camera.width << "x" << sequence.calibration.camera.height
             << (sequence.has_groundtruth ? ", with ground truth" : ", no ground truth");
   Progress progress(options.show_progress);
-  std::vector<cv::Mat> images;
-  SFM_RETURN_IF_ERROR(LoadImages(sequence, &progress, &images));
   std::vector<std::pair<int, int>> pairs;
   std::vector<PairGeometry> pair_geometries;
   SFM_RETURN_IF_ERROR(OdometryPairGeometries(sequence, options.sequence_dir, sequence.calibration.odometry_noise,
@@ -542,7 +514,7 @@ Status RunPipeline(const PipelineOptions& options, PipelineResult* result_out) {
 
   // 2. Front end, matching, back end.
   Clock::time_point stage_start = Clock::now();
-  DetectJunctionsOfAllFrames(sequence, images, options, &progress, &result);
+  SFM_RETURN_IF_ERROR(DetectJunctionsOfAllFrames(sequence, options, &progress, &result));
   result.times.frontend = SecondsSince(stage_start);
   stage_start = Clock::now();
   std::vector<MatchingDiagnostics> diagnostics;
@@ -572,8 +544,8 @@ Status RunPipeline(const PipelineOptions& options, PipelineResult* result_out) {
   // report's writing (the largest output; the small files after it take milliseconds).
   LOG(INFO) << "writing the outputs in " << options.output_dir;
   result.times.total = SecondsSince(start);
-  SFM_RETURN_IF_ERROR(
-      WriteReport(sequence, result, /*undistorted_images_or_empty=*/{}, options.output_dir, /*stored_images=*/images));
+  // The report reads the frames it draws from disk again: no image is kept through the run.
+  SFM_RETURN_IF_ERROR(WriteReport(sequence, result, /*undistorted_images_or_empty=*/{}, options.output_dir));
   result.times.total = SecondsSince(start);
   SFM_RETURN_IF_ERROR(WriteOutputs(sequence, result, options.output_dir));
   LOG(INFO) << "time: frontend " << result.times.frontend << " s, matching " << result.times.matching

@@ -20,6 +20,10 @@ struct PipelineOptions {
   std::string sequence_dir;   // a SPEC section 1 sequence directory
   std::string output_dir;     // created if needed; existing files of the same names are replaced
   bool show_progress = true;  // a progress line on stderr (only when stderr is a terminal)
+  // Threads of the parallel loops over frames, pairs and landmarks (util/parallel.h), 0: every
+  // core. The results are the same for any count; Ceres's solves run on one thread, as its
+  // threaded evaluator and Schur eliminator sum in an order that varies from run to run.
+  int threads = 0;
   // Resampling of each frame to the undistorted image (lens distortion only; see
   // kDetectionInterpolation).
   UndistortInterpolation undistort_interpolation = kDetectionInterpolation;

@@ -82,7 +82,9 @@ DEFINE_string(
     "Bundle adjustment: estimate the odometry's constant rotation increment per step jointly with the "
     "poses: 'on', 'off' or 'auto' (where the floor prior may apply: a ground robot's rig and planar "
     "odometry).");
-DEFINE_int32(threads, kDefaults.bundle_adjustment_options.num_threads, "Threads for the bundle adjustment.");
+DEFINE_int32(threads, kDefaults.threads,
+             "Threads for detection, matching and the per-landmark solves; 0: every core. The results are the "
+             "same for any count.");
 DEFINE_bool(extend_tracks, kDefaults.extend_tracks,
             "Track extension: project every point landmark into the frames its track misses and join the one "
             "compatible junction inside its uncertainty gate, or merge the track it belongs to; inside the "
@@ -130,7 +132,7 @@ constexpr const char* kWireframe = "Output: wireframe selection";
 const std::vector<sfm::HelpFlag> kHelpTable = {
     {"sequence", kRun, "Sequence directory (docs/formats.md); default: the shipped example."},
     {"output", kRun, "Output directory, replaced whole when the run succeeds."},
-    {"threads", kRun, "Threads for the bundle adjustment (1..256)."},
+    {"threads", kRun, "Threads (0..256; 0: every core); the same results for any count."},
     {"progress", kRun, "Progress line on stderr when it is a terminal."},
     {"segments", kDetection, "Line segment detector: fast | reference."},
     {"undistort_interpolation", kDetection, "Resampling of distorted frames: linear | cubic | lanczos4."},
@@ -175,9 +177,8 @@ const std::vector<sfm::HelpFlag> kHelpTable = {
 };
 
 // The option fields the flags set, with their flags, so that a Check() message names the flag
-// (FlagMessage): "--threads=0: must be >= 1", not the option struct's field.
+// (FlagMessage): "--ba_loss_scale=0: must be > 0 px", not the option struct's field.
 const std::vector<std::pair<std::string, std::string>> kOptionFlags = {
-    {"num_threads", "threads"},
     {"robust_loss_scale_px", "ba_loss_scale"},
     {"outlier_threshold_px", "ba_outlier_threshold"},
     {"pixel_sigma_px", "extend_tracks_pixel_sigma"},
@@ -200,8 +201,8 @@ const std::vector<std::pair<std::string, std::string>> kOptionFlags = {
     {"mu", "endpoint_mu"},
 };
 
-// More threads than this are refused: each is a Ceres worker with its own stack, and beyond the
-// cores they only slow the solve.
+// More threads than this are refused: each is a TBB worker with its own stack, and beyond the
+// cores they only slow the run.
 constexpr int kMaxThreads = 256;
 
 // Flags -> options; a one-line message for a flag value that is not one of the choices.
@@ -223,12 +224,12 @@ bool OptionsFromFlags(sfm::PipelineOptions* options, std::string* error) {
   options->track_extension.max_angle_deg = FLAGS_extend_tracks_max_angle_deg;
   options->bundle_adjustment_options.outlier_threshold_px = FLAGS_ba_outlier_threshold;
   options->bundle_adjustment_options.robust_loss_scale_px = FLAGS_ba_loss_scale;
-  if (FLAGS_threads < 1 || FLAGS_threads > kMaxThreads) {
-    *error = "--threads=" + std::to_string(FLAGS_threads) + ": must be between 1 and " +
+  if (FLAGS_threads < 0 || FLAGS_threads > kMaxThreads) {
+    *error = "--threads=" + std::to_string(FLAGS_threads) + ": must be between 0 (every core) and " +
              std::to_string(kMaxThreads);
     return false;
   }
-  options->bundle_adjustment_options.num_threads = FLAGS_threads;
+  options->threads = FLAGS_threads;
   options->triangulation.wireframe.line_sigma_subtracts_plane_noise = FLAGS_wireframe_plane_noise;
   options->triangulation.wireframe.tolerance_m = FLAGS_wireframe_tolerance_m;
   options->triangulation.wireframe.tolerance_share = FLAGS_wireframe_tolerance_share;

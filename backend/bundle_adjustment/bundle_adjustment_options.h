@@ -44,7 +44,6 @@ struct BundleAdjustmentOptions {
   int outlier_rounds = 1;             // remove-outliers-and-solve-again rounds after the joint solve
   BundleAdjustmentLinearSolver linear_solver = BundleAdjustmentLinearSolver::kAuto;
   int dense_schur_max_frames = 100;  // frames, kAuto's switch to SPARSE_SCHUR
-  int num_threads = 1;               // Ceres threads
   // m, floor on the distance travelled between two frames when the odometry prior's translation
   // sigmas are set from the distance (a robot turning in place still slips); a step shorter than
   // this is weighted the same in every direction (its measured direction is mostly slip).

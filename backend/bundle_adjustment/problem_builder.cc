@@ -9,6 +9,7 @@
 #include "backend/bundle_adjustment/line_reprojection_cost.h"
 #include "backend/bundle_adjustment/odometry_prior_cost.h"
 #include "backend/bundle_adjustment/point_reprojection_cost.h"
+#include "util/parallel.h"
 
 namespace sfm {
 namespace {
@@ -36,7 +37,11 @@ ceres::Solver::Options SolverOptions(const BundleAdjustmentOptions& options, cer
   ceres::Solver::Options solver_options;
   solver_options.linear_solver_type = type;
   solver_options.max_num_iterations = options.max_iterations;
-  solver_options.num_threads = options.num_threads;
+  // One thread: Ceres 2.1's threaded evaluator sums the cost and gradient per thread and its Schur
+  // eliminator adds into the reduced system under locks, in an order that varies from run to run,
+  // and so did the results (docs/bundle_adjustment.md, "Determinism"). The parallelism is over the
+  // landmarks' own small problems instead (RefineLinesOnFixedPoses).
+  solver_options.num_threads = 1;
   solver_options.logging_type = ceres::SILENT;
   return solver_options;
 }
@@ -273,29 +278,38 @@ double RefineLinesOnFixedPoses(const AdjustmentSetup& setup, double loss_scale_p
   problem_options.loss_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
   problem_options.manifold_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
   const ceres::Solver::Options solver_options = SolverOptions(setup.options, ceres::DENSE_QR);
-  const size_t count = subset ? subset->size() : landmarks->lines.size();
-  double cost = 0;
-  for (size_t k = 0; k < count; ++k) {
+  const int count = static_cast<int>(subset ? subset->size() : landmarks->lines.size());
+  // Each line is its own problem, solved in parallel (util/parallel.h); each reads copies of its
+  // views' poses, writes only its own landmark and its own cost, and the costs are summed in the
+  // lines' order: the same numbers on any thread count.
+  std::vector<double> costs(count);
+  ParallelFor(count, [&](int k) {
     LineLandmark& line = landmarks->lines[subset ? (*subset)[k] : k];
     OrthonormalLine parameters = OrthonormalLineFromPointDirection(line.point, line.direction);
+    std::vector<PoseParameters> views;
+    views.reserve(line.observations.size());
+    for (const LineObservation& observation : line.observations) views.push_back((*poses)[observation.frame]);
     ceres::Problem problem(problem_options);
     problem.AddParameterBlock(parameters.data(), 6, &line_manifold);
-    for (const LineObservation& observation : line.observations) {
-      PoseParameters& pose = (*poses)[observation.frame];
+    for (size_t v = 0; v < views.size(); ++v) {
+      const LineObservation& observation = line.observations[v];
       problem.AddResidualBlock(LineReprojectionCost::Create(setup.camera, observation.p0, observation.p1),
-                               loss.get(), pose.rotation.data(), pose.translation.data(), parameters.data());
-      problem.SetParameterBlockConstant(pose.rotation.data());
-      problem.SetParameterBlockConstant(pose.translation.data());
+                               loss.get(), views[v].rotation.data(), views[v].translation.data(),
+                               parameters.data());
+      problem.SetParameterBlockConstant(views[v].rotation.data());
+      problem.SetParameterBlockConstant(views[v].translation.data());
     }
     ceres::Solver::Summary ceres_summary;
     ceres::Solve(solver_options, &problem, &ceres_summary);
     if (ceres_summary.IsSolutionUsable()) {
       WriteBackLine(parameters, *landmarks, &line);
-      cost += ceres_summary.final_cost;
+      costs[k] = ceres_summary.final_cost;
     } else {
-      cost += ceres_summary.initial_cost;
+      costs[k] = ceres_summary.initial_cost;
     }
-  }
+  });
+  double cost = 0;
+  for (const double line_cost : costs) cost += line_cost;
   VLOG(1) << "bundle adjustment: " << count << " lines solved alone on fixed poses in "
           << std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() << " s";
   return cost;

@@ -6,6 +6,8 @@
 #include <opencv2/calib3d.hpp>
 #include <opencv2/core/eigen.hpp>
 
+#include "util/parallel.h"
+
 namespace sfm {
 namespace {
 
@@ -113,24 +115,27 @@ std::vector<RelativePoseConstraint> VisualConstraints(const std::vector<FramePai
                                                       const std::vector<MatchingDiagnostics>& diagnostics,
                                                       const PairRefinementSettings& settings,
                                                       VisualConstraintCounts* counts) {
-  *counts = VisualConstraintCounts();
-  std::vector<RelativePoseConstraint> constraints;
-  for (size_t p = 0; p < matches.size(); ++p) {
-    ++counts->pairs;
+  // Each pair's pose alone, in parallel (util/parallel.h), into its own slot; then counted in the
+  // pairs' order.
+  enum class Outcome { kConstraint, kTooFewMatches, kTooFewInliers, kInconsistentWithPrior, kNoInformation };
+  const int n = static_cast<int>(matches.size());
+  std::vector<Outcome> outcomes(n, Outcome::kConstraint);
+  std::vector<RelativePoseConstraint> per_pair(n);
+  ParallelFor(n, [&](int p) {
     const PairRefinement& refinement = diagnostics[p].refinement;
     switch (refinement.outcome) {
       case PairRefinement::Outcome::kRefined:
         break;
       case PairRefinement::Outcome::kTooFewInliers:
-        ++counts->too_few_inliers;
-        continue;
+        outcomes[p] = Outcome::kTooFewInliers;
+        return;
       case PairRefinement::Outcome::kInconsistentWithPrior:
-        ++counts->inconsistent_with_prior;
-        continue;
+        outcomes[p] = Outcome::kInconsistentWithPrior;
+        return;
       case PairRefinement::Outcome::kTooFewMatches:
       case PairRefinement::Outcome::kNoPriorUncertainty:
-        ++counts->too_few_matches;
-        continue;
+        outcomes[p] = Outcome::kTooFewMatches;
+        return;
     }
     const FramePairMatches& pair = matches[p];
     std::vector<Eigen::Vector2d> x1, x2;
@@ -141,20 +146,38 @@ std::vector<RelativePoseConstraint> VisualConstraints(const std::vector<FramePai
     PairGeometry fit_prior;
     const PairRefinement images = RelativePoseFromMatches(refinement, x1, x2, settings, &fit_prior);
     if (!images.Refined()) {
-      ++counts->too_few_inliers;
-      continue;
+      outcomes[p] = Outcome::kTooFewInliers;
+      return;
     }
-    RelativePoseConstraint constraint;
+    RelativePoseConstraint& constraint = per_pair[p];
     constraint.frame_i = pair.frame_a;
     constraint.frame_j = pair.frame_b;
     constraint.camera_j_T_camera_i = images.geometry.camera2_T_camera1;
     // The information the fit's own (widened) prior adds is not the matches': take it out.
     constraint.information = InformationFromMatches(fit_prior, images.geometry);
-    if (!(constraint.information.trace() > 0)) {
-      ++counts->no_information;
-      continue;
+    if (!(constraint.information.trace() > 0)) outcomes[p] = Outcome::kNoInformation;
+  });
+  *counts = VisualConstraintCounts();
+  std::vector<RelativePoseConstraint> constraints;
+  for (int p = 0; p < n; ++p) {
+    ++counts->pairs;
+    switch (outcomes[p]) {
+      case Outcome::kConstraint:
+        constraints.push_back(per_pair[p]);
+        break;
+      case Outcome::kTooFewMatches:
+        ++counts->too_few_matches;
+        break;
+      case Outcome::kTooFewInliers:
+        ++counts->too_few_inliers;
+        break;
+      case Outcome::kInconsistentWithPrior:
+        ++counts->inconsistent_with_prior;
+        break;
+      case Outcome::kNoInformation:
+        ++counts->no_information;
+        break;
     }
-    constraints.push_back(constraint);
   }
   counts->constraints = static_cast<int>(constraints.size());
   return constraints;

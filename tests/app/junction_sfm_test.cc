@@ -321,9 +321,9 @@ TEST_F(JunctionSfmBadInput, FlagErrorsNameTheFlag) {
   const std::string io = "--sequence=" + sequence_.string() + " --output=" + output_.string();
   const RunResult threads = RunJunctionSfm(io + " --threads=100000", scratch_, /*quiet=*/false);
   EXPECT_EQ(threads.exit_code, 2);
-  EXPECT_EQ(threads.stderr_text, "junction_sfm: --threads=100000: must be between 1 and 256\n");
-  const RunResult zero = RunJunctionSfm(io + " --threads=0", scratch_, /*quiet=*/false);
-  EXPECT_EQ(zero.stderr_text, "junction_sfm: --threads=0: must be between 1 and 256\n");
+  EXPECT_EQ(threads.stderr_text, "junction_sfm: --threads=100000: must be between 0 (every core) and 256\n");
+  const RunResult negative = RunJunctionSfm(io + " --threads=-1", scratch_, /*quiet=*/false);
+  EXPECT_EQ(negative.stderr_text, "junction_sfm: --threads=-1: must be between 0 (every core) and 256\n");
   const RunResult loss = RunJunctionSfm(io + " --ba_loss_scale=-1", scratch_, /*quiet=*/false);
   EXPECT_EQ(loss.exit_code, 2);
   EXPECT_EQ(loss.stderr_text, "junction_sfm: --ba_loss_scale=-1: must be > 0 px\n");

@@ -671,8 +671,6 @@ TEST(BundleAdjustmentOptionsTest, CheckNamesTheBadField) {
       std::string::npos);
   EXPECT_NE(message([](BundleAdjustmentOptions* o) { o->outlier_rounds = -1; }).find("outlier_rounds"),
             std::string::npos);
-  EXPECT_NE(message([](BundleAdjustmentOptions* o) { o->num_threads = 0; }).find("num_threads"),
-            std::string::npos);
   EXPECT_NE(message([](BundleAdjustmentOptions* o) {
               o->odometry_min_distance_m = 0;
             }).find("odometry_min_distance_m"),

@@ -1,0 +1,40 @@
+// The front end over a whole sequence on every core: each frame's junctions (paper section 2) and
+// each pair's matches (sections 3-4) are computed alone, in parallel, each into its own slot, so
+// the results are the same for any thread count (util/parallel.h).
+#pragma once
+
+#include <utility>
+#include <vector>
+
+#include "frontend/junctions/junction.h"
+#include "frontend/junctions/junction_detector.h"
+#include "frontend/junctions/topology.h"
+#include "frontend/matching/junction_matcher.h"
+#include "frontend/matching/pair_geometry.h"
+#include "frontend/segments/segment_detector.h"
+#include "frontend/sequence/sequence.h"
+#include "frontend/tracks/tracks.h"
+#include "geometry/image_undistorter.h"
+#include "util/progress.h"
+#include "util/status.h"
+
+namespace sfm {
+
+// Junctions and topology graph of every frame, in undistorted pixels. Each frame is decoded when
+// its detection starts and dropped when it ends: a thread holds one image at a time. An image
+// that cannot be read fails the whole call with the error of the lowest such frame.
+Status DetectSequenceJunctions(const Sequence& sequence, const ImageUndistorter& undistorter,
+                               const SegmentDetectorOptions& segment_options,
+                               const JunctionDetectorOptions& junction_options, Progress* progress,
+                               std::vector<Junctions>* junctions, std::vector<TopologyGraph>* graphs);
+
+// The matches of every pair (frame a, frame b) of `pairs`, under geometries[p], in the order of
+// `pairs`; diagnostics[p] receives the pair's refinement.
+std::vector<FramePairMatches> MatchSequencePairs(const std::vector<std::pair<int, int>>& pairs,
+                                              const std::vector<PairGeometry>& geometries,
+                                              const std::vector<Junctions>& junctions,
+                                              const std::vector<TopologyGraph>& graphs,
+                                              const MatchingOptions& options, Progress* progress,
+                                              std::vector<MatchingDiagnostics>* diagnostics);
+
+}  // namespace sfm
