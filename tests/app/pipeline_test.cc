@@ -150,5 +150,37 @@ TEST(PipelineWithPartialMatches, CarriesThemIntoTracksLinesAndTheReport) {
   EXPECT_TRUE(fs::exists(fs::path(options.output_dir) / "report.html"));
 }
 
+// The parallel loops (frames, pairs, per-pair poses, lines on fixed poses) write each item into its
+// own slot and sum in index order: one thread and two give the same bytes in every output the
+// trajectory, the tracks and the wireframe come from (tolerance: none).
+TEST(PipelineThreads, OneAndTwoThreadsWriteTheSameBytes) {
+  const fs::path scratch = testing::MakeScratchDir("pipeline_threads");
+  GeneratorOptions generator;
+  generator.scene.type = SceneType::kRoom;
+  generator.trajectory.type = TrajectoryType::kLoop;
+  generator.trajectory.num_frames = 24;
+  generator.seed = 7;
+  ASSERT_TRUE(GenerateSequence(generator, (scratch / "sequence").string(), /*overwrite=*/true).ok());
+  for (int threads : {1, 2}) {
+    PipelineOptions options;
+    options.sequence_dir = (scratch / "sequence").string();
+    options.output_dir = (scratch / ("threads" + std::to_string(threads))).string();
+    options.show_progress = false;
+    options.threads = threads;
+    const Status status = RunPipeline(options);
+    ASSERT_TRUE(status.ok()) << status.message();
+  }
+  std::vector<std::string> names = {"trajectory_refined.txt", "tracks.csv", "wireframe.ply"};
+  for (const auto& entry : fs::directory_iterator(scratch / "threads1" / "matches")) {
+    names.push_back("matches/" + entry.path().filename().string());
+  }
+  EXPECT_GT(names.size(), 3u + 24);
+  for (const std::string& name : names) {
+    const std::string one = ReadFile(scratch / "threads1" / name);
+    EXPECT_FALSE(one.empty()) << name;
+    EXPECT_TRUE(one == ReadFile(scratch / "threads2" / name)) << name << " differs between 1 and 2 threads";
+  }
+}
+
 }  // namespace
 }  // namespace sfm
