@@ -44,6 +44,31 @@ double SecondsSince(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
 }
 
+// The seconds of each stage of a run in order, for the log's last line; the running stage is shown
+// on the progress line.
+class StageTimer {
+ public:
+  explicit StageTimer(Progress* progress) : progress_(progress) {}
+  // Ends the running stage, if any, and starts `name`.
+  void Start(const std::string& name) {
+    End();
+    name_ = name;
+    start_ = Clock::now();
+    progress_->Show(name, "");
+  }
+  void End() {
+    if (!name_.empty()) text_ << (text_.tellp() > 0 ? ", " : "") << name_ << " " << SecondsSince(start_) << " s";
+    name_.clear();
+  }
+  std::string Text() const { return text_.str(); }
+
+ private:
+  Progress* progress_;
+  std::string name_;
+  Clock::time_point start_;
+  std::ostringstream text_;
+};
+
 // What the frames are undistorted onto (PipelineOptions::undistort_full_view).
 UndistortView DetectionView(const PipelineOptions& options) {
   return options.undistort_full_view ? UndistortView::kFullView : UndistortView::kSameSize;
@@ -305,10 +330,13 @@ void RecordTrackExtension(const TrackExtensionReport& report, size_t tracks, Clo
 // IterativeGlobalRefinement: adjust, complete and merge tracks, filter). The solves start from
 // reconstruction->world_T_base at the odometry's scale factor 1; the odometry is the prior.
 Status AdjustAndExtendTracks(const std::vector<Pose3>& world_T_base_odometry, const PipelineOptions& options,
-                             Reconstruction* reconstruction, BundleAdjustmentSummary* summary,
+                             Progress* progress, Reconstruction* reconstruction, BundleAdjustmentSummary* summary,
                              PipelineResult* result) {
   BundleAdjustment adjustment(world_T_base_odometry, /*odometry_scale_start=*/1,
                               options.bundle_adjustment_options, reconstruction, summary);
+  adjustment.SetIterationHook([progress](int solve, int iteration) {
+    progress->Show("bundle adjustment", "solve " + std::to_string(solve) + ", iteration " + std::to_string(iteration));
+  });
   SFM_RETURN_IF_ERROR(adjustment.Start());
   SFM_RETURN_IF_ERROR(adjustment.SolveCoarse());
   SFM_RETURN_IF_ERROR(adjustment.SolveFine());
@@ -328,7 +356,7 @@ Status AdjustAndExtendTracks(const std::vector<Pose3>& world_T_base_odometry, co
 
 // Bundle adjustment from the initial trajectory, the odometry its prior, the tracks extended in it:
 // refined poses, landmarks and tracks.
-Status Refine(const Sequence& sequence, const PipelineOptions& options, PipelineResult* result) {
+Status Refine(const Sequence& sequence, const PipelineOptions& options, Progress* progress, PipelineResult* result) {
   const std::vector<Pose3> world_T_base_odometry = OdometryBasePoses(sequence);
   Reconstruction reconstruction;
   reconstruction.calibration = sequence.calibration;
@@ -339,7 +367,8 @@ Status Refine(const Sequence& sequence, const PipelineOptions& options, Pipeline
   reconstruction.landmarks = std::move(result->landmarks);
   BundleAdjustmentSummary summary;
   const Status status =
-      AdjustAndExtendTracks(world_T_base_odometry, options, &reconstruction, &summary, result);
+      AdjustAndExtendTracks(world_T_base_odometry, options, progress, &reconstruction, &summary, result);
+  progress->Finish();
   result->junctions = std::move(reconstruction.junctions);
   result->tracks = std::move(reconstruction.tracks);
   result->landmarks = std::move(reconstruction.landmarks);
@@ -502,6 +531,7 @@ Status RunPipeline(const PipelineOptions& options, PipelineResult* result_out) {
             << sequence.calibration.camera.width << "x" << sequence.calibration.camera.height
             << (sequence.has_groundtruth ? ", with ground truth" : ", no ground truth");
   Progress progress(options.show_progress);
+  StageTimer stages(&progress);
   std::vector<std::pair<int, int>> pairs;
   std::vector<PairGeometry> pair_geometries;
   SFM_RETURN_IF_ERROR(OdometryPairGeometries(sequence, options.sequence_dir, sequence.calibration.odometry_noise,
@@ -514,22 +544,29 @@ Status RunPipeline(const PipelineOptions& options, PipelineResult* result_out) {
 
   // 2. Front end, matching, back end.
   Clock::time_point stage_start = Clock::now();
+  stages.Start("junction detection");
   SFM_RETURN_IF_ERROR(DetectJunctionsOfAllFrames(sequence, options, &progress, &result));
   result.times.frontend = SecondsSince(stage_start);
   stage_start = Clock::now();
+  stages.Start("matching");
   std::vector<MatchingDiagnostics> diagnostics;
   MatchFramePairs(pairs, pair_geometries, options, &progress, &result, &diagnostics);
   SFM_RETURN_IF_ERROR(
       MeasureOdometryNoise(sequence, options, pairs, &progress, &pair_geometries, &diagnostics, &result));
   result.times.matching = SecondsSince(stage_start);
   stage_start = Clock::now();
+  stages.Start("initial trajectory");
   SFM_RETURN_IF_ERROR(InitialTrajectory(sequence, options, diagnostics, &result));
+  stages.Start("tracks and triangulation");
   Reconstruct(sequence, options, &result);
   if (options.bundle_adjustment) {
-    SFM_RETURN_IF_ERROR(Refine(sequence, options, &result));
+    stages.Start("bundle adjustment");
+    SFM_RETURN_IF_ERROR(Refine(sequence, options, &progress, &result));
+    stages.Start("evidence");
     MeasureOdometryTranslationNoise(sequence, options, &result);
     WeighTheEvidence(sequence, options, &result);
   }
+  stages.Start("wireframe selection");
   SelectWireframe(sequence, options, &result);
   result.times.backend = SecondsSince(stage_start);
   if (result.world_T_camera_truth) {
@@ -544,12 +581,18 @@ Status RunPipeline(const PipelineOptions& options, PipelineResult* result_out) {
   // report's writing (the largest output; the small files after it take milliseconds).
   LOG(INFO) << "writing the outputs in " << options.output_dir;
   result.times.total = SecondsSince(start);
+  stages.Start("report");
   // The report reads the frames it draws from disk again: no image is kept through the run.
   SFM_RETURN_IF_ERROR(WriteReport(sequence, result, /*undistorted_images_or_empty=*/{}, options.output_dir));
   result.times.total = SecondsSince(start);
+  stages.Start("outputs");
   SFM_RETURN_IF_ERROR(WriteOutputs(sequence, result, options.output_dir));
-  LOG(INFO) << "time: frontend " << result.times.frontend << " s, matching " << result.times.matching
-            << " s, backend " << result.times.backend << " s, total " << result.times.total << " s";
+  stages.End();
+  progress.Finish();
+  // The log's last line.
+  LOG(INFO) << "time: " << stages.Text() << "; total " << SecondsSince(start) << " s (metrics.json: frontend "
+            << result.times.frontend << " s, matching " << result.times.matching << " s, backend "
+            << result.times.backend << " s)";
   if (result_out) *result_out = std::move(result);
   return Status::Ok();
 }

@@ -159,7 +159,6 @@ int RunIntoOutputDirectory(PipelineOptions options) {
   } catch (const std::exception& e) {
     status = Status::Error(std::string("unexpected error: ") + OneLine(e.what()));
   }
-  if (status.ok()) LOG(INFO) << "outputs complete; moving them to " << directory->target();
   google::RemoveLogSink(&sink);
   sink.Close();
   if (status.ok()) status = directory->Commit();

@@ -27,7 +27,8 @@ void Progress::Tick(const std::string& stage, const std::string& unit, int n) {
 void Progress::Show(const std::string& stage, const std::string& text) {
   if (!active_) return;
   const std::lock_guard<std::mutex> lock(mutex_);
-  Draw(stage, text, /*last=*/false);
+  // A new stage is drawn at once.
+  Draw(stage, text, /*last=*/stage != stage_);
 }
 
 // Redraws at most every 50 ms, and always for the last item, so progress costs nothing.
@@ -35,8 +36,9 @@ void Progress::Draw(const std::string& stage, const std::string& text, bool last
   const auto now = std::chrono::steady_clock::now();
   if (line_shown_ && !last && now - last_draw_ < std::chrono::milliseconds(50)) return;
   last_draw_ = now;
+  stage_ = stage;
   const double elapsed = std::chrono::duration<double>(now - start_).count();
-  std::fprintf(stderr, "\r\033[K[%s] %s  %.1f s", stage.c_str(), text.c_str(), elapsed);
+  std::fprintf(stderr, "\r\033[K[%s] %s%s%.1f s", stage.c_str(), text.c_str(), text.empty() ? "" : "  ", elapsed);
   std::fflush(stderr);
   line_shown_ = true;
 }

@@ -31,6 +31,7 @@ class Progress {
   bool active_;
   std::mutex mutex_;
   bool line_shown_ = false;
+  std::string stage_;  // the stage drawn last
   int ticks_ = 0;
   std::chrono::steady_clock::time_point start_;
   std::chrono::steady_clock::time_point last_draw_;

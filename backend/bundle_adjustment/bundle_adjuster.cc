@@ -265,10 +265,29 @@ void BundleAdjustment::Finish() {
   summary_->time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_time_).count();
 }
 
+namespace {
+
+// Hands each iteration of a solve to the BundleAdjustment's IterationHook; changes nothing.
+class IterationHookCallback : public ceres::IterationCallback {
+ public:
+  IterationHookCallback(const BundleAdjustment::IterationHook& hook, int solve) : hook_(hook), solve_(solve) {}
+  ceres::CallbackReturnType operator()(const ceres::IterationSummary& summary) override {
+    hook_(solve_, summary.iteration);
+    return ceres::SOLVER_CONTINUE;
+  }
+
+ private:
+  const BundleAdjustment::IterationHook& hook_;
+  const int solve_;
+};
+
+}  // namespace
+
 Status BundleAdjustment::Solve(double loss_scale_px, bool with_lines, double function_tolerance) {
   JointProblem problem(setup_, floor_, loss_scale_px, with_lines, &parameters_, *landmarks_);
   ceres::Solver::Summary ceres_summary;
-  problem.Solve(function_tolerance, &ceres_summary);
+  IterationHookCallback callback(iteration_hook_, summary_->solves + 1);
+  problem.Solve(function_tolerance, &ceres_summary, iteration_hook_ ? &callback : nullptr);
   if (!ceres_summary.IsSolutionUsable()) {
     return Status::Error("bundle adjustment: Ceres failed: " + ceres_summary.message);
   }

@@ -17,6 +17,7 @@
 #pragma once
 
 #include <chrono>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -92,6 +93,11 @@ class BundleAdjustment {
   // Nothing (more) to solve, or Start failed: the later steps do nothing.
   bool finished() const { return state_ != State::kRunning; }
 
+  // Called after each iteration of each joint solve with the solve's number (1-based) and the
+  // iteration's, for a progress display; it must not change anything the solve reads.
+  using IterationHook = std::function<void(int solve, int iteration)>;
+  void SetIterationHook(IterationHook hook) { iteration_hook_ = std::move(hook); }
+
  private:
   enum class State { kNotStarted, kRunning, kNothingToSolve, kReverted };
 
@@ -118,6 +124,7 @@ class BundleAdjustment {
   State state_ = State::kNotStarted;
   // The first fine solve stopped at the intermediate tolerance (an outlier round follows it).
   bool loose_ = false;
+  IterationHook iteration_hook_;
 };
 
 // All the steps without a change of the map.

@@ -199,7 +199,8 @@ JointProblem::JointProblem(const AdjustmentSetup& setup, const FloorPriorState& 
   }
 }
 
-void JointProblem::Solve(double function_tolerance, ceres::Solver::Summary* summary) {
+void JointProblem::Solve(double function_tolerance, ceres::Solver::Summary* summary,
+                         ceres::IterationCallback* callback) {
   ceres::Solver::Options solver_options =
       SolverOptions(setup_.options, JointLinearSolver(setup_.options, parameters_->poses.size()));
   solver_options.linear_solver_ordering = ordering_;
@@ -214,6 +215,7 @@ void JointProblem::Solve(double function_tolerance, ceres::Solver::Summary* summ
   // resumes (corridor: 38 iterations of the solve after the outlier round, against 5). A gain
   // the solve's own stopping rule still counts keeps them on.
   solver_options.inner_iteration_tolerance = function_tolerance;
+  if (callback != nullptr) solver_options.callbacks.push_back(callback);
   ceres::Solve(solver_options, problem_.get(), summary);
 }
 

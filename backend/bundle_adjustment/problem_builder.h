@@ -32,7 +32,9 @@ class JointProblem {
                bool with_lines, AdjustmentParameters* parameters, const Landmarks& landmarks);
 
   // Solves until Ceres's function_tolerance; the poses, lambda and b are changed in place.
-  void Solve(double function_tolerance, ceres::Solver::Summary* summary);
+  // `callback` (optional) is told of every iteration.
+  void Solve(double function_tolerance, ceres::Solver::Summary* summary,
+             ceres::IterationCallback* callback = nullptr);
   // The solved points and the lines of the problem into `landmarks` (the ones it was built from).
   void WriteLandmarks(Landmarks* landmarks) const;
   // The two-view lines left out (indices into the landmarks' lines).
