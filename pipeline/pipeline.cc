@@ -57,7 +57,8 @@ class StageTimer {
     progress_->Show(name, "");
   }
   void End() {
-    if (!name_.empty()) text_ << (text_.tellp() > 0 ? ", " : "") << name_ << " " << SecondsSince(start_) << " s";
+    if (!name_.empty())
+      text_ << (text_.tellp() > 0 ? ", " : "") << name_ << " " << SecondsSince(start_) << " s";
     name_.clear();
   }
   std::string Text() const { return text_.str(); }
@@ -88,8 +89,8 @@ void DetectionBox(const Camera& camera, const PipelineOptions& options, Eigen::V
 
 // Paper section 2: junctions and topology graph of every frame, in undistorted pixels, the frames
 // decoded one at a time per thread (DetectSequenceJunctions).
-Status DetectJunctionsOfAllFrames(const Sequence& sequence, const PipelineOptions& options, Progress* progress,
-                                  PipelineResult* result) {
+Status DetectJunctionsOfAllFrames(const Sequence& sequence, const PipelineOptions& options,
+                                  Progress* progress, PipelineResult* result) {
   const ImageUndistorter undistorter(sequence.calibration.camera, options.undistort_interpolation,
                                      DetectionView(options));
   return DetectSequenceJunctions(sequence, undistorter, options.segments, options.junctions, progress,
@@ -330,12 +331,13 @@ void RecordTrackExtension(const TrackExtensionReport& report, size_t tracks, Clo
 // IterativeGlobalRefinement: adjust, complete and merge tracks, filter). The solves start from
 // reconstruction->world_T_base at the odometry's scale factor 1; the odometry is the prior.
 Status AdjustAndExtendTracks(const std::vector<Pose3>& world_T_base_odometry, const PipelineOptions& options,
-                             Progress* progress, Reconstruction* reconstruction, BundleAdjustmentSummary* summary,
-                             PipelineResult* result) {
+                             Progress* progress, Reconstruction* reconstruction,
+                             BundleAdjustmentSummary* summary, PipelineResult* result) {
   BundleAdjustment adjustment(world_T_base_odometry, /*odometry_scale_start=*/1,
                               options.bundle_adjustment_options, reconstruction, summary);
   adjustment.SetIterationHook([progress](int solve, int iteration) {
-    progress->Show("bundle adjustment", "solve " + std::to_string(solve) + ", iteration " + std::to_string(iteration));
+    progress->Show("bundle adjustment",
+                   "solve " + std::to_string(solve) + ", iteration " + std::to_string(iteration));
   });
   SFM_RETURN_IF_ERROR(adjustment.Start());
   SFM_RETURN_IF_ERROR(adjustment.SolveCoarse());
@@ -356,7 +358,8 @@ Status AdjustAndExtendTracks(const std::vector<Pose3>& world_T_base_odometry, co
 
 // Bundle adjustment from the initial trajectory, the odometry its prior, the tracks extended in it:
 // refined poses, landmarks and tracks.
-Status Refine(const Sequence& sequence, const PipelineOptions& options, Progress* progress, PipelineResult* result) {
+Status Refine(const Sequence& sequence, const PipelineOptions& options, Progress* progress,
+              PipelineResult* result) {
   const std::vector<Pose3> world_T_base_odometry = OdometryBasePoses(sequence);
   Reconstruction reconstruction;
   reconstruction.calibration = sequence.calibration;

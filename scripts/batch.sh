@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # A fleet of robot logs as a batch of independent junction_sfm runs (issue 20, "Beyond one
-# machine"; docs/usage.md, "Many sequences"): one output directory per log and a summary table.
+# machine"; docs/user_guide.md, "Many logs"): one output directory per log and a summary table.
 #
 #   scripts/batch.sh run <manifest> <out root>         every log, GNU parallel on this machine
 #   scripts/batch.sh one <manifest> <line> <out root>  the log on line <line> (1-based) of the
@@ -21,7 +21,7 @@ threads=${THREADS:-1}
 program=${JUNCTION_SFM:-$repo/build/bin/junction_sfm}
 
 usage() {
-  sed -n '2,12p' "$0" >&2
+  sed -n '2,18p' "$0" >&2
   exit 2
 }
 

@@ -83,8 +83,8 @@ DEFINE_string(
     "poses: 'on', 'off' or 'auto' (where the floor prior may apply: a ground robot's rig and planar "
     "odometry).");
 DEFINE_int32(threads, kDefaults.threads,
-             "Threads for detection, matching and the per-landmark solves; 0: every core. The results are the "
-             "same for any count.");
+             "Threads for detection, matching and the per-landmark solves; 0: every core. The results are "
+             "the same for any count.");
 DEFINE_bool(extend_tracks, kDefaults.extend_tracks,
             "Track extension: project every point landmark into the frames its track misses and join the one "
             "compatible junction inside its uncertainty gate, or merge the track it belongs to; inside the "

@@ -38,7 +38,8 @@ void Progress::Draw(const std::string& stage, const std::string& text, bool last
   last_draw_ = now;
   stage_ = stage;
   const double elapsed = std::chrono::duration<double>(now - start_).count();
-  std::fprintf(stderr, "\r\033[K[%s] %s%s%.1f s", stage.c_str(), text.c_str(), text.empty() ? "" : "  ", elapsed);
+  std::fprintf(stderr, "\r\033[K[%s] %s%s%.1f s", stage.c_str(), text.c_str(), text.empty() ? "" : "  ",
+               elapsed);
   std::fflush(stderr);
   line_shown_ = true;
 }

@@ -270,7 +270,8 @@ namespace {
 // Hands each iteration of a solve to the BundleAdjustment's IterationHook; changes nothing.
 class IterationHookCallback : public ceres::IterationCallback {
  public:
-  IterationHookCallback(const BundleAdjustment::IterationHook& hook, int solve) : hook_(hook), solve_(solve) {}
+  IterationHookCallback(const BundleAdjustment::IterationHook& hook, int solve)
+      : hook_(hook), solve_(solve) {}
   ceres::CallbackReturnType operator()(const ceres::IterationSummary& summary) override {
     hook_(solve_, summary.iteration);
     return ceres::SOLVER_CONTINUE;

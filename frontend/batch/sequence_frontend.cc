@@ -31,11 +31,11 @@ Status DetectSequenceJunctions(const Sequence& sequence, const ImageUndistorter&
 }
 
 std::vector<FramePairMatches> MatchSequencePairs(const std::vector<std::pair<int, int>>& pairs,
-                                              const std::vector<PairGeometry>& geometries,
-                                              const std::vector<Junctions>& junctions,
-                                              const std::vector<TopologyGraph>& graphs,
-                                              const MatchingOptions& options, Progress* progress,
-                                              std::vector<MatchingDiagnostics>* diagnostics) {
+                                                 const std::vector<PairGeometry>& geometries,
+                                                 const std::vector<Junctions>& junctions,
+                                                 const std::vector<TopologyGraph>& graphs,
+                                                 const MatchingOptions& options, Progress* progress,
+                                                 std::vector<MatchingDiagnostics>* diagnostics) {
   const int n = static_cast<int>(pairs.size());
   std::vector<FramePairMatches> matches(n);
   diagnostics->assign(n, MatchingDiagnostics());
@@ -43,8 +43,8 @@ std::vector<FramePairMatches> MatchSequencePairs(const std::vector<std::pair<int
     const auto [a, b] = pairs[p];
     matches[p].frame_a = a;
     matches[p].frame_b = b;
-    matches[p].matches = MatchJunctions(junctions[a], graphs[a], junctions[b], graphs[b], geometries[p], options,
-                                        &(*diagnostics)[p]);
+    matches[p].matches = MatchJunctions(junctions[a], graphs[a], junctions[b], graphs[b], geometries[p],
+                                        options, &(*diagnostics)[p]);
     progress->Tick("matching", "pair", n);
   });
   progress->Finish();

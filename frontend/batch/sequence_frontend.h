@@ -31,10 +31,10 @@ Status DetectSequenceJunctions(const Sequence& sequence, const ImageUndistorter&
 // The matches of every pair (frame a, frame b) of `pairs`, under geometries[p], in the order of
 // `pairs`; diagnostics[p] receives the pair's refinement.
 std::vector<FramePairMatches> MatchSequencePairs(const std::vector<std::pair<int, int>>& pairs,
-                                              const std::vector<PairGeometry>& geometries,
-                                              const std::vector<Junctions>& junctions,
-                                              const std::vector<TopologyGraph>& graphs,
-                                              const MatchingOptions& options, Progress* progress,
-                                              std::vector<MatchingDiagnostics>* diagnostics);
+                                                 const std::vector<PairGeometry>& geometries,
+                                                 const std::vector<Junctions>& junctions,
+                                                 const std::vector<TopologyGraph>& graphs,
+                                                 const MatchingOptions& options, Progress* progress,
+                                                 std::vector<MatchingDiagnostics>* diagnostics);
 
 }  // namespace sfm
