@@ -91,7 +91,8 @@ case $command in
     ;;
   run)
     [ $# -eq 2 ] || usage
-    command -v parallel >/dev/null || { echo "batch.sh: GNU parallel not found: apt-get install -y parallel" >&2; exit 1; }
+    # GNU parallel: Debian's package `parallel`, installed here (as root) when missing.
+    (source "$repo/scripts/setup.sh" && sfm_install_benchmark_package parallel parallel) || exit 1
     if [ ! -x "$program" ]; then
       cmake -S "$repo" -B "$repo/build" -DCMAKE_BUILD_TYPE=Release >/dev/null
       cmake --build "$repo/build" --target junction_sfm -j2 >&2
