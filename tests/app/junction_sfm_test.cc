@@ -306,7 +306,14 @@ TEST_F(JunctionSfmBadInput, StderrHoldsOnlyTheErrorOrTheSummary) {
   for (size_t i = 0; i + 1 < stderr_lines.size(); ++i) EXPECT_EQ(stderr_lines[i][0], 'W') << stderr_lines[i];
   EXPECT_THAT(stderr_lines.back(), HasSubstr("3 frames"));
   EXPECT_THAT(ok.stderr_text, HasSubstr("outputs in " + output_.string()));
-  EXPECT_THAT(ReadFile(output_ / "junction_sfm.log"), HasSubstr("sequence " + sequence_.string()));
+  const std::string log = ReadFile(output_ / "junction_sfm.log");
+  EXPECT_THAT(log, HasSubstr("sequence " + sequence_.string()));
+  // The log ends with each stage's time (issue 20), the bundle adjustment's and the outputs' included.
+  const std::string last_line = log.substr(log.rfind('\n', log.size() - 2) + 1);
+  for (const char* stage :
+       {"time: junction detection ", ", matching ", ", bundle adjustment ", ", outputs "}) {
+    EXPECT_THAT(last_line, HasSubstr(stage)) << last_line;
+  }
 
   cv::imwrite((sequence_ / "images" / "000002.png").string(), cv::Mat(10, 10, CV_8UC1, cv::Scalar(1)));
   const RunResult bad = RunJunctionSfm(io, scratch_, /*quiet=*/false);
