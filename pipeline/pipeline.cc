@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "backend/bundle_adjustment/bundle_adjuster.h"
+#include "backend/initialization/loop_candidates.h"
 #include "backend/initialization/odometry_noise_estimate.h"
 #include "backend/initialization/pose_graph.h"
 #include "backend/initialization/trajectory_evidence.h"
@@ -199,8 +200,13 @@ Status InitialTrajectory(const Sequence& sequence, const PipelineOptions& option
   InitializationSummary& summary = result->initialization;
   result->evidence.pair_inliers.clear();
   for (const MatchingDiagnostics& pair : diagnostics) result->evidence.pair_inliers.push_back(pair.refinement.inliers);
-  const std::vector<RelativePoseConstraint> constraints = VisualConstraints(
+  std::vector<RelativePoseConstraint> constraints = VisualConstraints(
       result->pairs, result->junctions, diagnostics, RefinementSettings(options.Matching()), &summary.pairs);
+  for (RelativePoseConstraint& constraint : constraints) {
+    for (const std::array<int, 3>& loop : summary.loops) {
+      if (constraint.frame_i == loop[0] && constraint.frame_j == loop[1]) constraint.robust = false;
+    }
+  }
   // The pose graph solves for the odometry's rotation bias: its odometry factors are weighted by
   // the spread about the bias.
   OdometryNoise noise = summary.used;
@@ -228,6 +234,52 @@ Status InitialTrajectory(const Sequence& sequence, const PipelineOptions& option
             << " pairs beyond 3 sigma, odometry rotation bias " << summary.pose_graph.rotation_bias.transpose()
             << " rad per frame; " << summary.seconds << " s";
   return Status::Ok();
+}
+
+// Loop closure (docs/initialization.md, "Loop closure"): pairs far apart along the trajectory whose
+// views overlap on the initial trajectory (LoopCandidates) are matched like any pair, under the
+// initial trajectory with the odometry's noise over every frame between them; a pair whose matches
+// give a relative pose (the matcher's refinement inside that uncertainty, then
+// RelativePoseFromMatches) joins the matched pairs: its matches join the tracks, its pose the pose
+// graph. Returns whether any did.
+bool CloseLoops(const Sequence& sequence, const PipelineOptions& options, Progress* progress,
+                std::vector<MatchingDiagnostics>* diagnostics, PipelineResult* result) {
+  const Calibration& calibration = sequence.calibration;
+  const Eigen::Matrix3d K = calibration.camera.K();
+  const std::vector<std::pair<int, int>> candidates =
+      LoopCandidates(K, calibration.camera.width, calibration.camera.height, result->world_T_camera_initial,
+                     result->landmarks);
+  InitializationSummary& summary = result->initialization;
+  summary.loop_candidates = static_cast<int>(candidates.size());
+  if (candidates.empty()) return false;
+  const std::vector<Pose3> bases = BasesFromCameras(result->world_T_camera_initial, calibration.base_T_camera);
+  const MatchingOptions matching = options.Matching();
+  for (size_t c = 0; c < candidates.size(); ++c) {
+    progress->Update("loop closure", "pair", static_cast<int>(c) + 1, static_cast<int>(candidates.size()));
+    const auto [a, b] = candidates[c];
+    const PairGeometry geometry =
+        PairGeometryFromOdometry(K, calibration.base_T_camera, bases[a], bases[b], summary.used.translation_sigma,
+                                 summary.used.rotation_sigma, b - a);
+    if (!(geometry.camera2_T_camera1.translation.allFinite() && geometry.covariance.allFinite())) continue;
+    FramePairMatches matches;
+    matches.frame_a = a;
+    matches.frame_b = b;
+    MatchingDiagnostics pair_diagnostics;
+    matches.matches = MatchJunctions(result->junctions[a], result->graphs[a], result->junctions[b], result->graphs[b],
+                                     geometry, matching, &pair_diagnostics);
+    VisualConstraintCounts counts;
+    if (VisualConstraints({matches}, result->junctions, {pair_diagnostics}, RefinementSettings(matching), &counts)
+            .empty()) {
+      continue;
+    }
+    summary.loops.push_back({a, b, pair_diagnostics.refinement.inliers});
+    result->pairs.push_back(std::move(matches));
+    diagnostics->push_back(std::move(pair_diagnostics));
+  }
+  progress->Finish();
+  LOG(INFO) << "loop closure: " << summary.loops.size() << " of " << candidates.size()
+            << " candidate pairs gave a relative pose";
+  return !summary.loops.empty();
 }
 
 // world_T_base of every frame's odometry.
@@ -553,6 +605,10 @@ Status RunPipeline(const PipelineOptions& options, PipelineResult* result_out) {
   stage_start = Clock::now();
   SFM_RETURN_IF_ERROR(InitialTrajectory(sequence, options, diagnostics, &result));
   Reconstruct(sequence, options, &result);
+  if (CloseLoops(sequence, options, &progress, &diagnostics, &result)) {
+    SFM_RETURN_IF_ERROR(InitialTrajectory(sequence, options, diagnostics, &result));
+    Reconstruct(sequence, options, &result);
+  }
   if (options.bundle_adjustment) {
     SFM_RETURN_IF_ERROR(Refine(sequence, options, &result));
     MeasureOdometryTranslationNoise(sequence, options, &result);

@@ -146,6 +146,16 @@ std::optional<double> Sim3Scale(const std::optional<DriftMetrics>& drift) {
   return drift ? std::optional<double>(drift->sim3_scale) : std::nullopt;
 }
 
+// [a, b, inliers] of each closed loop, comma separated.
+std::string LoopsJson(const std::vector<std::array<int, 3>>& loops) {
+  std::string json;
+  for (size_t i = 0; i < loops.size(); ++i) {
+    json += (i ? ", [" : "[") + std::to_string(loops[i][0]) + ", " + std::to_string(loops[i][1]) + ", " +
+            std::to_string(loops[i][2]) + "]";
+  }
+  return json;
+}
+
 std::string InitializationJson(const PipelineResult& result) {
   const InitializationSummary& summary = result.initialization;
   if (!summary.ran) return "null";
@@ -174,6 +184,8 @@ std::string InitializationJson(const PipelineResult& result) {
                                    ", \"distance_sigma\": " + JsonNumber(translation.distance_sigma) + "}"
                              : std::string("null"))
        << ", \"rematched\": " << (summary.rematched ? "true" : "false")
+       << ", \"loops\": {\"candidates\": " << summary.loop_candidates << ", \"closed\": [" << LoopsJson(summary.loops)
+       << "]}"
        << ", \"pose_graph\": {\"constraints\": " << summary.pose_graph.constraints
        << ", \"constraints_beyond_3_sigma\": " << summary.pose_graph.constraints_rejected
        << ", \"iterations\": " << summary.pose_graph.iterations << "}"

@@ -1,6 +1,7 @@
 // What one junction_sfm run computes, stage by stage; the outputs are written from it.
 #pragma once
 
+#include <array>
 #include <optional>
 #include <string>
 #include <vector>
@@ -42,6 +43,10 @@ struct InitializationSummary {
   OdometryNoise declared;                  // sequence.yaml's (or the default)
   OdometryNoise used;                      // what the matcher's gates and the priors were weighted by
   bool rematched = false;                  // matching ran again with the measured noise
+  // Loop closure: pairs whose views overlap far apart along the trajectory, matched; those that
+  // gave a relative pose, (frame a, frame b, inliers).
+  int loop_candidates = 0;
+  std::vector<std::array<int, 3>> loops;
   PoseGraphSummary pose_graph;
   double seconds = 0;
 };

@@ -3,6 +3,7 @@
 #include <glog/logging.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -182,6 +183,14 @@ std::string SummarySection(const Context& c) {
                                                               Num(e.line_rms_px, "%.2f") + " px (lines)"});
     html += Row({"image pairs with a relative pose", std::to_string(r.initialization.pairs.constraints) + " of " +
                                                          std::to_string(r.initialization.pairs.pairs)});
+    std::string loops = std::to_string(r.initialization.loops.size()) + " of " +
+                        std::to_string(r.initialization.loop_candidates) + " candidate pairs";
+    for (size_t i = 0; i < r.initialization.loops.size(); ++i) {
+      const std::array<int, 3>& loop = r.initialization.loops[i];
+      loops += (i ? ", " : ": ") + std::string("frames ") + std::to_string(loop[0]) + "-" + std::to_string(loop[1]) +
+               " (" + std::to_string(loop[2]) + " inliers)";
+    }
+    html += Row({"loops closed", loops});
     html += Row({"camera centres moved from the odometry", Num(e.moved_from_odometry_median_m, "%.3f") +
                                                                " m median, " +
                                                                Num(e.moved_from_odometry_max_m, "%.3f") + " m at most"});
