@@ -125,6 +125,9 @@ constexpr double kImageRotationSigmaFloor = 2e-4;
 // as unreliable: the location noise alone gives about one.
 constexpr double kUnreliableRmsLocationSigmas = 3;
 
+// A loop pair needs this many times the inliers of any pair's pose (CloseLoops).
+constexpr int kLoopInlierFactor = 2;
+
 // A measured odometry rotation noise this many times the declared one widens the matcher's gates
 // (MeasureOdometryNoise).
 constexpr double kRematchNoiseFactor = 1.5;
@@ -267,6 +270,8 @@ bool CloseLoops(const Sequence& sequence, const PipelineOptions& options, Progre
     MatchingDiagnostics pair_diagnostics;
     matches.matches = MatchJunctions(result->junctions[a], result->graphs[a], result->junctions[b], result->graphs[b],
                                      geometry, matching, &pair_diagnostics);
+    // A wrong loop bends the whole trajectory: twice the inliers a pair's pose needs.
+    if (pair_diagnostics.refinement.inliers < kLoopInlierFactor * matching.refine_min_inliers) continue;
     VisualConstraintCounts counts;
     if (VisualConstraints({matches}, result->junctions, {pair_diagnostics}, RefinementSettings(matching), &counts)
             .empty()) {
