@@ -53,7 +53,9 @@ bool Camera::HasDistortion() const {
 
 cv::Mat Camera::DistortionCoefficients() const {
   const int count = model == DistortionModel::kEquidistant ? 4 : 5;
-  return cv::Mat(1, count, CV_64F, const_cast<double*>(distortion.data())).clone();
+  cv::Mat coefficients(1, count, CV_64F);
+  for (int i = 0; i < count; ++i) coefficients.at<double>(i) = distortion[i];
+  return coefficients;
 }
 
 Eigen::Vector2d Camera::Distort(const Eigen::Vector2d& normalised) const {
