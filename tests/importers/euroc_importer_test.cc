@@ -5,10 +5,13 @@
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
+#include <sys/wait.h>
 
+#include <algorithm>
 #include <cinttypes>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -165,6 +168,56 @@ TEST(EurocImporterBadInputTest, OdometryThatStopsBeforeTheImagesFails) {
   options.odometry_path.clear();
   status = ReadEurocSequence((scratch / "asl").string(), options, &recorded);
   EXPECT_THAT(status.message(), HasSubstr("holds no wheel odometry; name the robot's odometry file"));
+}
+
+// The program: --format euroc with the odometry and a Kalibr calibration imports (the camchain's
+// T_cam_imu composed with --base_T_body); without --odometry, or with an odometry that stops
+// early, it exits 1 with one line and leaves no output directory.
+TEST(EurocImporterBadInputTest, ImportSequenceProgramImportsOrFailsWithOneLineAndNoOutput) {
+  const fs::path scratch = testing::MakeScratchDir("euroc_app");
+  GeneratorOptions generator;
+  generator.trajectory.num_frames = 3;
+  generator.camera.width = 160;
+  generator.camera.height = 120;
+  generator.camera.fx = generator.camera.fy = 110;
+  generator.write_truth = false;
+  ASSERT_TRUE(GenerateSequence(generator, (scratch / "generated").string(), /*overwrite=*/true).ok());
+  Sequence generated;
+  ASSERT_TRUE(ReadSequence((scratch / "generated").string(), &generated).ok());
+  WriteAslFolder(generated, scratch / "asl");
+  std::ofstream(scratch / "camchain.yaml")
+      << "cam0:\n  T_cam_imu:\n  - [1, 0, 0, 0.1]\n  - [0, 1, 0, 0]\n  - [0, 0, 1, 0]\n  - [0, 0, 0, 1]\n"
+         "  camera_model: pinhole\n  distortion_coeffs: [0, 0, 0, 0]\n  distortion_model: equidistant\n"
+         "  intrinsics: [110, 110, 79.5, 59.5]\n  resolution: [160, 120]\n";
+  std::ofstream(scratch / "short.txt") << "0 0 0 0 0 0 0 1\n0.1 0.1 0 0 0 0 0 1\n";
+  const fs::path out = scratch / "imported";
+  auto run = [&](const std::string& arguments, std::string* error) {
+    const std::string command = std::string(SFM_IMPORT_SEQUENCE_BINARY) + " --format euroc --input " +
+                                (scratch / "asl").string() + " --output " + out.string() + " " + arguments +
+                                " 2>" + (scratch / "stderr.txt").string() + " >/dev/null";
+    const int status = std::system(command.c_str());
+    *error = testing::ReadFile((scratch / "stderr.txt").string());
+    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  };
+  std::string error;
+  EXPECT_EQ(run("", &error), 1);
+  EXPECT_THAT(error, HasSubstr("holds no wheel odometry"));
+  EXPECT_EQ(std::count(error.begin(), error.end(), '\n'), 1) << error;
+  EXPECT_EQ(run("--odometry " + (scratch / "short.txt").string(), &error), 1);
+  EXPECT_THAT(error, HasSubstr("the odometry ends at 0.1 s, before the image at 0.2 s"));
+  EXPECT_FALSE(fs::exists(out));
+
+  ASSERT_EQ(run("--odometry " + (scratch / "generated" / "odometry.txt").string() + " --calibration " +
+                    (scratch / "camchain.yaml").string() + " --base_T_body '0 0 1 0 0 0 1'",
+                &error),
+            0)
+      << error;
+  Sequence imported;
+  ASSERT_TRUE(ReadSequence(out.string(), &imported).ok());
+  EXPECT_EQ(imported.calibration.camera.model, DistortionModel::kEquidistant);
+  // base_T_camera = base_T_imu * T_cam_imu^-1: (0, 0, 1) + (-0.1, 0, 0).
+  EXPECT_LT((imported.calibration.base_T_camera.translation - Eigen::Vector3d(-0.1, 0, 1)).norm(), 1e-12);
+  EXPECT_EQ(imported.frames.size(), 3u);
 }
 
 }  // namespace
