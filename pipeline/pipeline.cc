@@ -1,5 +1,6 @@
 #include "pipeline/pipeline.h"
 
+#include <cmath>
 #include <glog/logging.h>
 
 #include <algorithm>
@@ -496,6 +497,15 @@ void SelectWireframe(const Sequence& sequence, const PipelineOptions& options, P
             << report.lines_uncertain_end0 + report.lines_uncertain_end1 << " undetermined, "
             << report.lines_unbounded << " unbounded; " << report.lines_far_end_at_point
             << " far ends at drawn points";
+  if (!options.topology_edges) return;
+  TopologyEdgeOptions topology = options.topology_edge_options;
+  topology.pixel_sigma_px = report.pixel_sigma_px > 0 ? report.pixel_sigma_px : wireframe.pixel_sigma_px;
+  topology.max_gap_px = -std::log(options.junctions.min_probability) / options.junctions.endpoint_model.mu;
+  AddTopologyEdges(result->junctions, topology, &result->wireframe_landmarks, &result->topology_edges);
+  const TopologyEdgeReport& edges = result->topology_edges;
+  LOG(INFO) << "wireframe: " << edges.edges << " edges between drawn points joined in the images ("
+            << edges.candidates << " candidates, " << edges.unsupported << " not shown by enough of the frames seeing both, "
+            << edges.splits << " splits at points on them); " << edges.lines_dropped << " lines lying on them dropped";
 }
 
 }  // namespace
@@ -513,6 +523,7 @@ Status PipelineOptions::Check() const {
   SFM_RETURN_IF_ERROR(Matching().Check());
   SFM_RETURN_IF_ERROR(triangulation.Check());
   if (extend_tracks) SFM_RETURN_IF_ERROR(track_extension.Check());
+  if (topology_edges) SFM_RETURN_IF_ERROR(topology_edge_options.Check());
   return bundle_adjustment_options.Check();
 }
 

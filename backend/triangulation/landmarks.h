@@ -3,6 +3,7 @@
 // Pixels are undistorted pixels (K only); positions are in the world frame, metres.
 #pragma once
 
+#include <utility>
 #include <vector>
 
 #include <Eigen/Core>
@@ -47,6 +48,9 @@ struct LineLandmark {
 struct Landmarks {
   std::vector<PointLandmark> points;
   std::vector<LineLandmark> lines;
+  // 3D segments between two points (indices into `points`, first < second) that the images show
+  // joined by one line segment (AddTopologyEdges); only the drawn landmarks have them.
+  std::vector<std::pair<int, int>> point_edges;
 };
 
 }  // namespace sfm
