@@ -501,10 +501,12 @@ void SelectWireframe(const Sequence& sequence, const PipelineOptions& options, P
   TopologyEdgeOptions topology = options.topology_edge_options;
   topology.pixel_sigma_px = report.pixel_sigma_px > 0 ? report.pixel_sigma_px : wireframe.pixel_sigma_px;
   topology.max_gap_px = -std::log(options.junctions.min_probability) / options.junctions.endpoint_model.mu;
-  AddTopologyEdges(result->junctions, topology, &result->wireframe_landmarks, &result->topology_edges);
+  topology.min_plane_angle_deg = options.triangulation.line.min_plane_angle_deg;
+  AddTopologyEdges(poses, result->junctions, topology, &result->wireframe_landmarks, &result->topology_edges);
   const TopologyEdgeReport& edges = result->topology_edges;
   LOG(INFO) << "wireframe: " << edges.edges << " edges between drawn points joined in the images ("
             << edges.candidates << " candidates, " << edges.unsupported << " not shown by enough of the frames seeing both, "
+            << edges.undetermined << " in an epipolar plane across the motion, "
             << edges.splits << " splits at points on them); " << edges.lines_dropped << " lines lying on them dropped";
 }
 

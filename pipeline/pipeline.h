@@ -42,9 +42,10 @@ struct PipelineOptions {
   bool extend_tracks = true;
   TrackExtensionOptions track_extension;
   // Wireframe edges between drawn points that the images show joined by one line segment
-  // (topology_edges.h). Of topology_edge_options, pixel_sigma_px and max_gap_px are not read: the
-  // run uses the wireframe selection's pixel noise and the junction detector's end-point allowance,
-  // -ln(junctions.min_probability) / junctions.endpoint_model.mu.
+  // (topology_edges.h). Of topology_edge_options, pixel_sigma_px, max_gap_px and
+  // min_plane_angle_deg are not read: the run uses the wireframe selection's pixel noise, the
+  // junction detector's end-point allowance, -ln(junctions.min_probability) /
+  // junctions.endpoint_model.mu, and the line triangulation's min_plane_angle_deg.
   bool topology_edges = true;
   TopologyEdgeOptions topology_edge_options;
 

@@ -124,6 +124,7 @@ std::string WireframeJson(const PipelineResult& result) {
          ", \"point_edges\": " + std::to_string(result.wireframe_landmarks.point_edges.size()) +
          ", \"point_edge_candidates\": " + std::to_string(edges.candidates) +
          ", \"point_edges_unsupported\": " + std::to_string(edges.unsupported) +
+         ", \"point_edges_undetermined\": " + std::to_string(edges.undetermined) +
          ", \"point_edge_splits\": " + std::to_string(edges.splits) +
          ", \"lines_on_point_edges\": " + std::to_string(edges.lines_dropped) +
          ", \"pixel_sigma_px\": " + JsonNumber(report.pixel_sigma_px) +

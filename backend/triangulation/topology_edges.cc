@@ -50,6 +50,29 @@ bool Joined(const Junction& a, const Junction& b, const TopologyEdgeOptions& opt
   return (reach_a > 0 || reach_b > 0) && reach_a + reach_b >= distance - options.max_gap_px;
 }
 
+// Whether the frames place the 3D segment ab: the planes through it and the camera centres spread
+// by more than the angle whose cosine is min_plane_cos, or, when they do not (the segment lies in
+// an epipolar plane), it is within that angle of the baseline from the first to the last frame.
+bool Placed(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const std::vector<Pose3>& world_T_camera,
+            std::vector<int> frames, double min_plane_cos) {
+  std::sort(frames.begin(), frames.end());
+  std::vector<Eigen::Vector3d> normals;
+  for (const int f : frames) {
+    const Eigen::Vector3d& centre = world_T_camera[f].translation;
+    const Eigen::Vector3d normal = (a - centre).cross(b - centre);
+    if (normal.norm() > 0) normals.push_back(normal.normalized());
+  }
+  for (size_t i = 0; i < normals.size(); ++i) {
+    for (size_t k = i + 1; k < normals.size(); ++k) {
+      if (std::abs(normals[i].dot(normals[k])) < min_plane_cos) return true;
+    }
+  }
+  const Eigen::Vector3d baseline =
+      world_T_camera[frames.back()].translation - world_T_camera[frames.front()].translation;
+  const double lengths = baseline.norm() * (b - a).norm();
+  return lengths > 0 && std::abs(baseline.dot(b - a)) >= min_plane_cos * lengths;
+}
+
 double DistanceToSegment(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
   const Eigen::Vector3d ab = b - a;
   const double length2 = ab.squaredNorm();
@@ -59,8 +82,9 @@ double DistanceToSegment(const Eigen::Vector3d& p, const Eigen::Vector3d& a, con
 
 }  // namespace
 
-void AddTopologyEdges(const std::vector<Junctions>& junctions, const TopologyEdgeOptions& options,
-                      Landmarks* landmarks, TopologyEdgeReport* report) {
+void AddTopologyEdges(const std::vector<Pose3>& world_T_camera, const std::vector<Junctions>& junctions,
+                      const TopologyEdgeOptions& options, Landmarks* landmarks, TopologyEdgeReport* report) {
+  CHECK_EQ(world_T_camera.size(), junctions.size());
   CHECK(options.min_support > 0 && options.min_support <= 1);
   CHECK(options.collinear_deg > 0 && options.collinear_deg < 90);
   TopologyEdgeReport local;
@@ -113,20 +137,26 @@ void AddTopologyEdges(const std::vector<Junctions>& junctions, const TopologyEdg
   local.candidates = static_cast<int>(candidates.size());
 
   // Each candidate against every frame that observes both of its points.
+  const double min_plane_cos = std::cos(options.min_plane_angle_deg * M_PI / 180);
   std::vector<std::pair<int, int>> supported;
   for (const auto& [p, q] : candidates) {
-    int both = 0, joined = 0;
+    int joined = 0;
+    std::vector<int> both;
     for (const auto& [frame, junction_p] : junction_of[p]) {
       const auto it = junction_of[q].find(frame);
       if (it == junction_of[q].end()) continue;
-      ++both;
+      both.push_back(frame);
       joined += Joined(junctions[frame][junction_p], junctions[frame][it->second], options);
     }
-    if (both > 0 && joined >= options.min_support * both - 1e-9) {
-      supported.emplace_back(p, q);
-    } else {
+    if (both.empty() || joined < options.min_support * both.size() - 1e-9) {
       ++local.unsupported;
+      continue;
     }
+    if (!Placed(points[p].position, points[q].position, world_T_camera, both, min_plane_cos)) {
+      ++local.undetermined;
+      continue;
+    }
+    supported.emplace_back(p, q);
   }
 
   // Split at the drawn points lying on an edge (a T where another line ends on it, or a junction

@@ -12,6 +12,7 @@
 
 #include "backend/triangulation/landmarks.h"
 #include "frontend/junctions/junction.h"
+#include "geometry/pose.h"
 #include "util/status.h"
 
 namespace sfm {
@@ -34,6 +35,13 @@ struct TopologyEdgeOptions {
   // line landmark lies on an edge (and is dropped as a duplicate) when both its ends are within
   // tan(collinear_deg) x the edge's length of it. Degrees, in (0, 90).
   double collinear_deg = 2.0;
+  // The images place an edge when the planes through it and the centres of the frames observing
+  // both ends spread by more than this (the line triangulation's observability rule,
+  // LineTriangulationOptions::min_plane_angle_deg). Below it the edge lies in an epipolar plane:
+  // any two points of that plane on one image line look joined in every frame, so the join is
+  // taken only for an edge within this angle of the baseline (the camera centres' displacement
+  // between the first and last of those frames), a line along the motion. Degrees, in (0, 90).
+  double min_plane_angle_deg = 3.0;
 
   Status Check() const {
     if (!(pixel_sigma_px > 0 && std::isfinite(pixel_sigma_px))) {
@@ -46,6 +54,9 @@ struct TopologyEdgeOptions {
     if (!(collinear_deg > 0 && collinear_deg < 90)) {
       return Status::Error("TopologyEdgeOptions: collinear_deg must be in (0, 90)");
     }
+    if (!(min_plane_angle_deg > 0 && min_plane_angle_deg < 90)) {
+      return Status::Error("TopologyEdgeOptions: min_plane_angle_deg must be in (0, 90)");
+    }
     return Status::Ok();
   }
 };
@@ -53,6 +64,7 @@ struct TopologyEdgeOptions {
 struct TopologyEdgeReport {
   int candidates = 0;    // point pairs joined by a segment in some frame
   int unsupported = 0;   // of them, not shown by enough of the frames that observe both points
+  int undetermined = 0;  // of the others, in an epipolar plane and not along the baseline
   int edges = 0;         // edges after splitting at points on them and removing duplicates
   int splits = 0;        // points an edge was split at
   int lines_dropped = 0;  // line landmarks lying on an edge
@@ -64,9 +76,11 @@ struct TopologyEdgeReport {
 // points' junctions that use one detected line segment (JunctionSegment::line_segment). It is kept
 // when, in at least min_support of the frames that observe both P and Q, their junctions share a
 // detected line segment or have junction segments pointing at each other that cover the distance
-// between them but for max_gap_px. Kept edges are split at every drawn point lying on them, then
+// between them but for max_gap_px, and the images place it (min_plane_angle_deg, with the camera
+// centres of world_T_camera). Kept edges are split at every drawn point lying on them, then
 // duplicates are removed. The landmarks are those to draw (SelectWireframeLandmarks).
-void AddTopologyEdges(const std::vector<Junctions>& junctions, const TopologyEdgeOptions& options,
-                      Landmarks* landmarks, TopologyEdgeReport* report = nullptr);
+void AddTopologyEdges(const std::vector<Pose3>& world_T_camera, const std::vector<Junctions>& junctions,
+                      const TopologyEdgeOptions& options, Landmarks* landmarks,
+                      TopologyEdgeReport* report = nullptr);
 
 }  // namespace sfm
