@@ -187,13 +187,13 @@ void AddTopologyEdges(const std::vector<Pose3>& world_T_camera, const std::vecto
   landmarks->point_edges.assign(edges.begin(), edges.end());
   local.edges = static_cast<int>(edges.size());
 
-  // Line landmarks lying on an edge duplicate it: the edge ends at measured points, the line at an
-  // extrapolated far end.
+  // Line landmarks lying on an edge (before its splits) duplicate it: the edge ends at measured
+  // points, the line at an extrapolated far end.
   std::vector<LineLandmark> lines;
   lines.reserve(landmarks->lines.size());
   for (LineLandmark& line : landmarks->lines) {
     bool on_edge = false;
-    for (const auto& [p, q] : landmarks->point_edges) {
+    for (const auto& [p, q] : supported) {
       const Eigen::Vector3d a = points[p].position, b = points[q].position;
       const double bound = tolerance * (b - a).norm();
       if (DistanceToSegment(line.end0, a, b) <= bound && DistanceToSegment(line.end1, a, b) <= bound) {
