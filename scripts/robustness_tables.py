@@ -81,6 +81,7 @@ def figures(work, name):
         "tracks": m.get("tracks"),
         "share": w.get("share") if w else None,
         "completeness": w.get("completeness") if w else None,
+        "edge_share": w.get("edge_share") if w else None,
         "vertices": w.get("vertices") if w else None,
         "time": (m.get("time_s") or {}).get("total"),
     }
@@ -155,17 +156,17 @@ def main():
     print("\n### Per sequence\n")
     print("| sequence | scene | variant | noise | seed | ATE odometry m | ATE refined m | ratio | Sim(3) ATE odometry m | "
           "Sim(3) ATE refined m | Sim(3) ratio | tracks | points | lines | wireframe vertices | within 5 cm | "
-          "completeness | time s |")
-    print("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
+          "completeness | edge length within 5 cm | time s |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
     for name, scene, variant, level, seed, x in rows:
         if x["failed"]:
             print(f"| {name} | {scene} | {variant} | {level:g}x | {seed} | failed: {x['failed']} |"
-                  + " - |" * 12)
+                  + " - |" * 13)
             continue
         print(f"| {name} | {scene} | {variant} | {level:g}x | {seed} | {fmt(x['ate_odo'])} | {fmt(x['ate_ref'])} | "
               f"{fmt(x['ratio'], 2)} | {fmt(x['sim3_odo'])} | {fmt(x['sim3_ref'])} | {fmt(x['sim3_ratio'], 2)} | "
               f"{fmt(x['tracks'])} | {fmt(x['points'])} | {fmt(x['lines'])} | {fmt(x['vertices'])} | "
-              f"{fmt(x['share'])} | {fmt(x['completeness'])} | {fmt(x['time'], 2)} |")
+              f"{fmt(x['share'])} | {fmt(x['completeness'])} | {fmt(x['edge_share'])} | {fmt(x['time'], 2)} |")
 
 
 if __name__ == "__main__":

@@ -19,6 +19,7 @@
 // Prints one JSON object on stdout:
 //   {"vertices": N, "edges": E, "threshold_m": t, "within": n, "share": n/N (precision), "median_m": ..,
 //    "p90_m": .., "seen_length_m": .., "covered_length_m": .., "completeness": ..,
+//    "edge_length_m": .., "edge_share": (edge precision),
 //    "by_direction": {"along": {"vertices": .., "share": .., "seen_length_m": .., "completeness": ..},
 //                     "across": {..}, "vertical": {..}},
 //    "scaled": {"scale": s, and the same figures}}
@@ -65,6 +66,8 @@ std::string FiguresJson(const sfm::WireframeFigures& figures) {
                      ", \"p90_m\": " + Number(figures.p90_m) + ", \"seen_length_m\": " +
                      Number(figures.seen_length_m) + ", \"covered_length_m\": " +
                      Number(figures.covered_length_m) + ", \"completeness\": " + Number(figures.completeness) +
+                     ", \"edge_length_m\": " + Number(figures.edge_length_m) + ", \"edge_share\": " +
+                     Number(figures.edge_precision) +
                      ", \"by_direction\": {";
   for (int k = 0; k < sfm::kEdgeDirections; ++k) {
     json += std::string(k ? ", " : "") + "\"" + sfm::EdgeDirectionName(static_cast<sfm::EdgeDirection>(k)) +

@@ -157,6 +157,27 @@ WireframeFigures EvaluateWireframe(const std::vector<Eigen::Vector3d>& vertices,
     }
   }
   figures.completeness = figures.seen_length_m > 0 ? figures.covered_length_m / figures.seen_length_m : nan;
+
+  // Edge precision: samples along the reconstructed edges against every true edge.
+  for (const auto& [first, second] : edges) {
+    const Eigen::Vector3d a = vertices[first], b = vertices[second];
+    const double length = (b - a).norm();
+    if (!(length > 0)) continue;
+    const int pieces = std::max(1, static_cast<int>(std::ceil(length / options.sample_step_m - 1e-9)));
+    const double piece = length / pieces;
+    figures.edge_length_m += length;
+    for (int i = 0; i < pieces; ++i) {
+      const Eigen::Vector3d sample = a + ((i + 0.5) / pieces) * (b - a);
+      for (const WireEdge& edge : truth.edges) {
+        if (DistanceToSegment(sample, truth.vertices[edge.vertex_a], truth.vertices[edge.vertex_b]) <=
+            options.threshold_m) {
+          figures.edge_within_m += piece;
+          break;
+        }
+      }
+    }
+  }
+  figures.edge_precision = figures.edge_length_m > 0 ? figures.edge_within_m / figures.edge_length_m : nan;
   return figures;
 }
 

@@ -6,7 +6,8 @@
 // `threshold_m` of a reconstructed edge, measured at samples every `sample_step_m` along each true
 // edge. A true edge is seen when one of its vertices is visible in at least `min_views` frames.
 // Both figures are also given per direction of the true edge: along the robot's motion, across it,
-// vertical.
+// vertical. Edge precision: the share of the reconstructed edges' length within `threshold_m` of a
+// true edge (a wrong join between two good vertices lowers it, not the vertex precision).
 #pragma once
 
 #include <array>
@@ -49,6 +50,9 @@ struct WireframeFigures {
   double seen_length_m = 0;     // total length of the seen true edges
   double covered_length_m = 0;  // of it, the length within threshold_m of a reconstructed edge
   double completeness = 0;      // covered / seen (NaN when nothing is seen)
+  double edge_length_m = 0;     // total length of the reconstructed edges
+  double edge_within_m = 0;     // of it, the length within threshold_m of a true edge
+  double edge_precision = 0;    // edge_within / edge_length (NaN without edges of positive length)
   // Per EdgeDirection: vertices by the direction of their nearest true edge, lengths by their edge's.
   std::array<int, kEdgeDirections> vertices_by_direction{}, within_by_direction{};
   std::array<double, kEdgeDirections> seen_length_by_direction{}, covered_length_by_direction{};
@@ -56,8 +60,8 @@ struct WireframeFigures {
 
 // The figures of a reconstructed wireframe (vertices, edges as index pairs into them) against
 // `truth`, with `seen` and `direction` per true edge (SeenTrueEdges, ClassifyTrueEdges; CHECKed to
-// have one entry per edge). A true edge of length L is sampled at the midpoints of ceil(L / step)
-// equal pieces, each standing for its piece's length.
+// have one entry per edge). An edge of length L (true, or reconstructed for the edge precision) is
+// sampled at the midpoints of ceil(L / step) equal pieces, each standing for its piece's length.
 WireframeFigures EvaluateWireframe(const std::vector<Eigen::Vector3d>& vertices,
                                    const std::vector<std::pair<int, int>>& edges, const Wireframe& truth,
                                    const std::vector<bool>& seen, const std::vector<EdgeDirection>& direction,

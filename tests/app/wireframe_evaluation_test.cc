@@ -55,6 +55,13 @@ TEST(EvaluateWireframe, ExactSharesOnHandBuiltEdges) {
   EXPECT_NEAR(figures.covered_length_by_direction[0] / figures.seen_length_by_direction[0], 0.50, 1e-12);
   EXPECT_NEAR(figures.covered_length_by_direction[2] / figures.seen_length_by_direction[2], 0.52, 1e-12);
   EXPECT_EQ(figures.seen_length_by_direction[1], 0.0);
+
+  // Edge precision: r0 (0.46 m) and r2 (2 m) lie within 5 cm of a true edge; of r1 (1.495 m, z from
+  // 0.505 to 2, 4 cm beside e1) the part up to z = 1.03 (4 cm beside, 3 cm above e1's top: 5 cm) is.
+  // Pieces of r1: 75 of 1.495 / 75 m, midpoints at z = 0.505 + (i + 0.5) 0.019933: those up to 1.03,
+  // i <= 25, are within (26 pieces).
+  EXPECT_NEAR(figures.edge_length_m, 0.46 + 1.495 + 2, 1e-12);
+  EXPECT_NEAR(figures.edge_within_m, 0.46 + 26 * 1.495 / 75 + 2, 1e-12);
 }
 
 // Points alone cover nothing; an edge lying on a true edge covers all of it; nothing seen: NaN.
