@@ -146,7 +146,8 @@ std::string SummarySection(const Context& c) {
   html += Row({"3D lines", std::to_string(r.landmarks.lines.size()),
                std::to_string(r.unobservable_lines) + " more dropped as parallel to the motion"});
   html += Row({"wireframe", std::to_string(r.wireframe_landmarks.points.size()) + " points, " +
-                                std::to_string(r.wireframe_landmarks.lines.size()) + " lines",
+                                std::to_string(r.wireframe_landmarks.lines.size()) + " lines, " +
+                                std::to_string(r.wireframe_landmarks.point_edges.size()) + " edges between points",
                "drawn: consistent with their views and well determined (pixel noise " +
                    Num(r.wireframe_selection.pixel_sigma_px, "%.2f") + " px)"});
   html += "</table>\n";
@@ -438,6 +439,11 @@ cv::Mat WireframeView(const Context& c, int h, int v, const std::string& title) 
     segments.push_back({line.end0[h], line.end0[v], line.end1[h], line.end1[v]});
     hs.push_back(line.end0[h]), hs.push_back(line.end1[h]), vs.push_back(line.end0[v]), vs.push_back(line.end1[v]);
   }
+  for (const auto& [a, b] : landmarks.point_edges) {  // between points, drawn as markers below
+    const Eigen::Vector3d& p = landmarks.points[a].position;
+    const Eigen::Vector3d& q = landmarks.points[b].position;
+    segments.push_back({p[h], p[v], q[h], q[v]});
+  }
   std::vector<double> px, py;
   for (const PointLandmark& point : landmarks.points) {
     px.push_back(point.position[h]), py.push_back(point.position[v]);
@@ -488,8 +494,9 @@ std::string WireframeSection(const Context& c) {
   const double spread_b = Quantile(along_b, 0.98) - Quantile(along_b, 0.02);
   const int side = spread_b > spread_a ? b : a;
   html += Note("The 3D lines and points of wireframe.ply projected orthographically, with the camera path; " +
-               std::to_string(landmarks.lines.size()) + " lines, " + std::to_string(landmarks.points.size()) +
-               " points. The view is framed on the bulk of the map (2nd to 98th percentile of the coordinates); "
+               std::to_string(landmarks.lines.size() + landmarks.point_edges.size()) + " edges (" +
+               std::to_string(landmarks.point_edges.size()) + " between points joined in the images), " +
+               std::to_string(landmarks.points.size()) + " points. The view is framed on the bulk of the map (2nd to 98th percentile of the coordinates); "
                "what lies further out is cut off at the frame.");
   html += Figure(WireframeView(c, a, b, "wireframe seen from above"), "wireframe from above",
                  "From above: " + std::string(kAxisName[a]) + " to the right, " + kAxisName[b] + " up.");
