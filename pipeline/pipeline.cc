@@ -1,10 +1,10 @@
 #include "pipeline/pipeline.h"
 
-#include <cmath>
 #include <glog/logging.h>
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <filesystem>
 #include <opencv2/core.hpp>
 #include <sstream>
@@ -21,7 +21,6 @@
 #include "backend/triangulation/reconstruction.h"
 #include "backend/triangulation/track_extension.h"
 #include "backend/triangulation/triangulate_tracks.h"
-#include "geometry/image_undistorter.h"
 #include "frontend/junctions/junction_detector.h"
 #include "frontend/junctions/topology.h"
 #include "frontend/matching/junction_matcher.h"
@@ -29,10 +28,11 @@
 #include "frontend/segments/undistorted_segments.h"
 #include "frontend/sequence/sequence.h"
 #include "frontend/tracks/tracks.h"
-#include "util/atomic_file.h"
-#include "util/progress.h"
+#include "geometry/image_undistorter.h"
 #include "pipeline/pipeline_outputs.h"
 #include "pipeline/report/report.h"
+#include "util/atomic_file.h"
+#include "util/progress.h"
 
 namespace sfm {
 namespace {
@@ -505,9 +505,10 @@ void SelectWireframe(const Sequence& sequence, const PipelineOptions& options, P
   AddTopologyEdges(poses, result->junctions, topology, &result->wireframe_landmarks, &result->topology_edges);
   const TopologyEdgeReport& edges = result->topology_edges;
   LOG(INFO) << "wireframe: " << edges.edges << " edges between drawn points joined in the images ("
-            << edges.candidates << " candidates, " << edges.unsupported << " not shown by enough of the frames seeing both, "
-            << edges.undetermined << " in an epipolar plane across the motion, "
-            << edges.splits << " splits at points on them); " << edges.lines_dropped << " lines lying on them dropped";
+            << edges.candidates << " candidates, " << edges.unsupported
+            << " not shown by enough of the frames seeing both, " << edges.undetermined
+            << " in an epipolar plane across the motion, " << edges.splits << " splits at points on them); "
+            << edges.lines_dropped << " lines lying on them dropped";
 }
 
 }  // namespace

@@ -5,15 +5,15 @@
 #include <string>
 
 #include "backend/bundle_adjustment/bundle_adjustment_options.h"
+#include "backend/triangulation/topology_edges.h"
 #include "backend/triangulation/track_extension.h"
 #include "backend/triangulation/triangulation_options.h"
-#include "geometry/image_undistorter.h"
 #include "frontend/junctions/junction_options.h"
-#include "backend/triangulation/topology_edges.h"
 #include "frontend/matching/matching_options.h"
 #include "frontend/segments/segment_detector.h"
-#include "util/status.h"
+#include "geometry/image_undistorter.h"
 #include "pipeline/pipeline_result.h"
+#include "util/status.h"
 
 namespace sfm {
 

@@ -8,10 +8,10 @@
 
 #include "backend/export/colmap_model.h"
 #include "backend/export/ply_io.h"
-#include "geometry/tum_io.h"
 #include "frontend/junctions/junctions_json.h"
 #include "frontend/matching/matches_csv.h"
 #include "frontend/tracks/tracks_csv.h"
+#include "geometry/tum_io.h"
 #include "util/atomic_file.h"
 #include "util/json_format.h"
 
@@ -77,7 +77,8 @@ ColmapModel ColmapModelOf(const Sequence& sequence, const std::vector<Pose3>& wo
   // when every point has a track (else the writer's index + 1).
   const bool tracked = std::all_of(landmarks.points.begin(), landmarks.points.end(),
                                    [](const PointLandmark& point) { return point.track_id >= 0; });
-  for (size_t i = 0; tracked && i < model.points.size(); ++i) model.points[i].id = landmarks.points[i].track_id + 1;
+  for (size_t i = 0; tracked && i < model.points.size(); ++i)
+    model.points[i].id = landmarks.points[i].track_id + 1;
   return model;
 }
 

@@ -13,9 +13,9 @@
 #include "backend/triangulation/landmarks.h"
 #include "backend/triangulation/topology_edges.h"
 #include "backend/triangulation/wireframe_selection.h"
-#include "geometry/pose.h"
 #include "frontend/junctions/junction.h"
 #include "frontend/tracks/tracks.h"
+#include "geometry/pose.h"
 
 namespace sfm {
 

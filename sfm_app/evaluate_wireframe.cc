@@ -25,6 +25,11 @@
 //    "scaled": {"scale": s, and the same figures}}
 // ("scaled" is null when the trajectories are missing). Errors: one line on stderr, exit 1 (bad
 // input) or 2 (bad flags).
+#include <gflags/gflags.h>
+#include <glog/logging.h>
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -32,11 +37,6 @@
 #include <limits>
 #include <string>
 #include <vector>
-
-#include <Eigen/Core>
-#include <Eigen/Geometry>
-#include <gflags/gflags.h>
-#include <glog/logging.h>
 
 #include "backend/export/ply_io.h"
 #include "geometry/tum_io.h"
@@ -61,14 +61,14 @@ double Share(double part, double whole) {
 }
 
 std::string FiguresJson(const sfm::WireframeFigures& figures) {
-  std::string json = "\"within\": " + std::to_string(figures.within) + ", \"share\": " +
-                     Number(figures.precision) + ", \"median_m\": " + Number(figures.median_m) +
-                     ", \"p90_m\": " + Number(figures.p90_m) + ", \"seen_length_m\": " +
-                     Number(figures.seen_length_m) + ", \"covered_length_m\": " +
-                     Number(figures.covered_length_m) + ", \"completeness\": " + Number(figures.completeness) +
-                     ", \"edge_length_m\": " + Number(figures.edge_length_m) + ", \"edge_share\": " +
-                     Number(figures.edge_precision) +
-                     ", \"by_direction\": {";
+  std::string json = "\"within\": " + std::to_string(figures.within) +
+                     ", \"share\": " + Number(figures.precision) +
+                     ", \"median_m\": " + Number(figures.median_m) + ", \"p90_m\": " + Number(figures.p90_m) +
+                     ", \"seen_length_m\": " + Number(figures.seen_length_m) +
+                     ", \"covered_length_m\": " + Number(figures.covered_length_m) +
+                     ", \"completeness\": " + Number(figures.completeness) +
+                     ", \"edge_length_m\": " + Number(figures.edge_length_m) +
+                     ", \"edge_share\": " + Number(figures.edge_precision) + ", \"by_direction\": {";
   for (int k = 0; k < sfm::kEdgeDirections; ++k) {
     json += std::string(k ? ", " : "") + "\"" + sfm::EdgeDirectionName(static_cast<sfm::EdgeDirection>(k)) +
             "\": {\"vertices\": " + std::to_string(figures.vertices_by_direction[k]) + ", \"share\": " +

@@ -1,10 +1,10 @@
 #include "sfm_app/wireframe_evaluation.h"
 
+#include <glog/logging.h>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
-
-#include <glog/logging.h>
 
 namespace sfm {
 
@@ -110,8 +110,8 @@ WireframeFigures EvaluateWireframe(const std::vector<Eigen::Vector3d>& vertices,
     double best = std::numeric_limits<double>::infinity();
     int nearest = -1;
     for (size_t e = 0; e < truth.edges.size(); ++e) {
-      const double distance =
-          DistanceToSegment(p, truth.vertices[truth.edges[e].vertex_a], truth.vertices[truth.edges[e].vertex_b]);
+      const double distance = DistanceToSegment(p, truth.vertices[truth.edges[e].vertex_a],
+                                                truth.vertices[truth.edges[e].vertex_b]);
       if (distance < best) {
         best = distance;
         nearest = static_cast<int>(e);

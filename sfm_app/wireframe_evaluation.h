@@ -10,11 +10,10 @@
 // true edge (a wrong join between two good vertices lowers it, not the vertex precision).
 #pragma once
 
+#include <Eigen/Core>
 #include <array>
 #include <utility>
 #include <vector>
-
-#include <Eigen/Core>
 
 #include "sequences/generator/ground_truth.h"
 
@@ -43,9 +42,9 @@ std::vector<EdgeDirection> ClassifyTrueEdges(const GroundTruth& truth);
 
 struct WireframeFigures {
   int vertices = 0;
-  int within = 0;            // vertices within threshold_m of a true edge
-  double precision = 0;      // within / vertices (NaN without vertices)
-  double median_m = 0;       // of the vertices' distances to the nearest true edge (NaN without vertices)
+  int within = 0;        // vertices within threshold_m of a true edge
+  double precision = 0;  // within / vertices (NaN without vertices)
+  double median_m = 0;   // of the vertices' distances to the nearest true edge (NaN without vertices)
   double p90_m = 0;
   double seen_length_m = 0;     // total length of the seen true edges
   double covered_length_m = 0;  // of it, the length within threshold_m of a reconstructed edge

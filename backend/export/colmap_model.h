@@ -49,8 +49,8 @@ struct ColmapModel {
 // - colour is a fixed grey (junctions carry none); ERROR is the mean reprojection error in pixels
 //   with K, or -1 (COLMAP's "unknown") when the point is not in front of every observing camera.
 // Observation image indices must be valid (CHECKed). Fails, naming the file, on a POINT3D_ID used
-// twice, an image name that is empty or holds whitespace (COLMAP splits lines on spaces), a non-finite pose, point or pixel,
-// or when the directory or a file cannot be written.
+// twice, an image name that is empty or holds whitespace (COLMAP splits lines on spaces), a non-finite pose,
+// point or pixel, or when the directory or a file cannot be written.
 Status WriteColmapModel(const std::string& directory, const ColmapModel& model);
 
 // Whether COLMAP's images.txt can hold `name` as an image's NAME: not empty, no white space.

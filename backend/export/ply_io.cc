@@ -11,9 +11,9 @@
 #include <utility>
 #include <vector>
 
+#include "util/atomic_file.h"
 #include "util/number_text.h"
 #include "util/text_file.h"
-#include "util/atomic_file.h"
 
 namespace sfm {
 namespace {

@@ -24,8 +24,8 @@ Status FormatPly(const ReconstructedWireframe& wireframe, std::string* text);
 Status WritePly(const std::string& path, const ReconstructedWireframe& wireframe);
 
 // Reads an ASCII PLY file holding `element vertex` with scalar properties x, y, z, optionally
-// track_id (others are ignored) and optionally `element edge` with vertex1, vertex2; other elements are skipped.
-// Enough for our own files and the tests; binary PLY is reported as unsupported. Fails, naming the
+// track_id (others are ignored) and optionally `element edge` with vertex1, vertex2; other elements are
+// skipped. Enough for our own files and the tests; binary PLY is reported as unsupported. Fails, naming the
 // file and line, on a malformed header or data line and on an edge index outside the vertices.
 Status ReadPly(const std::string& path, ReconstructedWireframe* wireframe);
 

@@ -3,10 +3,9 @@
 // Pixels are undistorted pixels (K only); positions are in the world frame, metres.
 #pragma once
 
+#include <Eigen/Core>
 #include <utility>
 #include <vector>
-
-#include <Eigen/Core>
 
 namespace sfm {
 

@@ -1,13 +1,13 @@
 #include "backend/triangulation/topology_edges.h"
 
+#include <glog/logging.h>
+
 #include <algorithm>
 #include <cmath>
 #include <map>
 #include <set>
 #include <unordered_map>
 #include <utility>
-
-#include <glog/logging.h>
 
 namespace sfm {
 namespace {
@@ -175,7 +175,8 @@ void AddTopologyEdges(const std::vector<Pose3>& world_T_camera, const std::vecto
       const double t = (x - a).dot(ab) / length2;
       if (t <= 0 || t >= 1) continue;
       const double off = (x - (a + t * ab)).norm();
-      if (off <= tolerance * std::min((x - a).norm(), (x - b).norm())) chain.emplace_back(t, static_cast<int>(r));
+      if (off <= tolerance * std::min((x - a).norm(), (x - b).norm()))
+        chain.emplace_back(t, static_cast<int>(r));
     }
     std::sort(chain.begin(), chain.end());
     local.splits += static_cast<int>(chain.size()) - 2;

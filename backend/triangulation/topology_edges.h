@@ -5,10 +5,9 @@
 // can as points). docs/tracks_and_triangulation.md, "Edges from the junction topology".
 #pragma once
 
+#include <Eigen/Core>
 #include <cmath>
 #include <vector>
-
-#include <Eigen/Core>
 
 #include "backend/triangulation/landmarks.h"
 #include "frontend/junctions/junction.h"
@@ -50,7 +49,8 @@ struct TopologyEdgeOptions {
     if (!(max_gap_px >= 0 && std::isfinite(max_gap_px))) {
       return Status::Error("TopologyEdgeOptions: max_gap_px must be finite and >= 0");
     }
-    if (!(min_support > 0 && min_support <= 1)) return Status::Error("TopologyEdgeOptions: min_support must be in (0, 1]");
+    if (!(min_support > 0 && min_support <= 1))
+      return Status::Error("TopologyEdgeOptions: min_support must be in (0, 1]");
     if (!(collinear_deg > 0 && collinear_deg < 90)) {
       return Status::Error("TopologyEdgeOptions: collinear_deg must be in (0, 90)");
     }
@@ -62,11 +62,11 @@ struct TopologyEdgeOptions {
 };
 
 struct TopologyEdgeReport {
-  int candidates = 0;    // point pairs joined by a segment in some frame
-  int unsupported = 0;   // of them, not shown by enough of the frames that observe both points
-  int undetermined = 0;  // of the others, in an epipolar plane and not along the baseline
-  int edges = 0;         // edges after splitting at points on them and removing duplicates
-  int splits = 0;        // points an edge was split at
+  int candidates = 0;     // point pairs joined by a segment in some frame
+  int unsupported = 0;    // of them, not shown by enough of the frames that observe both points
+  int undetermined = 0;   // of the others, in an epipolar plane and not along the baseline
+  int edges = 0;          // edges after splitting at points on them and removing duplicates
+  int splits = 0;         // points an edge was split at
   int lines_dropped = 0;  // line landmarks lying on an edge
 };
 

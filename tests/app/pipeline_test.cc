@@ -2,18 +2,18 @@
 // written and readable, and the bundle adjustment improves on the odometry.
 #include "pipeline/pipeline.h"
 
-#include <filesystem>
-#include <set>
-#include <map>
-#include <fstream>
-#include <sstream>
-
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <set>
+#include <sstream>
+
 #include "backend/export/ply_io.h"
-#include "geometry/tum_io.h"
 #include "frontend/junctions/junctions_json.h"
+#include "geometry/tum_io.h"
 #include "sequences/generator/sequence_writer.h"
 #include "tests/test_data.h"
 

@@ -8,7 +8,8 @@
 namespace sfm {
 namespace {
 
-Wireframe TrueWireframe(const std::vector<Eigen::Vector3d>& vertices, const std::vector<std::pair<int, int>>& edges) {
+Wireframe TrueWireframe(const std::vector<Eigen::Vector3d>& vertices,
+                        const std::vector<std::pair<int, int>>& edges) {
   Wireframe wireframe;
   wireframe.vertices = vertices;
   for (const auto& [a, b] : edges) {
@@ -26,13 +27,13 @@ Wireframe TrueWireframe(const std::vector<Eigen::Vector3d>& vertices, const std:
 // 0.50 m); r1 4 cm beside e1 from z = 0.505 to 2 (covers the samples from 0.49: 26 of 50, 0.52 m);
 // r2 on e2 (not seen: no length counted); a lone vertex 20 cm from e0.
 TEST(EvaluateWireframe, ExactSharesOnHandBuiltEdges) {
-  const Wireframe truth =
-      TrueWireframe({{0, 0, 0}, {1, 0, 0}, {5, 0, 0}, {5, 0, 1}, {10, 0, 0}, {12, 0, 0}}, {{0, 1}, {2, 3}, {4, 5}});
+  const Wireframe truth = TrueWireframe({{0, 0, 0}, {1, 0, 0}, {5, 0, 0}, {5, 0, 1}, {10, 0, 0}, {12, 0, 0}},
+                                        {{0, 1}, {2, 3}, {4, 5}});
   const std::vector<bool> seen = {true, true, false};
   const std::vector<EdgeDirection> direction = {EdgeDirection::kAlong, EdgeDirection::kVertical,
                                                 EdgeDirection::kAcross};
-  const std::vector<Eigen::Vector3d> vertices = {{0, 0.03, 0},   {0.46, 0.03, 0}, {5.04, 0, 0.505}, {5.04, 0, 2},
-                                                 {0.5, 0.2, 0}, {10, 0, 0},      {12, 0, 0}};
+  const std::vector<Eigen::Vector3d> vertices = {
+      {0, 0.03, 0}, {0.46, 0.03, 0}, {5.04, 0, 0.505}, {5.04, 0, 2}, {0.5, 0.2, 0}, {10, 0, 0}, {12, 0, 0}};
   const std::vector<std::pair<int, int>> edges = {{0, 1}, {2, 3}, {5, 6}};
   const WireframeFigures figures =
       EvaluateWireframe(vertices, edges, truth, seen, direction, WireframeEvaluationOptions());
@@ -71,16 +72,18 @@ TEST(EvaluateWireframe, PointsAloneAreNotComplete) {
   const WireframeEvaluationOptions options;
   const std::vector<Eigen::Vector3d> vertices = {{0, 0, 0}, {0.3, 0, 0}};
   EXPECT_EQ(EvaluateWireframe(vertices, {}, truth, {true}, direction, options).completeness, 0.0);
-  EXPECT_NEAR(EvaluateWireframe(vertices, {{0, 1}}, truth, {true}, direction, options).completeness, 1.0, 1e-12);
-  EXPECT_TRUE(std::isnan(EvaluateWireframe(vertices, {{0, 1}}, truth, {false}, direction, options).completeness));
+  EXPECT_NEAR(EvaluateWireframe(vertices, {{0, 1}}, truth, {true}, direction, options).completeness, 1.0,
+              1e-12);
+  EXPECT_TRUE(
+      std::isnan(EvaluateWireframe(vertices, {{0, 1}}, truth, {false}, direction, options).completeness));
 }
 
 // Three frames moving along +x. Vertex 0 is seen in all three, vertex 1 in two, vertex 2 in one.
 TEST(SeenAndClassifiedTrueEdges, ByViewsAndByMotion) {
   GroundTruth truth;
-  truth.wireframe = TrueWireframe(
-      {{0, 5, 0}, {3, 5, 0}, {3, 8, 0}, {3, 8, 2}, {0, 6, 0}, {0, 7, 0}, {0, 7, 1}},
-      {{0, 1}, {1, 2}, {2, 3}, {0, 4}, {4, 5}, {5, 6}});
+  truth.wireframe =
+      TrueWireframe({{0, 5, 0}, {3, 5, 0}, {3, 8, 0}, {3, 8, 2}, {0, 6, 0}, {0, 7, 0}, {0, 7, 1}},
+                    {{0, 1}, {1, 2}, {2, 3}, {0, 4}, {4, 5}, {5, 6}});
   // Extra edges in the horizontal plane at 44 and 46 degrees from the motion, and one at 46 degrees
   // from the horizontal (vertical).
   const double to_rad = M_PI / 180;
@@ -112,9 +115,9 @@ TEST(SeenAndClassifiedTrueEdges, ByViewsAndByMotion) {
   EXPECT_EQ(SeenTrueEdges(truth, 2)[1], true);
   const std::vector<EdgeDirection> direction = ClassifyTrueEdges(truth);
   const std::vector<EdgeDirection> expected = {
-      EdgeDirection::kAlong,    EdgeDirection::kAcross, EdgeDirection::kVertical,
-      EdgeDirection::kAcross,   EdgeDirection::kAcross, EdgeDirection::kVertical,
-      EdgeDirection::kAlong,    EdgeDirection::kAcross, EdgeDirection::kVertical};
+      EdgeDirection::kAlong,  EdgeDirection::kAcross, EdgeDirection::kVertical,
+      EdgeDirection::kAcross, EdgeDirection::kAcross, EdgeDirection::kVertical,
+      EdgeDirection::kAlong,  EdgeDirection::kAcross, EdgeDirection::kVertical};
   EXPECT_EQ(direction, expected);
 }
 

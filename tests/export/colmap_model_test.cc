@@ -228,7 +228,8 @@ TEST(ColmapModelTest, BadModelsAreRejectedWithoutFiles) {
   repeated.points[0].id = 2;  // point 1 has none: index + 1 = 2
   const Status ids = WriteColmapModel(dir + "/repeated", repeated);
   EXPECT_FALSE(ids.ok());
-  EXPECT_NE(ids.message().find("points3D.txt: point 1 repeats the POINT3D_ID 2"), std::string::npos) << ids.message();
+  EXPECT_NE(ids.message().find("points3D.txt: point 1 repeats the POINT3D_ID 2"), std::string::npos)
+      << ids.message();
   EXPECT_TRUE(std::filesystem::is_empty(dir));
 }
 

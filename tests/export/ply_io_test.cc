@@ -63,10 +63,11 @@ TEST(PlyTest, TrackIdsAreAVertexPropertyAfterXyz) {
   wireframe.edges = {{0, 1}, {1, 2}};
   wireframe.track_ids = {7, -1, 0};
   ASSERT_TRUE(WritePly(dir + "/wireframe.ply", wireframe).ok());
-  EXPECT_EQ(ReadFile(dir + "/wireframe.ply"),
-            "ply\nformat ascii 1.0\nelement vertex 3\nproperty double x\nproperty double y\nproperty double z\n"
-            "property int track_id\nelement edge 2\nproperty int vertex1\nproperty int vertex2\nend_header\n"
-            "0 0 0 7\n1 0 0 -1\n1 2 0 0\n0 1\n1 2\n");
+  EXPECT_EQ(
+      ReadFile(dir + "/wireframe.ply"),
+      "ply\nformat ascii 1.0\nelement vertex 3\nproperty double x\nproperty double y\nproperty double z\n"
+      "property int track_id\nelement edge 2\nproperty int vertex1\nproperty int vertex2\nend_header\n"
+      "0 0 0 7\n1 0 0 -1\n1 2 0 0\n0 1\n1 2\n");
   ReconstructedWireframe back;
   ASSERT_TRUE(ReadPly(dir + "/wireframe.ply", &back).ok());
   EXPECT_EQ(back.track_ids, wireframe.track_ids);

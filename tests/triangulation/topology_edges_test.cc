@@ -33,12 +33,12 @@ enum Point { kA, kB, kC, kM, kD, kE, kG };
 Scene DoorwayScene() {
   Scene scene;
   scene.points = {
-      {4, -1, 0.5},   // A: threshold's left end
-      {4, 1, 0.5},    // B: threshold's right end (A-B across the motion)
-      {4, 1, 2},      // C: above B (B-C vertical)
-      {4, 0, 0.5},    // M: on A-B, a junction that uses another image segment (a T's stem)
-      {3, -1, 2.2},   // D: a ceiling line along the motion, D-E
-      {6, -1, 2.2},   // E
+      {4, -1, 0.5},    // A: threshold's left end
+      {4, 1, 0.5},     // B: threshold's right end (A-B across the motion)
+      {4, 1, 2},       // C: above B (B-C vertical)
+      {4, 0, 0.5},     // M: on A-B, a junction that uses another image segment (a T's stem)
+      {3, -1, 2.2},    // D: a ceiling line along the motion, D-E
+      {6, -1, 2.2},    // E
       {9, -0.5, 1.6},  // G: in the epipolar plane of D-E but off its line: joined to E in every image
   };
   scene.joins = {{kA, kB, {}}, {kB, kC, {}}, {kD, kE, {}}, {kE, kG, {}}, {kC, kD, {0}}};
@@ -46,8 +46,8 @@ Scene DoorwayScene() {
 }
 
 // Junctions per frame (junction j is point j) and the drawn landmarks observing them.
-void MakeObservations(const Scene& scene, const std::vector<Pose3>& cameras, std::vector<Junctions>* junctions,
-                      Landmarks* landmarks) {
+void MakeObservations(const Scene& scene, const std::vector<Pose3>& cameras,
+                      std::vector<Junctions>* junctions, Landmarks* landmarks) {
   const Eigen::Matrix3d K = TestK();
   junctions->assign(cameras.size(), Junctions());
   landmarks->points.clear();
@@ -65,7 +65,8 @@ void MakeObservations(const Scene& scene, const std::vector<Pose3>& cameras, std
       // A short stub of its own, so that every junction has a segment that joins nothing.
       junction.segments.push_back({junction.location + Eigen::Vector2d(0, 30), 1000 + static_cast<int>(p)});
       (*junctions)[f].push_back(junction);
-      landmarks->points[p].observations.push_back({static_cast<int>(f), static_cast<int>(p), junction.location});
+      landmarks->points[p].observations.push_back(
+          {static_cast<int>(f), static_cast<int>(p), junction.location});
     }
     for (size_t k = 0; k < scene.joins.size(); ++k) {
       const Scene::Join& join = scene.joins[k];
@@ -125,7 +126,9 @@ TEST(AddTopologyEdges, MinSupportIsTheShareOfFramesSeeingBothEnds) {
   TopologyEdgeReport report;
   AddTopologyEdges(cameras, junctions, options, &landmarks, &report);
   EXPECT_EQ(report.unsupported, 0);
-  EXPECT_EQ(std::count(landmarks.point_edges.begin(), landmarks.point_edges.end(), std::make_pair(static_cast<int>(kC), static_cast<int>(kD))), 1);
+  EXPECT_EQ(std::count(landmarks.point_edges.begin(), landmarks.point_edges.end(),
+                       std::make_pair(static_cast<int>(kC), static_cast<int>(kD))),
+            1);
 
   scene.joins.pop_back();
   MakeObservations(scene, cameras, &junctions, &landmarks);
