@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <filesystem>
 #include <opencv2/core.hpp>
 #include <sstream>
@@ -21,7 +22,6 @@
 #include "backend/triangulation/reconstruction.h"
 #include "backend/triangulation/track_extension.h"
 #include "backend/triangulation/triangulate_tracks.h"
-#include "geometry/image_undistorter.h"
 #include "frontend/junctions/junction_detector.h"
 #include "frontend/junctions/topology.h"
 #include "frontend/matching/junction_matcher.h"
@@ -29,10 +29,11 @@
 #include "frontend/segments/undistorted_segments.h"
 #include "frontend/sequence/sequence.h"
 #include "frontend/tracks/tracks.h"
-#include "util/atomic_file.h"
-#include "util/progress.h"
+#include "geometry/image_undistorter.h"
 #include "pipeline/pipeline_outputs.h"
 #include "pipeline/report/report.h"
+#include "util/atomic_file.h"
+#include "util/progress.h"
 
 namespace sfm {
 namespace {
@@ -553,6 +554,18 @@ void SelectWireframe(const Sequence& sequence, const PipelineOptions& options, P
             << report.lines_uncertain_end0 + report.lines_uncertain_end1 << " undetermined, "
             << report.lines_unbounded << " unbounded; " << report.lines_far_end_at_point
             << " far ends at drawn points";
+  if (!options.topology_edges) return;
+  TopologyEdgeOptions topology = options.topology_edge_options;
+  topology.pixel_sigma_px = report.pixel_sigma_px > 0 ? report.pixel_sigma_px : wireframe.pixel_sigma_px;
+  topology.max_gap_px = -std::log(options.junctions.min_probability) / options.junctions.endpoint_model.mu;
+  topology.min_plane_angle_deg = options.triangulation.line.min_plane_angle_deg;
+  AddTopologyEdges(poses, result->junctions, topology, &result->wireframe_landmarks, &result->topology_edges);
+  const TopologyEdgeReport& edges = result->topology_edges;
+  LOG(INFO) << "wireframe: " << edges.edges << " edges between drawn points joined in the images ("
+            << edges.candidates << " candidates, " << edges.unsupported
+            << " not shown by enough of the frames seeing both, " << edges.undetermined
+            << " in an epipolar plane across the motion, " << edges.splits << " splits at points on them); "
+            << edges.lines_dropped << " lines lying on them dropped";
 }
 
 }  // namespace
@@ -570,6 +583,7 @@ Status PipelineOptions::Check() const {
   SFM_RETURN_IF_ERROR(Matching().Check());
   SFM_RETURN_IF_ERROR(triangulation.Check());
   if (extend_tracks) SFM_RETURN_IF_ERROR(track_extension.Check());
+  if (topology_edges) SFM_RETURN_IF_ERROR(topology_edge_options.Check());
   return bundle_adjustment_options.Check();
 }
 

@@ -12,10 +12,11 @@
 #include "backend/initialization/visual_constraints.h"
 #include "backend/metrics/drift.h"
 #include "backend/triangulation/landmarks.h"
+#include "backend/triangulation/topology_edges.h"
 #include "backend/triangulation/wireframe_selection.h"
-#include "geometry/pose.h"
 #include "frontend/junctions/junction.h"
 #include "frontend/tracks/tracks.h"
+#include "geometry/pose.h"
 
 namespace sfm {
 
@@ -83,6 +84,7 @@ struct PipelineResult {
   // The landmarks wireframe.ply draws: those SelectWireframeLandmarks keeps on the final poses.
   Landmarks wireframe_landmarks;
   WireframeSelectionReport wireframe_selection;
+  TopologyEdgeReport topology_edges;      // the edges between drawn points (AddTopologyEdges)
   int unobservable_lines = 0;             // segment tracks dropped as parallel to the motion
   std::vector<Pose3> world_T_camera_odometry;
   std::vector<Pose3> world_T_camera_initial;               // the pose graph's (InitializationSummary)

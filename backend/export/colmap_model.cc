@@ -6,6 +6,7 @@
 #include <cctype>
 #include <filesystem>
 #include <initializer_list>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -39,6 +40,11 @@ double Mean(size_t total, size_t count) {
   return count == 0 ? 0.0 : static_cast<double>(total) / static_cast<double>(count);
 }
 
+// The POINT3D_ID of model.points[i].
+long PointId(const ColmapModel& model, size_t i) {
+  return model.points[i].id > 0 ? model.points[i].id : static_cast<long>(i) + 1;
+}
+
 // A 2D point of images.txt: where it is and which 3D point it observes.
 struct ImagePoint {
   Eigen::Vector2d pixel;  // OpenCV convention
@@ -66,8 +72,13 @@ Status Validate(const std::string& directory, const ColmapModel& model) {
       return Status::Error(which + ": the pose is not finite");
     }
   }
+  std::set<long> ids;
   for (size_t i = 0; i < model.points.size(); ++i) {
     const ColmapPoint& point = model.points[i];
+    if (!ids.insert(PointId(model, i)).second) {
+      return Status::Error(points_file + ": point " + std::to_string(i) + " repeats the POINT3D_ID " +
+                           std::to_string(PointId(model, i)));
+    }
     if (!point.position.allFinite()) {
       return Status::Error(points_file + ": point " + std::to_string(i) + " has a non-finite position");
     }
@@ -131,7 +142,7 @@ std::string ImagesText(const ColmapModel& model, const std::vector<std::vector<I
       if (!points_line.empty()) points_line += ' ';
       points_line +=
           Numbers({image_point.pixel.x() + kColmapPixelShift, image_point.pixel.y() + kColmapPixelShift}) +
-          " " + std::to_string(image_point.point_index + 1);
+          " " + std::to_string(PointId(model, image_point.point_index));
     }
     text += points_line + "\n";
   }
@@ -166,7 +177,7 @@ std::string Points3DText(const ColmapModel& model, const std::vector<std::vector
       ", mean track length: " + ShortestNumberText(Mean(observations, model.points.size())) + "\n";
   for (size_t i = 0; i < model.points.size(); ++i) {
     const ColmapPoint& point = model.points[i];
-    text += std::to_string(i + 1) + " " +
+    text += std::to_string(PointId(model, i)) + " " +
             Numbers({point.position.x(), point.position.y(), point.position.z()}) + " " + kPointColour + " " +
             ShortestNumberText(ReprojectionError(model, point));
     for (size_t j = 0; j < point.track.size(); ++j) {

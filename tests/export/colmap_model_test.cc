@@ -256,7 +256,29 @@ TEST(ColmapModelTest, BadModelsAreRejectedWithoutFiles) {
   const Status point = WriteColmapModel(dir + "/not_finite", not_finite);
   EXPECT_FALSE(point.ok());
   EXPECT_NE(point.message().find("points3D.txt: point 2"), std::string::npos) << point.message();
+
+  ColmapModel repeated = TinyModel();
+  repeated.points[0].id = 2;  // point 1 has none: index + 1 = 2
+  const Status ids = WriteColmapModel(dir + "/repeated", repeated);
+  EXPECT_FALSE(ids.ok());
+  EXPECT_NE(ids.message().find("points3D.txt: point 1 repeats the POINT3D_ID 2"), std::string::npos)
+      << ids.message();
   EXPECT_TRUE(std::filesystem::is_empty(dir));
+}
+
+// Given ids name the points in points3D.txt and in images.txt's 2D points.
+TEST(ColmapModelTest, PointIdsNameThePointsEverywhere) {
+  const std::string dir = testing::MakeScratchDir("colmap_ids");
+  ColmapModel model = TinyModel();
+  for (size_t i = 0; i < model.points.size(); ++i) model.points[i].id = 100 + static_cast<long>(i) * 10;
+  ASSERT_TRUE(WriteColmapModel(dir, model).ok());
+  const std::string points = ReadFile(dir + "/points3D.txt");
+  const std::string images = ReadFile(dir + "/images.txt");
+  for (const std::string id : {"100", "110", "120"}) {
+    EXPECT_NE(points.find("\n" + id + " "), std::string::npos) << id;
+    EXPECT_NE(images.find(" " + id), std::string::npos) << id;
+  }
+  EXPECT_EQ(points.find("\n1 "), std::string::npos);
 }
 
 }  // namespace
