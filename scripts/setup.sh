@@ -4,7 +4,8 @@
 set -euo pipefail
 
 SFM_PACKAGES=(build-essential cmake pkg-config libeigen3-dev libceres-dev libopencv-dev
-  libopencv-contrib-dev libgflags-dev libgoogle-glog-dev libgtest-dev libgmock-dev libbenchmark-dev libtbb-dev)
+  libopencv-contrib-dev libgflags-dev libgoogle-glog-dev libgtest-dev libgmock-dev libbenchmark-dev
+  libyaml-cpp-dev libtbb-dev)
 
 sfm_install_missing_packages() {
   local missing=()

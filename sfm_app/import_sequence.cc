@@ -2,6 +2,7 @@
 // section 1), with odometry simulated from the true poses by a stated, seeded noise model.
 //
 //   build/bin/import_sequence --format vgg|strecha|tum --input <data set dir> --output <sequence dir>
+//   build/bin/import_sequence --format euroc --input <ASL folder> --odometry <file> --output <sequence dir>
 //
 // docs/importers.md describes each format, the noise model and the figures measured on the data.
 #include <gflags/gflags.h>
@@ -11,6 +12,8 @@
 #include <cstdio>
 #include <string>
 
+#include "sequences/importers/calibration_files.h"
+#include "sequences/importers/euroc_importer.h"
 #include "sequences/importers/imported_sequence.h"
 #include "sequences/importers/strecha_importer.h"
 #include "sequences/importers/tum_importer.h"
@@ -20,10 +23,12 @@ namespace {
 const sfm::SequenceWriteOptions kDefaults;
 }  // namespace
 
-DEFINE_string(format, "",
-              "Data set format: 'vgg' (Oxford VGG multi-view: <name>.NNN.pgm, <name>.NNN.P, <name>.p3d), "
-              "'strecha' (images/*.jpg, gt_dense_cameras/*.camera) or 'tum' (TUM RGB-D: rgb.txt, rgb/, "
-              "groundtruth.txt). Required.");
+DEFINE_string(
+    format, "",
+    "Data set format: 'vgg' (Oxford VGG multi-view: <name>.NNN.pgm, <name>.NNN.P, <name>.p3d), "
+    "'strecha' (images/*.jpg, gt_dense_cameras/*.camera) or 'tum' (TUM RGB-D: rgb.txt, rgb/, "
+    "groundtruth.txt) or 'euroc' (EuRoC / ASL: cam0/data.csv, cam0/data/, cam0/sensor.yaml, with the robot's "
+    "--odometry). Required.");
 DEFINE_string(input, "", "Data set directory. Required.");
 DEFINE_string(output, "",
               "Sequence directory to create (written to a temporary sibling and renamed into place). Required.");
@@ -77,6 +82,17 @@ DEFINE_bool(
     "vgg: resample each image to the sequence's one K (H_i = K K_i^-1, cropped to the rectangle all frames "
     "cover) and keep each P's own pose, exact for the warped images; writes image_warps.txt. "
     "--vgg_refit_poses is then not used.");
+DEFINE_string(
+    odometry, "",
+    "euroc: the robot's odometry file, world_T_base (TUM, or ASL CSV 'timestamp [ns],x,y,z,qw,qx,qy,qz'); "
+    "required, since ASL folders hold none.");
+DEFINE_string(calibration, "",
+              "euroc: the camera calibration instead of cam0/sensor.yaml: a Kalibr camchain (cam0), a ROS "
+              "camera_info YAML, an EuRoC sensor.yaml or an OpenCV YAML as sequence.yaml.");
+DEFINE_string(
+    base_T_body, "",
+    "euroc: 'tx ty tz qx qy qz qw', the pose of the calibration's reference frame (Kalibr: the IMU; "
+    "EuRoC: the body B; camera_info: the camera itself) in the robot base frame; empty: the identity.");
 DEFINE_string(tum_camera, "fr1", "tum: which Kinect's published calibration to use: fr1, fr2 or fr3.");
 DEFINE_int32(tum_stride, sfm::TumImportOptions().stride, "tum: keep every N-th image that has ground truth.");
 DEFINE_double(tum_max_groundtruth_gap, sfm::TumImportOptions().max_groundtruth_gap,
@@ -108,6 +124,22 @@ sfm::Status ReadDataSet(sfm::ImportedSequence* sequence) {
 
 }  // namespace
 
+// --format euroc: a robot's recording with its own odometry, written as it is (no simulated noise).
+int ImportEuroc() {
+  sfm::EurocImportOptions options;
+  options.odometry_path = FLAGS_odometry;
+  options.calibration_path = FLAGS_calibration;
+  sfm::RecordedSequence sequence;
+  sfm::Status status = sfm::ParsePoseText(FLAGS_base_T_body, "--base_T_body", &options.base_T_body);
+  if (status.ok()) status = sfm::ReadEurocSequence(FLAGS_input, options, &sequence);
+  if (status.ok()) status = sfm::WriteRecordedSequence(sequence, FLAGS_output, FLAGS_overwrite);
+  if (!status.ok()) {
+    std::fprintf(stderr, "import_sequence: %s\n", status.message().c_str());
+    return 1;
+  }
+  return 0;
+}
+
 int main(int argc, char** argv) {
   gflags::SetUsageMessage(
       "makes a SPEC sequence directory from a data set with ground-truth cameras.\n"
@@ -121,8 +153,10 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "import_sequence: unexpected argument '%s' (flags are --name=value; see --help)\n", argv[1]);
     return 2;
   }
-  if (FLAGS_format != "vgg" && FLAGS_format != "strecha" && FLAGS_format != "tum") {
-    std::fprintf(stderr, "import_sequence: --format must be vgg, strecha or tum (found '%s')\n", FLAGS_format.c_str());
+  if (FLAGS_format != "vgg" && FLAGS_format != "strecha" && FLAGS_format != "tum" &&
+      FLAGS_format != "euroc") {
+    std::fprintf(stderr, "import_sequence: --format must be vgg, strecha, tum or euroc (found '%s')\n",
+                 FLAGS_format.c_str());
     return 2;
   }
   if (FLAGS_vgg_k1 != 0 && FLAGS_vgg_k1_from_lines) {
@@ -142,6 +176,7 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "import_sequence: --input and --output must name directories\n");
     return 2;
   }
+  if (FLAGS_format == "euroc") return ImportEuroc();
   sfm::SequenceWriteOptions options;
   options.scale.scale = FLAGS_scale;
   options.scale.max_width = FLAGS_max_width;
