@@ -256,31 +256,32 @@ bool CloseLoops(const Sequence& sequence, const PipelineOptions& options, Progre
   if (candidates.empty()) return false;
   const std::vector<Pose3> bases = BasesFromCameras(result->world_T_camera_initial, calibration.base_T_camera);
   const MatchingOptions matching = options.Matching();
-  for (size_t c = 0; c < candidates.size(); ++c) {
-    progress->Update("loop closure", "pair", static_cast<int>(c) + 1, static_cast<int>(candidates.size()));
-    const auto [a, b] = candidates[c];
+  std::vector<std::pair<int, int>> pairs;
+  std::vector<PairGeometry> geometries;
+  for (const auto& [a, b] : candidates) {
     const PairGeometry geometry =
         PairGeometryFromOdometry(K, calibration.base_T_camera, bases[a], bases[b], summary.used.translation_sigma,
                                  summary.used.rotation_sigma, b - a);
     if (!(geometry.camera2_T_camera1.translation.allFinite() && geometry.covariance.allFinite())) continue;
-    FramePairMatches matches;
-    matches.frame_a = a;
-    matches.frame_b = b;
-    MatchingDiagnostics pair_diagnostics;
-    matches.matches = MatchJunctions(result->junctions[a], result->graphs[a], result->junctions[b], result->graphs[b],
-                                     geometry, matching, &pair_diagnostics);
+    pairs.emplace_back(a, b);
+    geometries.push_back(geometry);
+  }
+  std::vector<MatchingDiagnostics> pair_diagnostics;
+  std::vector<FramePairMatches> matches = MatchSequencePairs(pairs, geometries, result->junctions, result->graphs,
+                                                             matching, progress, &pair_diagnostics);
+  for (size_t p = 0; p < pairs.size(); ++p) {
     // A wrong loop bends the whole trajectory: twice the inliers a pair's pose needs.
-    if (pair_diagnostics.refinement.inliers < kLoopInlierFactor * matching.refine_min_inliers) continue;
+    if (pair_diagnostics[p].refinement.inliers < kLoopInlierFactor * matching.refine_min_inliers) continue;
     VisualConstraintCounts counts;
-    if (VisualConstraints({matches}, result->junctions, {pair_diagnostics}, RefinementSettings(matching), &counts)
+    if (VisualConstraints({matches[p]}, result->junctions, {pair_diagnostics[p]}, RefinementSettings(matching),
+                          &counts)
             .empty()) {
       continue;
     }
-    summary.loops.push_back({a, b, pair_diagnostics.refinement.inliers});
-    result->pairs.push_back(std::move(matches));
-    diagnostics->push_back(std::move(pair_diagnostics));
+    summary.loops.push_back({pairs[p].first, pairs[p].second, pair_diagnostics[p].refinement.inliers});
+    result->pairs.push_back(std::move(matches[p]));
+    diagnostics->push_back(std::move(pair_diagnostics[p]));
   }
-  progress->Finish();
   LOG(INFO) << "loop closure: " << summary.loops.size() << " of " << candidates.size()
             << " candidate pairs gave a relative pose";
   return !summary.loops.empty();
