@@ -15,6 +15,7 @@
 
 #include "frontend/sequence/image_header.h"
 #include "sequences/importers/calibration_files.h"
+#include "sequences/importers/staging_directory.h"
 #include "util/atomic_file.h"
 #include "util/number_text.h"
 #include "util/regular_file.h"
@@ -74,22 +75,6 @@ Status ReadAslTrajectory(const std::string& path, const std::vector<DataLine>& l
   if (poses->empty()) return Status::Error(path + ": holds no pose");
   return Status::Ok();
 }
-
-// Removes the temporary directory unless it was renamed into place.
-class StagingDirectory {
- public:
-  explicit StagingDirectory(fs::path path) : path_(std::move(path)) {}
-  ~StagingDirectory() {
-    std::error_code ignored;
-    if (!released_) fs::remove_all(path_, ignored);
-  }
-  const fs::path& path() const { return path_; }
-  void Release() { released_ = true; }
-
- private:
-  fs::path path_;
-  bool released_ = false;
-};
 
 std::string NotesText(const RecordedSequence& sequence) {
   std::string text = "# How this sequence was imported (import_sequence)\n";

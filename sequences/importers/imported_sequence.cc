@@ -19,28 +19,11 @@
 #include "util/atomic_file.h"
 #include "util/number_text.h"
 #include "sequences/importers/input_files.h"
+#include "sequences/importers/staging_directory.h"
 
 namespace sfm {
 namespace {
 namespace fs = std::filesystem;
-
-// Removes the temporary directory unless the import completed and it was renamed into place.
-class TemporaryDirectory {
- public:
-  explicit TemporaryDirectory(fs::path path) : path_(std::move(path)) {}
-  TemporaryDirectory(const TemporaryDirectory&) = delete;
-  TemporaryDirectory& operator=(const TemporaryDirectory&) = delete;
-  ~TemporaryDirectory() {
-    std::error_code ignored;
-    if (!released_) fs::remove_all(path_, ignored);
-  }
-  const fs::path& path() const { return path_; }
-  void Release() { released_ = true; }
-
- private:
-  fs::path path_;
-  bool released_ = false;
-};
 
 std::string SizeText(int width, int height) { return std::to_string(width) + "x" + std::to_string(height); }
 
@@ -136,7 +119,7 @@ fs::path NormalisedTarget(const std::string& output_dir) {
 }
 
 // Moves the finished temporary directory to `target`, replacing what is there when allowed.
-Status MoveIntoPlace(TemporaryDirectory* temporary, const fs::path& target) {
+Status MoveIntoPlace(StagingDirectory* temporary, const fs::path& target) {
   std::error_code error;
   fs::path replaced;
   if (fs::exists(target, error)) {
@@ -180,7 +163,7 @@ Status WriteImportedSequence(const ImportedSequence& sequence, const SequenceWri
   const fs::path parent = target.has_parent_path() ? target.parent_path() : fs::path(".");
   SFM_RETURN_IF_ERROR(EnsureWritableDirectory(parent.string()));
 
-  TemporaryDirectory temporary(parent / ("." + target.filename().string() + ".importing." + std::to_string(::getpid())));
+  StagingDirectory temporary(parent / ("." + target.filename().string() + ".importing." + std::to_string(::getpid())));
   fs::remove_all(temporary.path(), error);
   SFM_RETURN_IF_ERROR(EnsureWritableDirectory((temporary.path() / "images").string()));
 
