@@ -32,7 +32,8 @@ scene.add(new THREE.Points(geometryOf(centred(scene3d.points)),
                            new THREE.PointsMaterial({ color: scene3d.colours.points, size: 4,
                                                       sizeAttenuation: false })));
 for (const path of scene3d.paths) {
-  scene.add(new THREE.Line(geometryOf(centred(path.xyz)), new THREE.LineBasicMaterial({ color: path.colour })));
+  const material = new THREE.LineBasicMaterial({ color: path.colour });
+  scene.add(new THREE.Line(geometryOf(centred(path.xyz)), material));
 }
 scene.add(new THREE.LineSegments(geometryOf(centred(scene3d.frusta.xyz)),
                                  new THREE.LineBasicMaterial({ color: scene3d.frusta.colour })));
@@ -47,8 +48,10 @@ container.appendChild(renderer.domElement);
 const radius = scene3d.radius;
 const camera = new THREE.PerspectiveCamera(45, 2, radius / 1000, radius * 100);
 camera.up.copy(vector(scene3d.up));
-camera.position.copy(vector(scene3d.along).multiplyScalar(-0.75).add(vector(scene3d.across).multiplyScalar(-0.35))
-                       .add(vector(scene3d.up).multiplyScalar(0.55)).normalize().multiplyScalar(1.9 * radius));
+const eye = vector(scene3d.along).multiplyScalar(-0.75)
+                .add(vector(scene3d.across).multiplyScalar(-0.35))
+                .add(vector(scene3d.up).multiplyScalar(0.55));
+camera.position.copy(eye.normalize().multiplyScalar(1.9 * radius));
 const controls = new OrbitControls(camera, renderer.domElement);
 controls.target.set(0, 0, 0);
 controls.update();

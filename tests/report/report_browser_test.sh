@@ -9,7 +9,7 @@
 set -euo pipefail
 junction_sfm=$1 make_sequence=$2 source_dir=$3 scratch=$4
 if ! command -v chromium >/dev/null; then
-  echo "SKIPPED: chromium is not installed (apt-get install -y chromium; scripts/setup.sh installs it for the tests)"
+  echo "SKIPPED: chromium is not installed (apt-get install -y chromium; scripts/test.sh installs it)"
   exit 77
 fi
 rm -rf "$scratch" && mkdir -p "$scratch"
@@ -22,9 +22,10 @@ check_page() {
   local page=$1 name=$2 profile
   profile=$(mktemp -d)
   # Software WebGL (SwiftShader) on a machine without a GPU: the page is our own, trusted content.
-  timeout 60 chromium --headless --no-sandbox --disable-gpu --use-angle=swiftshader --enable-unsafe-swiftshader \
-    --no-first-run --disable-background-networking --disable-component-update --disable-sync \
-    --user-data-dir="$profile" --window-size=1200,900 --virtual-time-budget=10000 --enable-logging=stderr --v=0 \
+  timeout 60 chromium --headless --no-sandbox --disable-gpu --use-angle=swiftshader \
+    --enable-unsafe-swiftshader --no-first-run --disable-background-networking --disable-component-update \
+    --disable-sync --user-data-dir="$profile" --window-size=1200,900 --virtual-time-budget=10000 \
+    --enable-logging=stderr --v=0 \
     --dump-dom "file://$(realpath "$page")" >"$scratch/$name.dom.html" 2>"$scratch/$name.chromium.log" || true
   rm -rf "$profile"
   local div drawn canvas errors
@@ -40,7 +41,10 @@ check_page() {
 
 report=$scratch/out/report.html
 echo "report.html: $(stat -c %s "$report") bytes"
-check_page "$report" report || { echo "FAIL: the 3D view of $report did not draw, or the console reported an error"; exit 1; }
+if ! check_page "$report" report; then
+  echo "FAIL: the 3D view of $report did not draw, or the console reported an error"
+  exit 1
+fi
 
 # The check itself can fail: without three.js in the import map the module cannot load.
 sed 's|"three/core":"data:|"three/missing":"data:|' "$report" >"$scratch/broken.html"

@@ -1,13 +1,13 @@
 #include "pipeline/report/report.h"
 
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
-
-#include <gtest/gtest.h>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
+#include <sstream>
 
 #include "backend/metrics/drift.h"
 #include "pipeline/report/assets.h"
@@ -199,7 +199,8 @@ TEST(ReportTest, WritesASelfContainedPageWithEverySection) {
 TEST(ReportTest, The3dViewHoldsTheSceneAndTheInlinedThreeJs) {
   const HandBuiltRun run;
   const std::string html = ReportHtml(run.sequence, run.result, run.images);
-  const std::string scene = Between(html, "<script type=\"application/json\" id=\"view3d-scene\">", "</script>");
+  const std::string scene =
+      Between(html, "<script type=\"application/json\" id=\"view3d-scene\">", "</script>");
   const Landmarks& drawn = run.result.wireframe_landmarks;
   EXPECT_EQ(Count(Between(scene, "\"points\":[", "]"), ",") + 1, 3 * int(drawn.points.size()));
   EXPECT_EQ(Count(Between(scene, "\"edges\":[", "]"), ",") + 1,
