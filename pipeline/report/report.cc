@@ -606,9 +606,8 @@ std::string ThreeImportMap() {
 }
 
 // The scene of the 3D view as JSON (read by view3d.js): the wireframe.ply points and edges, the
-// trajectories, the frusta of the drawn cameras (refined, else odometry) with the image's corners at
-// a twentieth of the map's size, and a frame to look at it in: the bulk of the map (2nd to 98th
-// percentile per axis, as in the static views) and every camera.
+// trajectories, the frusta of the drawn cameras (refined, else odometry), and a frame to look at it
+// in: the bulk of the map (2nd to 98th percentile per axis, as in the static views) and every camera.
 std::string View3dSceneJson(const Context& c, const ViewAxes& axes) {
   const PipelineResult& r = c.result;
   const Landmarks& landmarks = r.wireframe_landmarks;
@@ -658,11 +657,18 @@ std::string View3dSceneJson(const Context& c, const ViewAxes& axes) {
     json += std::string(i ? ",\n" : "") + "{\"name\":\"" + paths[i].name + "\",\"colour\":\"" +
             HexColour(paths[i].colour) + "\",\"xyz\":" + JsonNumbers(xyz) + "}";
   }
-  // A frustum: the centre to the four image corners at depth d, and the corners' rectangle.
+  // A frustum: the centre to the four image corners at depth d, and the corners' rectangle; d is
+  // 0.8 times the median distance between the frusta drawn, so that they do not overlap, within
+  // 1/60 and 1/15 of the map's size.
   const Camera& intrinsics = c.sequence.calibration.camera;
-  const double depth = radius / 10;
-  std::vector<double> frusta;
   const int step = std::max(1, static_cast<int>(std::ceil(cameras.size() / double(kMostFrusta))));
+  std::vector<double> gaps;
+  for (size_t i = step; i < cameras.size(); i += step) {
+    gaps.push_back((cameras[i].translation - cameras[i - step].translation).norm());
+  }
+  const double depth =
+      gaps.empty() ? radius / 15 : std::clamp(0.8 * Quantile(gaps, 0.5), radius / 60, radius / 15);
+  std::vector<double> frusta;
   for (size_t i = 0; i < cameras.size(); i += step) {
     std::array<Eigen::Vector3d, 4> corner;
     const double us[] = {0, double(intrinsics.width), double(intrinsics.width), 0};

@@ -51,7 +51,7 @@ camera.up.copy(vector(scene3d.up));
 const eye = vector(scene3d.along).multiplyScalar(-0.75)
                 .add(vector(scene3d.across).multiplyScalar(-0.35))
                 .add(vector(scene3d.up).multiplyScalar(0.55));
-camera.position.copy(eye.normalize().multiplyScalar(1.9 * radius));
+camera.position.copy(eye.normalize().multiplyScalar(2.2 * radius));
 const controls = new OrbitControls(camera, renderer.domElement);
 controls.target.set(0, 0, 0);
 controls.update();
