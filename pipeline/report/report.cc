@@ -552,7 +552,9 @@ std::string HexColour(const cv::Scalar& bgr) {
 
 std::string JsonNumbers(const std::vector<double>& values) {
   std::string json = "[";
-  for (size_t i = 0; i < values.size(); ++i) json += (i ? "," : "") + Num(values[i], "%.6g");
+  for (size_t i = 0; i < values.size(); ++i) {
+    json += (i ? "," : "") + (std::isfinite(values[i]) ? Num(values[i], "%.6g") : std::string("null"));
+  }
   return json + "]";
 }
 
@@ -669,7 +671,8 @@ std::string View3dSceneJson(const Context& c, const ViewAxes& axes) {
   const double depth =
       gaps.empty() ? radius / 15 : std::clamp(0.8 * Quantile(gaps, 0.5), radius / 60, radius / 15);
   std::vector<double> frusta;
-  for (size_t i = 0; i < cameras.size(); i += step) {
+  const bool has_intrinsics = intrinsics.fx > 0 && intrinsics.fy > 0;
+  for (size_t i = 0; has_intrinsics && i < cameras.size(); i += step) {
     std::array<Eigen::Vector3d, 4> corner;
     const double us[] = {0, double(intrinsics.width), double(intrinsics.width), 0};
     const double vs[] = {0, 0, double(intrinsics.height), double(intrinsics.height)};
