@@ -18,5 +18,6 @@ trap 'rm -rf "$profile"' EXIT
 # No network, no first-run work, a throw-away profile: the page is self-contained.
 chromium --headless --no-sandbox --disable-gpu --disable-quic --no-first-run --disable-background-networking \
   --disable-component-update --disable-sync --hide-scrollbars --user-data-dir="$profile" \
+  --use-angle=swiftshader --enable-unsafe-swiftshader --virtual-time-budget=10000 \
   --screenshot="$out" --window-size=1200,"$height" "file://$(realpath "$report")" 2>/dev/null
 echo "$out"

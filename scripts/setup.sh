@@ -23,14 +23,15 @@ sfm_install_missing_packages() {
   fi
 }
 
-# A package that only a benchmark needs (never one of the product's above, e.g. colmap for
-# scripts/benchmark_real.sh): installed when `command` is not on PATH, as root; otherwise the
-# command to run is printed and the function returns 1.
+# A package that only a benchmark or a test needs (never one of the product's above, e.g. colmap for
+# scripts/benchmark_real.sh, chromium for tests/report/report_browser_test.sh): installed when
+# `command` is not on PATH, as root; otherwise the command to run is printed and the function
+# returns 1.
 sfm_install_benchmark_package() {
   local package=$1 command=$2
   command -v "$command" >/dev/null && return 0
   if [ "$(id -u)" -eq 0 ]; then
-    echo "setup: installing $package (a benchmark dependency)" >&2
+    echo "setup: installing $package (a benchmark or test dependency)" >&2
     apt-get update -q >&2
     DEBIAN_FRONTEND=noninteractive apt-get install -y -q --no-install-recommends "$package" >&2
   else

@@ -4,6 +4,8 @@
 #   scripts/test.sh --sanitize   AddressSanitizer + UBSan build in build-asan/
 set -euo pipefail
 source "$(dirname "$0")/setup.sh"
+# Headless Chromium loads report.html in report_browser_test (skipped without it).
+sfm_install_benchmark_package chromium chromium || true
 build_dir=build
 cmake_args=()
 if [ "${1:-}" = "--sanitize" ]; then

@@ -5,9 +5,11 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <array>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <limits>
 #include <map>
 #include <memory>
 #include <numeric>
@@ -17,6 +19,7 @@
 #include "geometry/alignment.h"
 #include "geometry/image_undistorter.h"
 #include "pipeline/overlay/match_overlay.h"
+#include "pipeline/report/assets.h"
 #include "pipeline/report/base64.h"
 #include "pipeline/report/plot.h"
 #include "util/atomic_file.h"
@@ -537,6 +540,175 @@ cv::Mat WireframeView(const Context& c, const Eigen::Vector3d& h, const Eigen::V
   return figure.Render();
 }
 
+// ---- The 3D view -----------------------------------------------------------------------------
+
+constexpr int kMostFrusta = 60;  // more would hide the map; every k-th camera beyond that
+
+std::string HexColour(const cv::Scalar& bgr) {
+  char text[8];
+  std::snprintf(text, sizeof(text), "#%02x%02x%02x", int(bgr[2]), int(bgr[1]), int(bgr[0]));
+  return text;
+}
+
+std::string JsonNumbers(const std::vector<double>& values) {
+  std::string json = "[";
+  for (size_t i = 0; i < values.size(); ++i) {
+    json += (i ? "," : "") + (std::isfinite(values[i]) ? Num(values[i], "%.6g") : std::string("null"));
+  }
+  return json + "]";
+}
+
+std::string JsonVector(const Eigen::Vector3d& v) { return JsonNumbers({v.x(), v.y(), v.z()}); }
+
+void Append(std::vector<double>* flat, const Eigen::Vector3d& p) {
+  flat->insert(flat->end(), {p.x(), p.y(), p.z()});
+}
+
+// The module text with every `specifier` turned to `replacement`; CHECKs that there was one.
+std::string Reimported(std::string text, const std::string& specifier, const std::string& replacement) {
+  size_t replaced = 0;
+  for (size_t at = text.find(specifier); at != std::string::npos;
+       at = text.find(specifier, at + replacement.size())) {
+    text.replace(at, specifier.size(), replacement);
+    ++replaced;
+  }
+  CHECK_GT(replaced, 0u) << "the vendored three.js no longer imports " << specifier;
+  return text;
+}
+
+// A data: URL of a JavaScript module for the page's import map: percent-encoded where a URL, the
+// JSON string or the HTML <script> element around it would read the character otherwise (RFC 3986),
+// the rest as it is (a third smaller than base64 on minified code).
+std::string ModuleDataUrl(const std::string& text) {
+  static const std::string kKept = "-_.!~*'();/?:@&=+$,{}[]|^";
+  std::string url = "data:text/javascript;charset=utf-8,";
+  url.reserve(url.size() + text.size() * 11 / 10);
+  for (const char c : text) {
+    const unsigned char u = static_cast<unsigned char>(c);
+    if (std::isalnum(u) || kKept.find(c) != std::string::npos) {
+      url += c;
+    } else {
+      char escaped[4];
+      std::snprintf(escaped, sizeof(escaped), "%%%02X", u);
+      url += escaped;
+    }
+  }
+  return url;
+}
+
+// The import map that lets the viewer's `import ... from 'three'` find the inlined three.js: the
+// module build's relative import of its core becomes the bare name "three/core".
+std::string ThreeImportMap() {
+  const std::string module =
+      Reimported(report_assets::kThreeModule, "\"./three.core.min.js\"", "\"three/core\"");
+  return "<script type=\"importmap\">{\"imports\":{\"three/core\":\"" +
+         ModuleDataUrl(report_assets::kThreeCore) + "\",\n\"three\":\"" + ModuleDataUrl(module) +
+         "\",\n\"three/addons/controls/OrbitControls.js\":\"" + ModuleDataUrl(report_assets::kOrbitControls) +
+         "\"}}</script>\n";
+}
+
+// The scene of the 3D view as JSON (read by view3d.js): the wireframe.ply points and edges, the
+// trajectories, the frusta of the drawn cameras (refined, else odometry), and a frame to look at it
+// in: the bulk of the map (2nd to 98th percentile per axis, as in the static views) and every camera.
+std::string View3dSceneJson(const Context& c, const ViewAxes& axes) {
+  const PipelineResult& r = c.result;
+  const Landmarks& landmarks = r.wireframe_landmarks;
+  std::vector<double> points, edges;
+  std::array<std::vector<double>, 3> coordinates;
+  for (const PointLandmark& p : landmarks.points) {
+    Append(&points, p.position);
+    for (int k = 0; k < 3; ++k) coordinates[k].push_back(p.position[k]);
+  }
+  auto add_edge = [&](const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+    Append(&edges, a), Append(&edges, b);
+    for (int k = 0; k < 3; ++k) coordinates[k].push_back(a[k]), coordinates[k].push_back(b[k]);
+  };
+  for (const LineLandmark& line : landmarks.lines) add_edge(line.end0, line.end1);
+  for (const auto& [a, b] : landmarks.point_edges)
+    add_edge(landmarks.points[a].position, landmarks.points[b].position);
+
+  const std::vector<Pose3>& cameras = c.refined ? r.world_T_camera_refined : r.world_T_camera_odometry;
+  Eigen::Vector3d lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+  for (int k = 0; k < 3; ++k) {
+    if (!coordinates[k].empty())
+      lo[k] = Quantile(coordinates[k], 0.02), hi[k] = Quantile(coordinates[k], 0.98);
+  }
+  for (const Pose3& camera : cameras)
+    lo = lo.cwiseMin(camera.translation), hi = hi.cwiseMax(camera.translation);
+  const Eigen::Vector3d centre = (lo + hi) / 2;
+  const double radius = std::max(0.5 * (hi - lo).norm(), 0.1);
+
+  struct Path {
+    const char* name;
+    const std::vector<Pose3>* poses;
+    cv::Scalar colour;
+  };
+  std::vector<Path> paths;
+  if (c.truth) paths.push_back({"ground truth", &*r.world_T_camera_truth, colour::kGrey});
+  paths.push_back({"odometry", &r.world_T_camera_odometry, colour::kOrange});
+  if (c.refined) paths.push_back({"refined", &r.world_T_camera_refined, colour::kGreen});
+  std::string json = "{\"centre\":" + JsonVector(centre) + ",\"radius\":" + Num(radius, "%.6g") +
+                     ",\"up\":" + JsonVector(axes.up) + ",\"along\":" + JsonVector(axes.length) +
+                     ",\"across\":" + JsonVector(axes.across) + ",\n\"colours\":{\"edges\":\"" +
+                     HexColour(colour::kBlue) + "\",\"points\":\"" + HexColour(colour::kVermillion) +
+                     "\"},\n\"points\":" + JsonNumbers(points) + ",\n\"edges\":" + JsonNumbers(edges) +
+                     ",\n\"paths\":[";
+  for (size_t i = 0; i < paths.size(); ++i) {
+    std::vector<double> xyz;
+    for (const Pose3& pose : *paths[i].poses) Append(&xyz, pose.translation);
+    json += std::string(i ? ",\n" : "") + "{\"name\":\"" + paths[i].name + "\",\"colour\":\"" +
+            HexColour(paths[i].colour) + "\",\"xyz\":" + JsonNumbers(xyz) + "}";
+  }
+  // A frustum: the centre to the four image corners at depth d, and the corners' rectangle; d is
+  // 0.8 times the median distance between the frusta drawn, so that they do not overlap, within
+  // 1/60 and 1/15 of the map's size.
+  const Camera& intrinsics = c.sequence.calibration.camera;
+  const int step = std::max(1, static_cast<int>(std::ceil(cameras.size() / double(kMostFrusta))));
+  std::vector<double> gaps;
+  for (size_t i = step; i < cameras.size(); i += step) {
+    gaps.push_back((cameras[i].translation - cameras[i - step].translation).norm());
+  }
+  const double depth =
+      gaps.empty() ? radius / 15 : std::clamp(0.8 * Quantile(gaps, 0.5), radius / 60, radius / 15);
+  std::vector<double> frusta;
+  const bool has_intrinsics = intrinsics.fx > 0 && intrinsics.fy > 0;
+  for (size_t i = 0; has_intrinsics && i < cameras.size(); i += step) {
+    std::array<Eigen::Vector3d, 4> corner;
+    const double us[] = {0, double(intrinsics.width), double(intrinsics.width), 0};
+    const double vs[] = {0, 0, double(intrinsics.height), double(intrinsics.height)};
+    for (int k = 0; k < 4; ++k) {
+      corner[k] = cameras[i] * (depth * Eigen::Vector3d((us[k] - intrinsics.cx) / intrinsics.fx,
+                                                        (vs[k] - intrinsics.cy) / intrinsics.fy, 1));
+    }
+    for (int k = 0; k < 4; ++k) {
+      Append(&frusta, cameras[i].translation), Append(&frusta, corner[k]);
+      Append(&frusta, corner[k]), Append(&frusta, corner[(k + 1) % 4]);
+    }
+  }
+  return json + "],\n\"frusta\":{\"colour\":\"" + HexColour(c.refined ? colour::kGreen : colour::kOrange) +
+         "\",\"xyz\":" + JsonNumbers(frusta) + "}}";
+}
+
+std::string View3d(const Context& c, const ViewAxes& axes) {
+  auto key = [](const cv::Scalar& colour, const std::string& label) {
+    return "<span style=\"color:" + HexColour(colour) + "\">&#9632;</span>&nbsp;" + label;
+  };
+  std::string legend = key(colour::kBlue, "edges") + ", " + key(colour::kVermillion, "points") + ", " +
+                       (c.truth ? key(colour::kGrey, "ground truth") + ", " : "") +
+                       key(colour::kOrange, "odometry") +
+                       (c.refined ? ", " + key(colour::kGreen, "refined") : "") + "; camera frusta on the " +
+                       (c.refined ? "refined" : "odometry") + " poses";
+  return "<h3 id=\"view3d-title\">In 3D</h3>\n" +
+         Note("Left drag turns the view, the wheel zooms, right drag (or shift and left drag) moves it. " +
+              legend + ". <button id=\"view3d-reset\" type=\"button\">reset view</button>") +
+         "<div id=\"view3d\" style=\"border:1px solid #ddd\">" +
+         Note("The 3D view needs a browser with JavaScript modules and WebGL.") + "</div>\n" +
+         Note("Drawn with three.js " + std::string(report_assets::kThreeVersion) +
+              " (MIT licence), inlined.") +
+         "<script type=\"application/json\" id=\"view3d-scene\">" + View3dSceneJson(c, axes) + "</script>\n" +
+         ThreeImportMap() + "<script type=\"module\">\n" + report_assets::kViewer + "\n</script>\n";
+}
+
 std::string WireframeSection(const Context& c) {
   const Landmarks& landmarks = c.result.wireframe_landmarks;  // what wireframe.ply holds
   std::string html = "<h2 id=\"wireframe\">Wireframe</h2>\n";
@@ -569,7 +741,7 @@ std::string WireframeSection(const Context& c) {
   html += Figure(
       WireframeView(c, axes.length, axes.up, "wireframe seen from the side", "along the map", "height"),
       "wireframe from the side", "From the side: the map's length to the right, up (gravity) up.");
-  return html;
+  return html + View3d(c, axes);
 }
 
 constexpr char kStyle[] =
@@ -662,9 +834,11 @@ std::string ReportHtml(const Sequence& sequence, const PipelineResult& result,
   html += "<h1>junction-sfm report: " + Html(name) + "</h1>\n";
   html += "<p class=\"note\">Sequence <code>" + Html(sequence.directory) +
           "</code>. The other outputs of the run are in the directory of this page (docs/formats.md).</p>\n";
-  html += "<nav><a href=\"#summary\">summary</a><a href=\"#trajectories\">trajectories</a><a href=\"#errors\">errors</a>"
-          "<a href=\"#junctions\">junctions</a><a href=\"#matches\">matches</a><a href=\"#match-images\">match "
-          "pictures</a><a href=\"#wireframe\">wireframe</a></nav>\n";
+  html +=
+      "<nav><a href=\"#summary\">summary</a><a href=\"#trajectories\">trajectories</a><a "
+      "href=\"#errors\">errors</a>"
+      "<a href=\"#junctions\">junctions</a><a href=\"#matches\">matches</a><a href=\"#match-images\">match "
+      "pictures</a><a href=\"#wireframe\">wireframe</a><a href=\"#view3d-title\">3D</a></nav>\n";
   html += SummarySection(c);
   html += TrajectorySection(c);
   html += ErrorSection(c);

@@ -1,15 +1,16 @@
 #include "pipeline/report/report.h"
 
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
-
-#include <gtest/gtest.h>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
+#include <sstream>
 
 #include "backend/metrics/drift.h"
+#include "pipeline/report/assets.h"
 #include "pipeline/report/base64.h"
 #include "tests/test_data.h"
 
@@ -113,6 +114,35 @@ struct HandBuiltRun {
 
 using testing::ReadFile;
 
+int Count(const std::string& text, const std::string& what) {
+  int count = 0;
+  for (size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++count;
+  return count;
+}
+
+// The text between the first `begin` and the next `end` ("" when absent: the test then fails).
+std::string Between(const std::string& text, const std::string& begin, const std::string& end) {
+  const size_t from = text.find(begin);
+  EXPECT_NE(from, std::string::npos) << begin;
+  if (from == std::string::npos) return "";
+  const size_t to = text.find(end, from + begin.size());
+  EXPECT_NE(to, std::string::npos) << end;
+  return text.substr(from + begin.size(), to - from - begin.size());
+}
+
+std::string PercentDecoded(const std::string& text) {
+  std::string decoded;
+  for (size_t i = 0; i < text.size(); ++i) {
+    if (text[i] == '%' && i + 2 < text.size()) {
+      decoded += static_cast<char>(std::stoi(text.substr(i + 1, 2), nullptr, 16));
+      i += 2;
+    } else {
+      decoded += text[i];
+    }
+  }
+  return decoded;
+}
+
 // Decodes every data URI of the page; returns how many there were (test fails on a bad one).
 int CheckEmbeddedImages(const std::string& html) {
   const std::string prefix = "data:image/png;base64,";
@@ -151,10 +181,47 @@ TEST(ReportTest, WritesASelfContainedPageWithEverySection) {
   }
   // Trajectories, 2 error plots, junctions, matches, 3 match pictures, 2 wireframe views.
   EXPECT_EQ(CheckEmbeddedImages(html), 10);
-  EXPECT_EQ(html.find("http"), std::string::npos);
-  EXPECT_EQ(html.find("<script"), std::string::npos);
+  // Nothing fetched: every src is a data: URI, no stylesheet link, no CSS url(). Three scripts: the
+  // 3D view's scene, the import map that inlines three.js, the viewer.
+  for (size_t at = html.find(" src="); at != std::string::npos; at = html.find(" src=", at + 1)) {
+    EXPECT_EQ(html.compare(at, 11, " src=\"data:"), 0) << html.substr(at, 40);
+  }
   EXPECT_EQ(html.find("<link"), std::string::npos);
   EXPECT_EQ(html.find("url("), std::string::npos);
+  EXPECT_EQ(Count(html, "<script"), 3);
+  EXPECT_NE(html.find("<script type=\"importmap\">"), std::string::npos);
+  EXPECT_NE(html.find("<script type=\"module\">"), std::string::npos);
+}
+
+// The 3D view's scene JSON: the wireframe's points and edges, three paths, a frustum (8 segments)
+// per camera; and the import map's data: URLs decode to the vendored three.js, the module build's
+// import of its core renamed to the bare "three/core" (a data: URL cannot resolve "./").
+TEST(ReportTest, The3dViewHoldsTheSceneAndTheInlinedThreeJs) {
+  const HandBuiltRun run;
+  const std::string html = ReportHtml(run.sequence, run.result, run.images);
+  const std::string scene =
+      Between(html, "<script type=\"application/json\" id=\"view3d-scene\">", "</script>");
+  const Landmarks& drawn = run.result.wireframe_landmarks;
+  EXPECT_EQ(Count(Between(scene, "\"points\":[", "]"), ",") + 1, 3 * int(drawn.points.size()));
+  EXPECT_EQ(Count(Between(scene, "\"edges\":[", "]"), ",") + 1,
+            6 * int(drawn.lines.size() + drawn.point_edges.size()));
+  EXPECT_EQ(Count(scene, "\"name\":"), 3);  // ground truth, odometry, refined
+  EXPECT_EQ(Count(Between(scene, "\"frusta\":{", "}"), ",") + 1, 1 + 8 * 6 * kFrames);
+
+  const std::string map = Between(html, "<script type=\"importmap\">", "</script>");
+  EXPECT_EQ(map.find('<'), std::string::npos);
+  const std::string prefix = "data:text/javascript;charset=utf-8,";
+  auto module = [&](const std::string& name) {
+    return PercentDecoded(Between(map, "\"" + name + "\":\"" + prefix, "\""));
+  };
+  EXPECT_EQ(module("three/core"), report_assets::kThreeCore);
+  EXPECT_EQ(module("three/addons/controls/OrbitControls.js"), report_assets::kOrbitControls);
+  const std::string three = module("three");
+  // "./three.core.min.js" (19 characters) twice replaced by "three/core" (10).
+  EXPECT_EQ(three.size(), std::string(report_assets::kThreeModule).size() - 2 * 9);
+  EXPECT_EQ(three.find("./three.core.min.js"), std::string::npos);
+  EXPECT_EQ(Count(three, "from\"three/core\""), 2);
+  EXPECT_NE(html.find(report_assets::kViewer), std::string::npos);
 }
 
 TEST(ReportTest, SaysSoWhenThereIsNoGroundTruthAndNoImage) {
