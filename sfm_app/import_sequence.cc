@@ -2,6 +2,9 @@
 // section 1), with odometry simulated from the true poses by a stated, seeded noise model.
 //
 //   build/bin/import_sequence --format vgg|strecha|tum --input <data set dir> --output <sequence dir>
+//   build/bin/import_sequence --format rosbag2 --input <bag folder, .mcap or .db3> --output <sequence dir>
+//
+// A ROS 2 bag gives the robot's own odometry and camera: nothing is simulated for it.
 //
 // docs/importers.md describes each format, the noise model and the figures measured on the data.
 #include <gflags/gflags.h>
@@ -9,9 +12,11 @@
 
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <string>
 
 #include "sequences/importers/imported_sequence.h"
+#include "sequences/importers/rosbag2/rosbag2_importer.h"
 #include "sequences/importers/strecha_importer.h"
 #include "sequences/importers/tum_importer.h"
 #include "sequences/importers/vgg_importer.h"
@@ -23,8 +28,9 @@ const sfm::SequenceWriteOptions kDefaults;
 DEFINE_string(format, "",
               "Data set format: 'vgg' (Oxford VGG multi-view: <name>.NNN.pgm, <name>.NNN.P, <name>.p3d), "
               "'strecha' (images/*.jpg, gt_dense_cameras/*.camera) or 'tum' (TUM RGB-D: rgb.txt, rgb/, "
-              "groundtruth.txt). Required.");
-DEFINE_string(input, "", "Data set directory. Required.");
+              "groundtruth.txt) or 'rosbag2' (a ROS 2 bag: its folder with metadata.yaml, or one .mcap or "
+              ".db3 file). Required.");
+DEFINE_string(input, "", "Data set directory (rosbag2: the bag folder or storage file). Required.");
 DEFINE_string(output, "",
               "Sequence directory to create (written to a temporary sibling and renamed into place). Required.");
 DEFINE_bool(overwrite, false, "Replace --output when it exists and is not empty.");
@@ -81,8 +87,64 @@ DEFINE_string(tum_camera, "fr1", "tum: which Kinect's published calibration to u
 DEFINE_int32(tum_stride, sfm::TumImportOptions().stride, "tum: keep every N-th image that has ground truth.");
 DEFINE_double(tum_max_groundtruth_gap, sfm::TumImportOptions().max_groundtruth_gap,
               "tum: skip images between ground-truth poses more than this many seconds apart.");
+DEFINE_string(image_topic, "", "rosbag2: sensor_msgs/msg/Image or CompressedImage topic; empty: the bag's only one.");
+DEFINE_string(odometry_topic, "",
+              "rosbag2: nav_msgs/msg/Odometry (or geometry_msgs/msg/PoseStamped, TransformStamped) topic of the "
+              "robot base; empty: the bag's only one.");
+DEFINE_string(camera_info_topic, "",
+              "rosbag2: sensor_msgs/msg/CameraInfo topic; empty: the bag's only one, or the one beside the image "
+              "topic.");
+DEFINE_string(groundtruth_topic, "", "rosbag2: pose topic of the base's true poses (groundtruth.txt); empty: none.");
+DEFINE_string(base_frame, "", "rosbag2: robot base frame for T_base_camera; empty: the odometry's child_frame_id.");
+DEFINE_string(camera_frame, "", "rosbag2: camera frame for T_base_camera; empty: the images' frame_id.");
+DEFINE_int32(every, 1, "rosbag2: keep every N-th image.");
+DEFINE_double(min_motion, 0,
+              "rosbag2: keyframes: keep an image only when the odometry moved at least this many metres (or "
+              "turned --min_rotation) since the last kept one; 0 and 0: keep all.");
+DEFINE_double(min_rotation, 0, "rosbag2: keyframes: the rotation, radians, that also keeps an image (see --min_motion).");
+DEFINE_double(start_time, 0, "rosbag2: first image kept, seconds after the image topic's first stamp.");
+DEFINE_double(end_time, std::numeric_limits<double>::infinity(),
+              "rosbag2: last image kept, seconds after the image topic's first stamp.");
+DEFINE_double(max_odometry_gap, sfm::Rosbag2ImportOptions().max_odometry_gap,
+              "rosbag2: seconds; images further than this from odometry samples are skipped, and odometry that "
+              "starts or stops this much beyond the images is an error.");
+DEFINE_string(odometry_noise, "",
+              "rosbag2: 'translation_sigma,rotation_sigma' written to sequence.yaml (SPEC's odometry noise keys); "
+              "empty: left out, the pipeline's defaults.");
 
 namespace {
+
+sfm::Status ImportRosbag2() {
+  sfm::Rosbag2ImportOptions options;
+  options.image_topic = FLAGS_image_topic;
+  options.odometry_topic = FLAGS_odometry_topic;
+  options.camera_info_topic = FLAGS_camera_info_topic;
+  options.groundtruth_topic = FLAGS_groundtruth_topic;
+  options.base_frame = FLAGS_base_frame;
+  options.camera_frame = FLAGS_camera_frame;
+  options.every = FLAGS_every;
+  options.min_motion = FLAGS_min_motion;
+  options.min_rotation = FLAGS_min_rotation;
+  options.start_time = FLAGS_start_time;
+  options.end_time = FLAGS_end_time;
+  options.max_odometry_gap = FLAGS_max_odometry_gap;
+  options.scale.scale = FLAGS_scale;
+  options.scale.max_width = FLAGS_max_width;
+  options.overwrite = FLAGS_overwrite;
+  if (!FLAGS_odometry_noise.empty()) {
+    sfm::OdometryNoise noise;
+    char extra = 0;
+    if (std::sscanf(FLAGS_odometry_noise.c_str(), "%lf,%lf%c", &noise.translation_sigma, &noise.rotation_sigma,
+                    &extra) != 2 ||
+        !(noise.translation_sigma > 0) || !(noise.rotation_sigma > 0)) {
+      return sfm::Status::Error("--odometry_noise must be 'translation_sigma,rotation_sigma', two numbers > 0 (found '" +
+                                FLAGS_odometry_noise + "')");
+    }
+    options.odometry_noise = noise;
+  }
+  sfm::Rosbag2ImportSummary summary;
+  return sfm::ImportRosbag2(FLAGS_input, options, FLAGS_output, &summary);
+}
 
 sfm::Status ReadDataSet(sfm::ImportedSequence* sequence) {
   if (FLAGS_format == "vgg") {
@@ -110,8 +172,8 @@ sfm::Status ReadDataSet(sfm::ImportedSequence* sequence) {
 
 int main(int argc, char** argv) {
   gflags::SetUsageMessage(
-      "makes a SPEC sequence directory from a data set with ground-truth cameras.\n"
-      "  import_sequence --format vgg|strecha|tum --input <data set dir> --output <sequence dir> [flags]");
+      "makes a SPEC sequence directory from a data set with ground-truth cameras or a ROS 2 bag.\n"
+      "  import_sequence --format vgg|strecha|tum|rosbag2 --input <data set dir or bag> --output <sequence dir> [flags]");
   gflags::SetVersionString("0.1.0");
   gflags::ParseCommandLineFlags(&argc, &argv, true);
   FLAGS_logtostderr = true;
@@ -121,8 +183,9 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "import_sequence: unexpected argument '%s' (flags are --name=value; see --help)\n", argv[1]);
     return 2;
   }
-  if (FLAGS_format != "vgg" && FLAGS_format != "strecha" && FLAGS_format != "tum") {
-    std::fprintf(stderr, "import_sequence: --format must be vgg, strecha or tum (found '%s')\n", FLAGS_format.c_str());
+  if (FLAGS_format != "vgg" && FLAGS_format != "strecha" && FLAGS_format != "tum" && FLAGS_format != "rosbag2") {
+    std::fprintf(stderr, "import_sequence: --format must be vgg, strecha, tum or rosbag2 (found '%s')\n",
+                 FLAGS_format.c_str());
     return 2;
   }
   if (FLAGS_vgg_k1 != 0 && FLAGS_vgg_k1_from_lines) {
@@ -141,6 +204,14 @@ int main(int argc, char** argv) {
   if (FLAGS_input.empty() || FLAGS_output.empty()) {
     std::fprintf(stderr, "import_sequence: --input and --output must name directories\n");
     return 2;
+  }
+  if (FLAGS_format == "rosbag2") {
+    const sfm::Status status = ImportRosbag2();
+    if (!status.ok()) {
+      std::fprintf(stderr, "import_sequence: %s\n", status.message().c_str());
+      return 1;
+    }
+    return 0;
   }
   sfm::SequenceWriteOptions options;
   options.scale.scale = FLAGS_scale;
