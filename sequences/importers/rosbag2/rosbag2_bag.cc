@@ -155,7 +155,8 @@ Status Rosbag2Bag::ReadMcap(const std::string& file, const MessageCallback& on_m
   SFM_RETURN_IF_ERROR(reader.Open(file));
   // Channel id -> index into topics_ (stable: topics_ only grows during the read).
   std::map<std::uint16_t, int> channel_topics;
-  return reader.ReadMessages([&](const McapChannel& channel, const McapSchema* schema, const McapMessage& message) {
+  SFM_RETURN_IF_ERROR(reader.ReadMessages([&](const McapChannel& channel, const McapSchema* schema,
+                                               const McapMessage& message) {
     auto found = channel_topics.find(channel.id);
     if (found == channel_topics.end()) {
       BagTopic topic;
@@ -176,7 +177,22 @@ Status Rosbag2Bag::ReadMcap(const std::string& file, const MessageCallback& on_m
     bag_message.data = message.data;
     bag_message.size = message.size;
     return on_message(topic, bag_message);
-  });
+  }));
+  // Channels without messages are topics too (an empty topic is reported as such).
+  for (const auto& [id, channel] : reader.channels()) {
+    if (channel_topics.count(id) != 0) continue;
+    const auto schema = reader.schemas().find(channel.schema_id);
+    BagTopic topic;
+    topic.name = channel.topic;
+    topic.type = schema != reader.schemas().end() ? schema->second.name : "";
+    topic.serialization_format = channel.message_encoding;
+    topic.problem = EncodingProblem(channel.message_encoding,
+                                    schema != reader.schemas().end() ? schema->second.encoding : "",
+                                    schema != reader.schemas().end());
+    BagTopic* added = AddTopic(topic);
+    if (added->type.empty()) added->type = topic.type;
+  }
+  return Status::Ok();
 }
 
 Status Rosbag2Bag::ReadSqlite(const std::string& file, const MessageCallback& on_message) {
