@@ -17,9 +17,11 @@ Status PrepareOutputDirectory(const fs::path& target, bool overwrite, fs::path* 
   if (target.empty()) return Status::Error("import: the output directory is not named");
   std::error_code error;
   if (fs::exists(target, error)) {
-    if (!fs::is_directory(target, error)) return Status::Error(target.string() + ": exists and is not a directory");
+    if (!fs::is_directory(target, error))
+      return Status::Error(target.string() + ": exists and is not a directory");
     if (!fs::is_empty(target, error) && !overwrite) {
-      return Status::Error(target.string() + ": exists and is not empty; choose another directory or overwrite it");
+      return Status::Error(target.string() +
+                           ": exists and is not empty; choose another directory or overwrite it");
     }
   }
   const fs::path parent = target.has_parent_path() ? target.parent_path() : fs::path(".");
@@ -33,15 +35,19 @@ Status MoveIntoPlace(TemporaryDirectory* temporary, const fs::path& target) {
   std::error_code error;
   fs::path replaced;
   if (fs::exists(target, error)) {
-    replaced = target.parent_path() / ("." + target.filename().string() + ".replaced." + std::to_string(::getpid()));
+    replaced =
+        target.parent_path() / ("." + target.filename().string() + ".replaced." + std::to_string(::getpid()));
     fs::rename(target, replaced, error);
-    if (error) return Status::Error(target.string() + ": cannot move the old directory aside (" + error.message() + ")");
+    if (error)
+      return Status::Error(target.string() + ": cannot move the old directory aside (" + error.message() +
+                           ")");
   }
   fs::rename(temporary->path(), target, error);
   if (error) {
     std::error_code ignored;
     if (!replaced.empty()) fs::rename(replaced, target, ignored);
-    return Status::Error(target.string() + ": cannot rename the imported sequence into place (" + error.message() + ")");
+    return Status::Error(target.string() + ": cannot rename the imported sequence into place (" +
+                         error.message() + ")");
   }
   temporary->Release();
   if (!replaced.empty()) fs::remove_all(replaced, error);

@@ -1,12 +1,11 @@
 // ROS 2 bags: the MCAP and sqlite3 readers on bags rosbag2 itself recorded, corrupt files, and
 // import_sequence --format rosbag2 on bags written from a generated sequence (round trips, the
 // keyframe and window options, bad input).
+#include <fastcdr/Cdr.h>
+#include <fastcdr/FastBuffer.h>
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 #include <sys/wait.h>
-
-#include <fastcdr/Cdr.h>
-#include <fastcdr/FastBuffer.h>
 
 #include <algorithm>
 #include <cmath>
@@ -29,8 +28,8 @@ namespace sfm {
 namespace {
 
 namespace fs = std::filesystem;
-using ::testing::HasSubstr;
 using testing::BagMessageSpec;
+using ::testing::HasSubstr;
 using testing::McapWriteOptions;
 
 void WriteBytes(const fs::path& path, const std::string& bytes) {
@@ -68,7 +67,8 @@ class RealBags : public ::testing::Test {
  protected:
   void SetUp() override {
     dir_ = sfm::testing::SharedDataDir("rosbag2-test-bags");
-    if (dir_.empty()) GTEST_SKIP() << "../shared/data/rosbag2-test-bags is absent: real rosbag2 bags not tested";
+    if (dir_.empty())
+      GTEST_SKIP() << "../shared/data/rosbag2-test-bags is absent: real rosbag2 bags not tested";
   }
   std::string dir_;
 };
@@ -120,17 +120,18 @@ TEST_F(RealBags, McapSummaryAgreesWithTheDataSection) {
     ASSERT_TRUE(reader.summary().present);
     ASSERT_TRUE(reader.summary().has_statistics);
     std::map<std::uint16_t, std::uint64_t> counts;
-    ASSERT_TRUE(reader
-                    .ReadMessages([&](const McapChannel& channel, const McapSchema* schema, const McapMessage&) {
-                      EXPECT_NE(schema, nullptr);
-                      if (schema != nullptr) {
-                        EXPECT_EQ(schema->encoding, "ros2msg");
-                      }
-                      EXPECT_EQ(channel.message_encoding, "cdr");
-                      ++counts[channel.id];
-                      return Status::Ok();
-                    })
-                    .ok());
+    ASSERT_TRUE(
+        reader
+            .ReadMessages([&](const McapChannel& channel, const McapSchema* schema, const McapMessage&) {
+              EXPECT_NE(schema, nullptr);
+              if (schema != nullptr) {
+                EXPECT_EQ(schema->encoding, "ros2msg");
+              }
+              EXPECT_EQ(channel.message_encoding, "cdr");
+              ++counts[channel.id];
+              return Status::Ok();
+            })
+            .ok());
     std::uint64_t total = 0;
     for (const auto& [channel, count] : counts) {
       EXPECT_EQ(reader.summary().channel_message_counts.at(channel), count) << file << " channel " << channel;
@@ -138,7 +139,8 @@ TEST_F(RealBags, McapSummaryAgreesWithTheDataSection) {
     }
     EXPECT_EQ(reader.summary().message_count, total);
     EXPECT_EQ(reader.summary().channels.size(), reader.channels().size());
-    for (const auto& [id, schema] : reader.summary().schemas) EXPECT_EQ(reader.schemas().at(id).name, schema.name);
+    for (const auto& [id, schema] : reader.summary().schemas)
+      EXPECT_EQ(reader.schemas().at(id).name, schema.name);
   }
 }
 
@@ -152,7 +154,8 @@ TEST_F(RealBags, TalkerStringsDecode) {
     for (size_t i = 0; i < 10; ++i) {
       std::vector<std::uint8_t>& bytes = counted.payloads["/topic"][i];
       eprosima::fastcdr::FastBuffer buffer(reinterpret_cast<char*>(bytes.data()), bytes.size());
-      eprosima::fastcdr::Cdr cdr(buffer, eprosima::fastcdr::Cdr::DEFAULT_ENDIAN, eprosima::fastcdr::Cdr::DDS_CDR);
+      eprosima::fastcdr::Cdr cdr(buffer, eprosima::fastcdr::Cdr::DEFAULT_ENDIAN,
+                                 eprosima::fastcdr::Cdr::DDS_CDR);
       cdr.read_encapsulation();
       std::string text;
       cdr.deserialize(text);
@@ -170,7 +173,8 @@ TEST_F(RealBags, BasicTypesDecodeToTheirLength) {
     ASSERT_TRUE(ReadAll(dir_ + "/" + name, &counted, &storage).ok());
     for (std::vector<std::uint8_t>& bytes : counted.payloads["/test_topic"]) {
       eprosima::fastcdr::FastBuffer buffer(reinterpret_cast<char*>(bytes.data()), bytes.size());
-      eprosima::fastcdr::Cdr cdr(buffer, eprosima::fastcdr::Cdr::DEFAULT_ENDIAN, eprosima::fastcdr::Cdr::DDS_CDR);
+      eprosima::fastcdr::Cdr cdr(buffer, eprosima::fastcdr::Cdr::DEFAULT_ENDIAN,
+                                 eprosima::fastcdr::Cdr::DDS_CDR);
       cdr.read_encapsulation();
       bool b;
       std::uint8_t byte, u8;
@@ -219,7 +223,8 @@ TEST_F(RealBags, CorruptMcapFilesAreRefused) {
     WriteBytes(path, c.bytes);
     Rosbag2Bag bag;
     Status status = bag.Open(path.string());
-    if (status.ok()) status = bag.ReadMessages([](const BagTopic&, const BagMessage&) { return Status::Ok(); });
+    if (status.ok())
+      status = bag.ReadMessages([](const BagTopic&, const BagMessage&) { return Status::Ok(); });
     ASSERT_FALSE(status.ok()) << c.name;
     EXPECT_THAT(status.message(), HasSubstr(path.string())) << c.name;
     EXPECT_THAT(status.message(), HasSubstr(c.expected)) << c.name;
@@ -232,7 +237,8 @@ TEST(McapReader, ChunkAndDataSectionCrcMismatches) {
   const fs::path scratch = sfm::testing::MakeScratchDir("rosbag2_crc");
   std::vector<BagMessageSpec> messages;
   for (int i = 0; i < 5; ++i) {
-    messages.push_back({"/odom", kRosPoseStamped, i * 100, testing::CdrPoseStamped(i * 100, "odom", Pose3())});
+    messages.push_back(
+        {"/odom", kRosPoseStamped, i * 100, testing::CdrPoseStamped(i * 100, "odom", Pose3())});
   }
   for (const bool chunked : {true, false}) {
     McapWriteOptions options;
@@ -245,7 +251,8 @@ TEST(McapReader, ChunkAndDataSectionCrcMismatches) {
     ASSERT_TRUE(good.ReadMessages([&](const McapChannel&, const McapSchema*, const McapMessage&) {
                       ++read;
                       return Status::Ok();
-                    }).ok());
+                    })
+                    .ok());
     EXPECT_EQ(read, 5);
     // The last message's last byte (a quaternion's w), well inside the data section.
     const size_t data_end = bytes.rfind(std::string("\x0f\x04\0\0\0\0\0\0\0", 9));
@@ -254,9 +261,8 @@ TEST(McapReader, ChunkAndDataSectionCrcMismatches) {
     WriteBytes(scratch / "bad.mcap", bytes);
     McapReader bad;
     ASSERT_TRUE(bad.Open((scratch / "bad.mcap").string()).ok());
-    const Status status = bad.ReadMessages([](const McapChannel&, const McapSchema*, const McapMessage&) {
-      return Status::Ok();
-    });
+    const Status status = bad.ReadMessages(
+        [](const McapChannel&, const McapSchema*, const McapMessage&) { return Status::Ok(); });
     ASSERT_FALSE(status.ok());
     EXPECT_THAT(status.message(), HasSubstr(chunked ? "chunk CRC mismatch" : "data section CRC mismatch"));
   }
@@ -292,9 +298,9 @@ struct BagContent {
   int step_padding = 0;            // bytes after each row of a raw image
   bool groundtruth = true;
   std::string distortion_model = "plumb_bob";
-  int odometry_frames = -1;        // odometry for the first N frames only (-1: all)
+  int odometry_frames = -1;           // odometry for the first N frames only (-1: all)
   bool odometry_even_frames = false;  // odometry at the even frames' stamps only (interpolated between)
-  int small_frame = -1;            // this frame's image is half size
+  int small_frame = -1;               // this frame's image is half size
   std::string image_topic = "/camera/image_raw";
 };
 
@@ -345,10 +351,10 @@ std::vector<BagMessageSpec> SequenceMessages(const Sequence& sequence, const Bag
     }
     std::vector<double> d(camera.distortion.begin(), camera.distortion.end());
     if (content.distortion_model == "rational_polynomial") d.resize(8, 0.01);
-    messages.push_back({"/camera/camera_info", kRosCameraInfo, received,
-                        testing::CdrCameraInfo(stamp, "camera_optical", camera.width, camera.height,
-                                               content.distortion_model, d, camera.fx, camera.fy, camera.cx,
-                                               camera.cy)});
+    messages.push_back(
+        {"/camera/camera_info", kRosCameraInfo, received,
+         testing::CdrCameraInfo(stamp, "camera_optical", camera.width, camera.height,
+                                content.distortion_model, d, camera.fx, camera.fy, camera.cx, camera.cy)});
     const bool odometry = (content.odometry_frames < 0 || static_cast<int>(i) < content.odometry_frames) &&
                           (!content.odometry_even_frames || i % 2 == 0 || i + 1 == sequence.frames.size());
     if (odometry) {
@@ -356,8 +362,8 @@ std::vector<BagMessageSpec> SequenceMessages(const Sequence& sequence, const Bag
                           testing::CdrOdometry(stamp, "odom", "base_link", frame.world_T_base_odometry)});
     }
     if (content.groundtruth) {
-      messages.push_back(
-          {"/groundtruth", kRosPoseStamped, received, testing::CdrPoseStamped(stamp, "map", *frame.world_T_base_groundtruth)});
+      messages.push_back({"/groundtruth", kRosPoseStamped, received,
+                          testing::CdrPoseStamped(stamp, "map", *frame.world_T_base_groundtruth)});
     }
   }
   return messages;
@@ -368,8 +374,8 @@ class RosbagRoundTrip : public ::testing::Test {
   static void SetUpTestSuite() {
     scratch_ = new std::string(sfm::testing::MakeScratchDir("rosbag2_round_trip"));
     const std::string sequence = *scratch_ + "/sequence";
-    const int status = std::system((std::string(SFM_MAKE_SEQUENCE_BINARY) + " --scene room --frames 8 --output " +
-                                    sequence + " >/dev/null 2>&1")
+    const int status = std::system((std::string(SFM_MAKE_SEQUENCE_BINARY) +
+                                    " --scene room --frames 8 --output " + sequence + " >/dev/null 2>&1")
                                        .c_str());
     ASSERT_EQ(status, 0);
     sequence_ = new Sequence();
@@ -416,8 +422,10 @@ class RosbagRoundTrip : public ::testing::Test {
       EXPECT_NEAR(y.timestamp, x.timestamp, 1e-9);
       EXPECT_LT((y.world_T_base_odometry.translation - x.world_T_base_odometry.translation).norm(), 1e-9);
       EXPECT_LT(RotationAngle(y.world_T_base_odometry.rotation, x.world_T_base_odometry.rotation), 1e-9);
-      EXPECT_LT((y.world_T_base_groundtruth->translation - x.world_T_base_groundtruth->translation).norm(), 1e-9);
-      EXPECT_LT(RotationAngle(y.world_T_base_groundtruth->rotation, x.world_T_base_groundtruth->rotation), 1e-9);
+      EXPECT_LT((y.world_T_base_groundtruth->translation - x.world_T_base_groundtruth->translation).norm(),
+                1e-9);
+      EXPECT_LT(RotationAngle(y.world_T_base_groundtruth->rotation, x.world_T_base_groundtruth->rotation),
+                1e-9);
       cv::Mat original = cv::imread(sequence_->directory + "/" + x.image_path, cv::IMREAD_UNCHANGED);
       const cv::Mat read = cv::imread(imported_dir + "/" + y.image_path, cv::IMREAD_UNCHANGED);
       if (colour) cv::cvtColor(cv::Mat(original), original, cv::COLOR_GRAY2BGR);
@@ -468,8 +476,8 @@ TEST_F(RosbagRoundTrip, ImagesBitIdenticalPosesWithin1e9) {
   for (const Variant& v : variants) {
     const std::string bag = WriteBag(v.name, v.storage, v.content, v.mcap);
     const std::string output = *scratch_ + "/" + v.name + "_imported";
-    const AppRun run =
-        Import("--input " + bag + " --output " + output + " --groundtruth_topic /groundtruth", fs::path(*scratch_));
+    const AppRun run = Import("--input " + bag + " --output " + output + " --groundtruth_topic /groundtruth",
+                              fs::path(*scratch_));
     ASSERT_EQ(run.exit_status, 0) << v.name << ": " << run.errors;
     SCOPED_TRACE(v.name);
     ExpectSameSequence(output, v.colour);
@@ -484,15 +492,17 @@ TEST_F(RosbagRoundTrip, JunctionSfmGivesTheSameOutputs) {
   const OdometryNoise& noise = sequence_->calibration.odometry_noise;
   char noise_flag[128];
   std::snprintf(noise_flag, sizeof(noise_flag), "%.17g,%.17g", noise.translation_sigma, noise.rotation_sigma);
-  ASSERT_EQ(Import("--input " + bag + " --output " + imported + " --groundtruth_topic /groundtruth --odometry_noise " +
-                       noise_flag,
+  ASSERT_EQ(Import("--input " + bag + " --output " + imported +
+                       " --groundtruth_topic /groundtruth --odometry_noise " + noise_flag,
                    fs::path(*scratch_))
                 .exit_status,
             0);
   const fs::path scratch(*scratch_);
   for (const std::string& which : {std::string("original"), std::string("imported")}) {
     const std::string sequence = which == "original" ? sequence_->directory : imported;
-    const AppRun run = RunProgram(SFM_JUNCTION_SFM_BINARY, "--sequence " + sequence + " --output " + *scratch_ + "/out_" + which, scratch);
+    const AppRun run =
+        RunProgram(SFM_JUNCTION_SFM_BINARY,
+                   "--sequence " + sequence + " --output " + *scratch_ + "/out_" + which, scratch);
     ASSERT_EQ(run.exit_status, 0) << run.errors;
   }
   const std::map<std::string, std::string> a = sfm::testing::ReadTree(*scratch_ + "/out_original");
@@ -531,7 +541,8 @@ TEST_F(RosbagRoundTrip, EveryWindowAndKeyframes) {
   const std::string bag = WriteBag("selection", "mcap-file", BagContent());
   const auto frames = [&](const std::string& flags) {
     const std::string output = *scratch_ + "/selection_imported";
-    const AppRun run = Import("--input " + bag + " --output " + output + " --overwrite " + flags, fs::path(*scratch_));
+    const AppRun run =
+        Import("--input " + bag + " --output " + output + " --overwrite " + flags, fs::path(*scratch_));
     EXPECT_EQ(run.exit_status, 0) << flags << ": " << run.errors;
     Sequence imported;
     EXPECT_TRUE(ReadSequence(output, &imported).ok());
@@ -567,25 +578,39 @@ TEST_F(RosbagRoundTrip, BadInputIsOneLineAndNoOutput) {
     McapWriteOptions mcap;
   };
   std::vector<Case> cases;
-  cases.push_back({"no_topic", "--image_topic /nope", "no topic /nope (image topics: /camera/image_raw", {}, {}});
+  cases.push_back(
+      {"no_topic", "--image_topic /nope", "no topic /nope (image topics: /camera/image_raw", {}, {}});
   BagContent two;
   McapWriteOptions with_second;
   with_second.empty_topics = {"/camera2/image_raw sensor_msgs/msg/Image"};
-  cases.push_back({"ambiguous", "", "2 image topics, choose one with --image_topic: /camera/image_raw "
-                                    "(sensor_msgs/msg/Image, 8), /camera2/image_raw (sensor_msgs/msg/Image, 0)",
+  cases.push_back({"ambiguous", "",
+                   "2 image topics, choose one with --image_topic: /camera/image_raw "
+                   "(sensor_msgs/msg/Image, 8), /camera2/image_raw (sensor_msgs/msg/Image, 0)",
                    two, with_second});
-  cases.push_back({"empty", "--image_topic /camera2/image_raw", "/camera2/image_raw: the image topic is empty", two,
-                   with_second});
+  cases.push_back({"empty", "--image_topic /camera2/image_raw",
+                   "/camera2/image_raw: the image topic is empty", two, with_second});
   BagContent resized;
   resized.small_frame = 5;
-  cases.push_back({"changing_size", "", "/camera/image_raw: message 5: image is 320x240, earlier ones 640x480", resized, {}});
+  cases.push_back({"changing_size",
+                   "",
+                   "/camera/image_raw: message 5: image is 320x240, earlier ones 640x480",
+                   resized,
+                   {}});
   BagContent short_odometry;
   short_odometry.odometry_frames = 2;
-  cases.push_back({"odometry_stops", "", "/odom: odometry stops at 0.1 s, before the images (to 0.7 s", short_odometry, {}});
+  cases.push_back({"odometry_stops",
+                   "",
+                   "/odom: odometry stops at 0.1 s, before the images (to 0.7 s",
+                   short_odometry,
+                   {}});
   BagContent rational;
   rational.distortion_model = "rational_polynomial";
-  cases.push_back({"rational", "", "/camera/camera_info: distortion model rational_polynomial (8 coefficients) is not supported",
-                   rational, {}});
+  cases.push_back(
+      {"rational",
+       "",
+       "/camera/camera_info: distortion model rational_polynomial (8 coefficients) is not supported",
+       rational,
+       {}});
   BagContent bayer;
   bayer.encoding = "bayer_rggb8";
   cases.push_back({"bayer", "", "image encoding 'bayer_rggb8' is not supported", bayer, {}});
@@ -595,7 +620,11 @@ TEST_F(RosbagRoundTrip, BadInputIsOneLineAndNoOutput) {
   McapWriteOptions idl;
   idl.schema_encoding = "jsonschema";
   cases.push_back({"schema", "", "schema encoding 'jsonschema', expected ros2msg or ros2idl", {}, idl});
-  cases.push_back({"wrong_type", "--image_topic /odom", "/odom: type nav_msgs/msg/Odometry, the image topic must be", {}, {}});
+  cases.push_back({"wrong_type",
+                   "--image_topic /odom",
+                   "/odom: type nav_msgs/msg/Odometry, the image topic must be",
+                   {},
+                   {}});
   McapWriteOptions unknown;
   unknown.compression = "brotli";
   cases.push_back({"compression", "", "unknown chunk compression 'brotli'", {}, unknown});

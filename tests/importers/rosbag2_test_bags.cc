@@ -49,7 +49,8 @@ std::string SchemaRecord(std::uint16_t id, const std::string& name, const std::s
   return b.data;
 }
 
-std::string ChannelRecord(std::uint16_t id, std::uint16_t schema, const std::string& topic, const std::string& encoding) {
+std::string ChannelRecord(std::uint16_t id, std::uint16_t schema, const std::string& topic,
+                          const std::string& encoding) {
   Bytes b;
   b.U16(id);
   b.U16(schema);
@@ -84,8 +85,9 @@ class Writer {
     cdr_.serialize(frame);
   }
   void Pose(const Pose3& pose) {
-    const double values[7] = {pose.translation.x(), pose.translation.y(), pose.translation.z(), pose.rotation.x(),
-                              pose.rotation.y(),    pose.rotation.z(),    pose.rotation.w()};
+    const double values[7] = {pose.translation.x(), pose.translation.y(), pose.translation.z(),
+                              pose.rotation.x(),    pose.rotation.y(),    pose.rotation.z(),
+                              pose.rotation.w()};
     cdr_.serializeArray(values, 7);
   }
   void ByteSequence(const std::vector<std::uint8_t>& bytes) {
@@ -218,24 +220,25 @@ std::string WriteMcap(const std::vector<BagMessageSpec>& messages, const McapWri
 bool WriteSqliteBag(const std::string& path, const std::vector<BagMessageSpec>& messages) {
   sqlite3* db = nullptr;
   if (sqlite3_open(path.c_str(), &db) != SQLITE_OK) return false;
-  bool ok = sqlite3_exec(db,
-                         "CREATE TABLE topics(id INTEGER PRIMARY KEY, name TEXT NOT NULL, type TEXT NOT NULL, "
-                         "serialization_format TEXT NOT NULL, offered_qos_profiles TEXT NOT NULL);"
-                         "CREATE TABLE messages(id INTEGER PRIMARY KEY, topic_id INTEGER NOT NULL, "
-                         "timestamp INTEGER NOT NULL, data BLOB NOT NULL);",
-                         nullptr, nullptr, nullptr) == SQLITE_OK;
+  bool ok =
+      sqlite3_exec(db,
+                   "CREATE TABLE topics(id INTEGER PRIMARY KEY, name TEXT NOT NULL, type TEXT NOT NULL, "
+                   "serialization_format TEXT NOT NULL, offered_qos_profiles TEXT NOT NULL);"
+                   "CREATE TABLE messages(id INTEGER PRIMARY KEY, topic_id INTEGER NOT NULL, "
+                   "timestamp INTEGER NOT NULL, data BLOB NOT NULL);",
+                   nullptr, nullptr, nullptr) == SQLITE_OK;
   std::map<std::string, int> ids;
   for (const BagMessageSpec& m : messages) {
     if (ids.count(m.topic) != 0) continue;
     const int id = static_cast<int>(ids.size()) + 1;
     ids[m.topic] = id;
-    const std::string sql = "INSERT INTO topics VALUES(" + std::to_string(id) + ", '" + m.topic + "', '" + m.type +
-                            "', 'cdr', '');";
+    const std::string sql = "INSERT INTO topics VALUES(" + std::to_string(id) + ", '" + m.topic + "', '" +
+                            m.type + "', 'cdr', '');";
     ok = ok && sqlite3_exec(db, sql.c_str(), nullptr, nullptr, nullptr) == SQLITE_OK;
   }
   sqlite3_stmt* insert = nullptr;
-  ok = ok && sqlite3_prepare_v2(db, "INSERT INTO messages(topic_id, timestamp, data) VALUES(?, ?, ?)", -1, &insert,
-                                nullptr) == SQLITE_OK;
+  ok = ok && sqlite3_prepare_v2(db, "INSERT INTO messages(topic_id, timestamp, data) VALUES(?, ?, ?)", -1,
+                                &insert, nullptr) == SQLITE_OK;
   for (const BagMessageSpec& m : messages) {
     if (!ok) break;
     sqlite3_bind_int(insert, 1, ids[m.topic]);
@@ -257,8 +260,9 @@ std::string Rosbag2Metadata(const std::string& storage, const std::string& file,
     ++topics[m.topic].second;
   }
   std::string text = "rosbag2_bagfile_information:\n  version: 5\n  storage_identifier: " + storage +
-                     "\n  relative_file_paths:\n    - " + file + "\n  message_count: " +
-                     std::to_string(messages.size()) + "\n  topics_with_message_count:\n";
+                     "\n  relative_file_paths:\n    - " + file +
+                     "\n  message_count: " + std::to_string(messages.size()) +
+                     "\n  topics_with_message_count:\n";
   for (const auto& [name, type_count] : topics) {
     text += "    - topic_metadata:\n        name: " + name + "\n        type: " + type_count.first +
             "\n        serialization_format: cdr\n        offered_qos_profiles: \"\"\n      message_count: " +
@@ -282,7 +286,8 @@ std::vector<std::uint8_t> CdrImage(std::int64_t stamp, const std::string& frame,
   return w.Done();
 }
 
-std::vector<std::uint8_t> CdrCompressedImage(std::int64_t stamp, const std::string& frame, const std::string& format,
+std::vector<std::uint8_t> CdrCompressedImage(std::int64_t stamp, const std::string& frame,
+                                             const std::string& format,
                                              const std::vector<std::uint8_t>& bytes) {
   Writer w;
   w.Header(stamp, frame);
@@ -325,8 +330,8 @@ std::vector<std::uint8_t> CdrTfMessage(const std::vector<std::pair<std::string, 
 }
 
 std::vector<std::uint8_t> CdrCameraInfo(std::int64_t stamp, const std::string& frame, int width, int height,
-                                        const std::string& model, const std::vector<double>& d, double fx, double fy,
-                                        double cx, double cy) {
+                                        const std::string& model, const std::vector<double>& d, double fx,
+                                        double fy, double cx, double cy) {
   Writer w;
   w.Header(stamp, frame);
   w.cdr().serialize(static_cast<std::uint32_t>(height));
@@ -340,10 +345,10 @@ std::vector<std::uint8_t> CdrCameraInfo(std::int64_t stamp, const std::string& f
   w.cdr().serializeArray(k, 9);
   w.cdr().serializeArray(r, 9);
   w.cdr().serializeArray(p, 12);
-  w.cdr().serialize(static_cast<std::uint32_t>(0));  // binning_x
-  w.cdr().serialize(static_cast<std::uint32_t>(0));  // binning_y
+  w.cdr().serialize(static_cast<std::uint32_t>(0));                              // binning_x
+  w.cdr().serialize(static_cast<std::uint32_t>(0));                              // binning_y
   for (int i = 0; i < 4; ++i) w.cdr().serialize(static_cast<std::uint32_t>(0));  // roi offsets and size
-  w.cdr().serialize(static_cast<std::uint8_t>(0));  // roi.do_rectify
+  w.cdr().serialize(static_cast<std::uint8_t>(0));                               // roi.do_rectify
   return w.Done();
 }
 

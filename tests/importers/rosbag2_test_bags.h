@@ -15,14 +15,14 @@ namespace sfm::testing {
 
 struct BagMessageSpec {
   std::string topic, type;
-  std::int64_t log_time = 0;  // ns
+  std::int64_t log_time = 0;       // ns
   std::vector<std::uint8_t> data;  // CDR
 };
 
 struct McapWriteOptions {
   bool chunked = true;
-  std::string compression;      // "", "zstd", "lz4", or anything else (written as is, for error tests)
-  bool summary = true;          // summary section (schemas, channels, statistics) and its CRC
+  std::string compression;            // "", "zstd", "lz4", or anything else (written as is, for error tests)
+  bool summary = true;                // summary section (schemas, channels, statistics) and its CRC
   std::size_t chunk_bytes = 1 << 18;  // uncompressed records per chunk (about)
   std::string message_encoding = "cdr";
   std::string schema_encoding = "ros2msg";
@@ -41,7 +41,8 @@ std::string Rosbag2Metadata(const std::string& storage, const std::string& file,
 std::vector<std::uint8_t> CdrImage(std::int64_t stamp, const std::string& frame, int width, int height,
                                    const std::string& encoding, std::uint32_t step,
                                    const std::vector<std::uint8_t>& pixels);
-std::vector<std::uint8_t> CdrCompressedImage(std::int64_t stamp, const std::string& frame, const std::string& format,
+std::vector<std::uint8_t> CdrCompressedImage(std::int64_t stamp, const std::string& frame,
+                                             const std::string& format,
                                              const std::vector<std::uint8_t>& bytes);
 std::vector<std::uint8_t> CdrOdometry(std::int64_t stamp, const std::string& frame, const std::string& child,
                                       const Pose3& pose);
@@ -49,7 +50,7 @@ std::vector<std::uint8_t> CdrPoseStamped(std::int64_t stamp, const std::string& 
 std::vector<std::uint8_t> CdrTfMessage(const std::vector<std::pair<std::string, std::string>>& parent_child,
                                        const std::vector<Pose3>& parent_T_child);
 std::vector<std::uint8_t> CdrCameraInfo(std::int64_t stamp, const std::string& frame, int width, int height,
-                                        const std::string& model, const std::vector<double>& d, double fx, double fy,
-                                        double cx, double cy);
+                                        const std::string& model, const std::vector<double>& d, double fx,
+                                        double fy, double cx, double cy);
 
 }  // namespace sfm::testing

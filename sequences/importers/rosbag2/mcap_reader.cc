@@ -1,10 +1,9 @@
 #include "sequences/importers/rosbag2/mcap_reader.h"
 
+#include <glog/logging.h>
 #include <lz4frame.h>
 #include <zlib.h>
 #include <zstd.h>
-
-#include <glog/logging.h>
 
 #include <cstring>
 #include <filesystem>
@@ -17,7 +16,7 @@ namespace {
 constexpr std::uint8_t kHeader = 0x01, kFooter = 0x02, kSchema = 0x03, kChannel = 0x04, kMessage = 0x05,
                        kChunk = 0x06, kStatistics = 0x0B, kDataEnd = 0x0F;
 constexpr std::uint8_t kMagic[8] = {0x89, 'M', 'C', 'A', 'P', '0', '\r', '\n'};
-constexpr std::uint64_t kRecordPrefix = 9;  // opcode (1) and content length (8)
+constexpr std::uint64_t kRecordPrefix = 9;    // opcode (1) and content length (8)
 constexpr std::uint64_t kFooterContent = 20;  // summary_start, summary_offset_start, summary_crc
 // A chunk stating more than this uncompressed is taken as corrupt rather than allocated.
 constexpr std::uint64_t kMaxChunkSize = std::uint64_t{1} << 32;
@@ -123,8 +122,8 @@ Status McapReader::Open(const std::string& path) {
     return Status::Error(path + ": not an MCAP file (no MCAP magic at its start)");
   }
   if (magic[5] != '0' || magic[6] != '\r' || magic[7] != '\n') {
-    return Status::Error(path + ": unsupported MCAP major version '" + std::string(1, static_cast<char>(magic[5])) +
-                         "' (this reader knows version 0)");
+    return Status::Error(path + ": unsupported MCAP major version '" +
+                         std::string(1, static_cast<char>(magic[5])) + "' (this reader knows version 0)");
   }
   std::uint8_t prefix[kRecordPrefix];
   if (!ReadExactly(in, prefix, kRecordPrefix) || prefix[0] != kHeader) {
@@ -151,7 +150,8 @@ Status McapReader::Open(const std::string& path) {
   in.seekg(static_cast<std::streamoff>(footer_offset));
   if (!ReadExactly(in, tail, sizeof(tail))) return Status::Error(path + ": cannot be read");
   if (std::memcmp(tail + footer_size, kMagic, 8) != 0) {
-    LOG(WARNING) << path << ": no closing magic (the file was not closed); reading its data section to the end";
+    LOG(WARNING) << path
+                 << ": no closing magic (the file was not closed); reading its data section to the end";
     return Status::Ok();
   }
   if (tail[0] != kFooter || LittleEndian64(tail + 1) != kFooterContent) {
@@ -171,7 +171,8 @@ Status McapReader::Open(const std::string& path) {
   return ReadSummary(summary_start, footer_offset, summary_crc);
 }
 
-Status McapReader::ReadSummary(std::uint64_t summary_start, std::uint64_t footer_offset, std::uint32_t summary_crc) {
+Status McapReader::ReadSummary(std::uint64_t summary_start, std::uint64_t footer_offset,
+                               std::uint32_t summary_crc) {
   // The summary CRC covers the summary and summary offset sections and the footer up to (not
   // including) its summary_crc field.
   const std::uint64_t crc_end = footer_offset + kRecordPrefix + 16;
@@ -244,8 +245,8 @@ Status McapReader::HandleRecord(std::uint8_t opcode, const std::uint8_t* content
     case kMessage: {
       Cursor cursor(content, length);
       McapMessage message;
-      if (!cursor.Int(&message.channel_id) || !cursor.Int(&message.sequence) || !cursor.Int(&message.log_time) ||
-          !cursor.Int(&message.publish_time)) {
+      if (!cursor.Int(&message.channel_id) || !cursor.Int(&message.sequence) ||
+          !cursor.Int(&message.log_time) || !cursor.Int(&message.publish_time)) {
         return Error(offset, "malformed Message record");
       }
       message.data = cursor.here();
@@ -260,7 +261,8 @@ Status McapReader::HandleRecord(std::uint8_t opcode, const std::uint8_t* content
         const auto found = schemas_.find(channel->second.schema_id);
         if (found == schemas_.end()) {
           return Error(offset, "channel " + channel->second.topic + " refers to schema " +
-                                   std::to_string(channel->second.schema_id) + ", which no Schema record defines");
+                                   std::to_string(channel->second.schema_id) +
+                                   ", which no Schema record defines");
         }
         schema = &found->second;
       }
@@ -286,9 +288,11 @@ Status McapReader::ReadChunk(const std::uint8_t* content, std::uint64_t length, 
       !cursor.Int(&uncompressed_crc) || !cursor.String(&compression) || !cursor.Int(&records_length)) {
     return Error(offset, "malformed Chunk record");
   }
-  if (!cursor.Bytes(records_length, &records)) return Error(offset, "truncated chunk (its records run past the record)");
+  if (!cursor.Bytes(records_length, &records))
+    return Error(offset, "truncated chunk (its records run past the record)");
   if (uncompressed_size > kMaxChunkSize) {
-    return Error(offset, "chunk states " + std::to_string(uncompressed_size) + " bytes uncompressed (corrupt)");
+    return Error(offset,
+                 "chunk states " + std::to_string(uncompressed_size) + " bytes uncompressed (corrupt)");
   }
   const std::uint8_t* data = records;
   if (compression.empty()) {
@@ -298,7 +302,8 @@ Status McapReader::ReadChunk(const std::uint8_t* content, std::uint64_t length, 
     }
   } else if (compression == "zstd") {
     decompressed_.resize(uncompressed_size);
-    const std::size_t size = ZSTD_decompress(decompressed_.data(), decompressed_.size(), records, records_length);
+    const std::size_t size =
+        ZSTD_decompress(decompressed_.data(), decompressed_.size(), records, records_length);
     if (ZSTD_isError(size)) {
       return Error(offset, std::string("zstd chunk does not decompress (") + ZSTD_getErrorName(size) + ")");
     }
@@ -314,13 +319,13 @@ Status McapReader::ReadChunk(const std::uint8_t* content, std::uint64_t length, 
     if (LZ4F_isError(LZ4F_createDecompressionContext(&context, LZ4F_VERSION))) {
       return Error(offset, "cannot create an lz4 decompression context");
     }
-    std::unique_ptr<LZ4F_dctx, decltype(&LZ4F_freeDecompressionContext)> owner(context,
-                                                                               &LZ4F_freeDecompressionContext);
+    std::unique_ptr<LZ4F_dctx, decltype(&LZ4F_freeDecompressionContext)> owner(
+        context, &LZ4F_freeDecompressionContext);
     std::size_t produced = 0, consumed = 0, hint = 1;
     while (hint != 0) {
       std::size_t out_size = decompressed_.size() - produced, in_size = records_length - consumed;
-      hint = LZ4F_decompress(context, decompressed_.data() + produced, &out_size, records + consumed, &in_size,
-                             nullptr);
+      hint = LZ4F_decompress(context, decompressed_.data() + produced, &out_size, records + consumed,
+                             &in_size, nullptr);
       if (LZ4F_isError(hint)) {
         return Error(offset, std::string("lz4 chunk does not decompress (") + LZ4F_getErrorName(hint) + ")");
       }
@@ -337,7 +342,8 @@ Status McapReader::ReadChunk(const std::uint8_t* content, std::uint64_t length, 
     }
     data = decompressed_.data();
   } else {
-    return Error(offset, "unknown chunk compression '" + compression + "' (this reader knows zstd, lz4 and none)");
+    return Error(offset,
+                 "unknown chunk compression '" + compression + "' (this reader knows zstd, lz4 and none)");
   }
   if (uncompressed_crc != 0 && Crc32(0, data, uncompressed_size) != uncompressed_crc) {
     return Error(offset, "chunk CRC mismatch (the chunk is corrupt)");
@@ -351,7 +357,8 @@ Status McapReader::ReadChunk(const std::uint8_t* content, std::uint64_t length, 
     std::uint64_t inner_length = 0;
     const std::uint8_t* inner_content = nullptr;
     if (!inner.Int(&opcode) || !inner.Int(&inner_length) || !inner.Bytes(inner_length, &inner_content)) {
-      return Error(offset, "truncated record at byte " + std::to_string(inner_offset) + " of the chunk's records");
+      return Error(offset,
+                   "truncated record at byte " + std::to_string(inner_offset) + " of the chunk's records");
     }
     SFM_RETURN_IF_ERROR(HandleRecord(opcode, inner_content, inner_length, offset, true, on_message));
   }
@@ -376,8 +383,8 @@ Status McapReader::ReadMessages(const MessageCallback& on_message) {
     const std::uint8_t opcode = prefix[0];
     const std::uint64_t length = LittleEndian64(prefix + 1);
     if (length > data_end_ - offset - kRecordPrefix) {
-      return Error(offset, std::string(opcode == kChunk ? "truncated chunk" : "truncated record") + ": it states " +
-                               std::to_string(length) + " bytes, the data section has " +
+      return Error(offset, std::string(opcode == kChunk ? "truncated chunk" : "truncated record") +
+                               ": it states " + std::to_string(length) + " bytes, the data section has " +
                                std::to_string(data_end_ - offset - kRecordPrefix) + " left");
     }
     content.resize(length);
@@ -386,13 +393,15 @@ Status McapReader::ReadMessages(const MessageCallback& on_message) {
       Cursor cursor(content.data(), length);
       std::uint32_t data_crc = 0;
       if (!cursor.Int(&data_crc)) return Error(offset, "malformed DataEnd record");
-      if (data_crc != 0 && data_crc != crc) return Error(offset, "data section CRC mismatch (the file is corrupt)");
+      if (data_crc != 0 && data_crc != crc)
+        return Error(offset, "data section CRC mismatch (the file is corrupt)");
       return Status::Ok();
     }
     crc = Crc32(crc, prefix, kRecordPrefix);
     crc = Crc32(crc, content.data(), length);
     if (opcode == kHeader || opcode == kFooter) {
-      if (opcode == kFooter || offset != 8) return Error(offset, "unexpected Header or Footer record in the data section");
+      if (opcode == kFooter || offset != 8)
+        return Error(offset, "unexpected Header or Footer record in the data section");
     } else {
       SFM_RETURN_IF_ERROR(HandleRecord(opcode, content.data(), length, offset, false, on_message));
     }

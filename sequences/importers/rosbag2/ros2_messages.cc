@@ -59,7 +59,8 @@ class Decoder {
 // Runs `decode` and turns Fast CDR's exceptions (reading past the end, bad values) into a Status.
 template <typename Decode>
 Status Run(const std::uint8_t* data, std::size_t size, const std::string& what, const Decode& decode) {
-  if (size < 4) return Status::Error(what + ": message of " + std::to_string(size) + " bytes has no CDR header");
+  if (size < 4)
+    return Status::Error(what + ": message of " + std::to_string(size) + " bytes has no CDR header");
   try {
     Decoder decoder(data, size);
     decode(&decoder);
@@ -76,7 +77,8 @@ Status CheckPose(const Pose3& pose, const std::string& what) {
     return Status::Error(what + ": pose is not finite");
   }
   if (std::abs(pose.rotation.norm() - 1) > 1e-3) {
-    return Status::Error(what + ": quaternion of norm " + std::to_string(pose.rotation.norm()) + " is not a rotation");
+    return Status::Error(what + ": quaternion of norm " + std::to_string(pose.rotation.norm()) +
+                         " is not a rotation");
   }
   return Status::Ok();
 }
@@ -87,7 +89,8 @@ bool IsRosPoseType(const std::string& type) {
   return type == kRosOdometry || type == kRosPoseStamped || type == kRosTransformStamped;
 }
 
-Status DecodeRosHeaderOnly(const std::uint8_t* data, std::size_t size, const std::string& what, RosHeader* header) {
+Status DecodeRosHeaderOnly(const std::uint8_t* data, std::size_t size, const std::string& what,
+                           RosHeader* header) {
   return Run(data, size, what, [&](Decoder* decoder) { decoder->Header(header); });
 }
 
@@ -133,7 +136,8 @@ Status DecodeRosTfMessage(const std::uint8_t* data, std::size_t size, const std:
   SFM_RETURN_IF_ERROR(Run(data, size, what, [&](Decoder* decoder) {
     std::uint32_t count = 0;
     decoder->cdr().deserialize(count);
-    if (count > size) throw eprosima::fastcdr::exception::NotEnoughMemoryException("more transforms than bytes");
+    if (count > size)
+      throw eprosima::fastcdr::exception::NotEnoughMemoryException("more transforms than bytes");
     transforms->resize(count);
     for (RosStampedPose& transform : *transforms) {
       decoder->Header(&transform.header);
@@ -141,11 +145,13 @@ Status DecodeRosTfMessage(const std::uint8_t* data, std::size_t size, const std:
       decoder->Pose(&transform.parent_T_child);
     }
   }));
-  for (const RosStampedPose& transform : *transforms) SFM_RETURN_IF_ERROR(CheckPose(transform.parent_T_child, what));
+  for (const RosStampedPose& transform : *transforms)
+    SFM_RETURN_IF_ERROR(CheckPose(transform.parent_T_child, what));
   return Status::Ok();
 }
 
-Status DecodeRosCameraInfo(const std::uint8_t* data, std::size_t size, const std::string& what, RosCameraInfo* info) {
+Status DecodeRosCameraInfo(const std::uint8_t* data, std::size_t size, const std::string& what,
+                           RosCameraInfo* info) {
   return Run(data, size, what, [&](Decoder* decoder) {
     Cdr& cdr = decoder->cdr();
     decoder->Header(&info->header);
@@ -154,7 +160,8 @@ Status DecodeRosCameraInfo(const std::uint8_t* data, std::size_t size, const std
     cdr.deserialize(info->distortion_model);
     std::uint32_t count = 0;
     cdr.deserialize(count);
-    if (count > size) throw eprosima::fastcdr::exception::NotEnoughMemoryException("more coefficients than bytes");
+    if (count > size)
+      throw eprosima::fastcdr::exception::NotEnoughMemoryException("more coefficients than bytes");
     info->d.resize(count);
     if (count > 0) cdr.deserializeArray(info->d.data(), count);
     cdr.deserializeArray(info->k.data(), 9);

@@ -61,7 +61,8 @@ struct RosCameraInfo {  // sensor_msgs/msg/CameraInfo
 
 // Each fails with "<what>: <problem>" (a truncated or malformed serialization, a quaternion that
 // is not unit within 1e-3 or not finite).
-Status DecodeRosHeaderOnly(const std::uint8_t* data, std::size_t size, const std::string& what, RosHeader* header);
+Status DecodeRosHeaderOnly(const std::uint8_t* data, std::size_t size, const std::string& what,
+                           RosHeader* header);
 Status DecodeRosImage(const std::uint8_t* data, std::size_t size, const std::string& what, RosImage* image);
 Status DecodeRosCompressedImage(const std::uint8_t* data, std::size_t size, const std::string& what,
                                 RosCompressedImage* image);
@@ -70,7 +71,8 @@ Status DecodeRosStampedPose(const std::string& type, const std::uint8_t* data, s
                             const std::string& what, RosStampedPose* pose);
 Status DecodeRosTfMessage(const std::uint8_t* data, std::size_t size, const std::string& what,
                           std::vector<RosStampedPose>* transforms);
-Status DecodeRosCameraInfo(const std::uint8_t* data, std::size_t size, const std::string& what, RosCameraInfo* info);
+Status DecodeRosCameraInfo(const std::uint8_t* data, std::size_t size, const std::string& what,
+                           RosCameraInfo* info);
 
 // True for the types DecodeRosStampedPose reads.
 bool IsRosPoseType(const std::string& type);

@@ -31,7 +31,9 @@ std::string EncodingProblem(const std::string& message_encoding, const std::stri
   return "";
 }
 
-std::string YamlString(const YAML::Node& node) { return node && node.IsScalar() ? node.as<std::string>() : ""; }
+std::string YamlString(const YAML::Node& node) {
+  return node && node.IsScalar() ? node.as<std::string>() : "";
+}
 
 }  // namespace
 
@@ -68,8 +70,9 @@ Status Rosbag2Bag::Open(const std::string& path) {
         }
       }
       if (storage_files.size() != 1) {
-        return Status::Error(path + ": a ROS 2 bag folder needs metadata.yaml (or exactly one .mcap or .db3 file; found " +
-                             std::to_string(storage_files.size()) + ")");
+        return Status::Error(
+            path + ": a ROS 2 bag folder needs metadata.yaml (or exactly one .mcap or .db3 file; found " +
+            std::to_string(storage_files.size()) + ")");
       }
       files_.push_back(storage_files[0].string());
       storage_ = Extension(storage_files[0]) == ".mcap" ? "mcap" : "sqlite3";
@@ -81,13 +84,15 @@ Status Rosbag2Bag::Open(const std::string& path) {
         if (!info || !info.IsMap()) return Status::Error(where + "no rosbag2_bagfile_information map");
         storage_ = YamlString(info["storage_identifier"]);
         if (storage_ != "mcap" && storage_ != "sqlite3") {
-          return Status::Error(where + "storage_identifier '" + storage_ + "': this importer reads mcap and sqlite3");
+          return Status::Error(where + "storage_identifier '" + storage_ +
+                               "': this importer reads mcap and sqlite3");
         }
         const std::string compression = YamlString(info["compression_format"]);
         if (!compression.empty()) {
-          return Status::Error(where + "the bag is compressed as a whole (compression_format " + compression +
-                               ", mode " + YamlString(info["compression_mode"]) +
-                               "); decompress it first (ros2 bag convert) or record with storage compression");
+          return Status::Error(
+              where + "the bag is compressed as a whole (compression_format " + compression + ", mode " +
+              YamlString(info["compression_mode"]) +
+              "); decompress it first (ros2 bag convert) or record with storage compression");
         }
         const YAML::Node relative = info["relative_file_paths"];
         if (!relative || !relative.IsSequence() || relative.size() == 0) {
@@ -155,29 +160,29 @@ Status Rosbag2Bag::ReadMcap(const std::string& file, const MessageCallback& on_m
   SFM_RETURN_IF_ERROR(reader.Open(file));
   // Channel id -> index into topics_ (stable: topics_ only grows during the read).
   std::map<std::uint16_t, int> channel_topics;
-  SFM_RETURN_IF_ERROR(reader.ReadMessages([&](const McapChannel& channel, const McapSchema* schema,
-                                               const McapMessage& message) {
-    auto found = channel_topics.find(channel.id);
-    if (found == channel_topics.end()) {
-      BagTopic topic;
-      topic.name = channel.topic;
-      topic.type = schema != nullptr ? schema->name : "";
-      topic.serialization_format = channel.message_encoding;
-      topic.problem = EncodingProblem(channel.message_encoding, schema != nullptr ? schema->encoding : "",
-                                      schema != nullptr);
-      BagTopic* added = AddTopic(topic);
-      if (added->type.empty()) added->type = topic.type;
-      if (!topic.problem.empty()) added->problem = topic.problem;
-      found = channel_topics.emplace(channel.id, static_cast<int>(added - topics_.data())).first;
-    }
-    BagTopic& topic = topics_[found->second];
-    ++topic.count;
-    BagMessage bag_message;
-    bag_message.log_time = static_cast<std::int64_t>(message.log_time);
-    bag_message.data = message.data;
-    bag_message.size = message.size;
-    return on_message(topic, bag_message);
-  }));
+  SFM_RETURN_IF_ERROR(reader.ReadMessages(
+      [&](const McapChannel& channel, const McapSchema* schema, const McapMessage& message) {
+        auto found = channel_topics.find(channel.id);
+        if (found == channel_topics.end()) {
+          BagTopic topic;
+          topic.name = channel.topic;
+          topic.type = schema != nullptr ? schema->name : "";
+          topic.serialization_format = channel.message_encoding;
+          topic.problem = EncodingProblem(channel.message_encoding, schema != nullptr ? schema->encoding : "",
+                                          schema != nullptr);
+          BagTopic* added = AddTopic(topic);
+          if (added->type.empty()) added->type = topic.type;
+          if (!topic.problem.empty()) added->problem = topic.problem;
+          found = channel_topics.emplace(channel.id, static_cast<int>(added - topics_.data())).first;
+        }
+        BagTopic& topic = topics_[found->second];
+        ++topic.count;
+        BagMessage bag_message;
+        bag_message.log_time = static_cast<std::int64_t>(message.log_time);
+        bag_message.data = message.data;
+        bag_message.size = message.size;
+        return on_message(topic, bag_message);
+      }));
   // Channels without messages are topics too (an empty topic is reported as such).
   for (const auto& [id, channel] : reader.channels()) {
     if (channel_topics.count(id) != 0) continue;
@@ -200,7 +205,8 @@ Status Rosbag2Bag::ReadSqlite(const std::string& file, const MessageCallback& on
   const int opened = sqlite3_open_v2(file.c_str(), &raw, SQLITE_OPEN_READONLY, nullptr);
   std::unique_ptr<sqlite3, decltype(&sqlite3_close)> db(raw, &sqlite3_close);
   const auto failure = [&](const std::string& what) {
-    return Status::Error(file + ": " + what + " (sqlite3: " + (db ? sqlite3_errmsg(db.get()) : "out of memory") + ")");
+    return Status::Error(file + ": " + what +
+                         " (sqlite3: " + (db ? sqlite3_errmsg(db.get()) : "out of memory") + ")");
   };
   if (opened != SQLITE_OK) return failure("cannot open the bag's database");
   const auto prepare = [&](const char* sql, sqlite3_stmt** statement) {

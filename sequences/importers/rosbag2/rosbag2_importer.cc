@@ -53,50 +53,58 @@ std::string TopicList(const Rosbag2Bag& bag, const std::vector<int>& indices) {
   std::string text;
   for (int index : indices) {
     const BagTopic& topic = bag.topics()[index];
-    text += (text.empty() ? "" : ", ") + topic.name + " (" + topic.type + ", " + std::to_string(topic.count) + ")";
+    text += (text.empty() ? "" : ", ") + topic.name + " (" + topic.type + ", " + std::to_string(topic.count) +
+            ")";
   }
   return text.empty() ? "none" : text;
 }
 
 // Picks the topic for one role: the one named, or the only candidate of the accepted types.
-Status ChooseTopic(const Rosbag2Bag& bag, const std::string& role, const std::string& flag, const std::string& named,
-                   const std::vector<std::string>& types, const std::vector<int>& preferred, int* chosen) {
+Status ChooseTopic(const Rosbag2Bag& bag, const std::string& role, const std::string& flag,
+                   const std::string& named, const std::vector<std::string>& types,
+                   const std::vector<int>& preferred, int* chosen) {
   std::vector<int> candidates;
   for (size_t i = 0; i < bag.topics().size(); ++i) {
-    if (std::find(types.begin(), types.end(), bag.topics()[i].type) != types.end()) candidates.push_back(static_cast<int>(i));
+    if (std::find(types.begin(), types.end(), bag.topics()[i].type) != types.end())
+      candidates.push_back(static_cast<int>(i));
   }
   std::string type_text;
   for (const std::string& type : types) type_text += (type_text.empty() ? "" : " or ") + type;
   if (!named.empty()) {
     *chosen = bag.FindTopic(named);
     if (*chosen < 0) {
-      return Status::Error(bag.path() + ": no topic " + named + " (" + role + " topics: " + TopicList(bag, candidates) + ")");
+      return Status::Error(bag.path() + ": no topic " + named + " (" + role +
+                           " topics: " + TopicList(bag, candidates) + ")");
     }
     const BagTopic& topic = bag.topics()[*chosen];
     if (std::find(types.begin(), types.end(), topic.type) == types.end()) {
-      return Status::Error(bag.path() + ": " + named + ": type " + topic.type + ", the " + role + " topic must be " + type_text);
+      return Status::Error(bag.path() + ": " + named + ": type " + topic.type + ", the " + role +
+                           " topic must be " + type_text);
     }
   } else {
     const std::vector<int>& pool = preferred.size() == 1 ? preferred : candidates;
     if (pool.empty()) return Status::Error(bag.path() + ": no " + role + " topic (" + type_text + ")");
     if (pool.size() > 1) {
-      return Status::Error(bag.path() + ": " + std::to_string(pool.size()) + " " + role + " topics, choose one with --" +
-                           flag + ": " + TopicList(bag, pool));
+      return Status::Error(bag.path() + ": " + std::to_string(pool.size()) + " " + role +
+                           " topics, choose one with --" + flag + ": " + TopicList(bag, pool));
     }
     *chosen = pool[0];
   }
   const BagTopic& topic = bag.topics()[*chosen];
   if (!topic.problem.empty()) return Status::Error(bag.path() + ": " + topic.name + ": " + topic.problem);
-  if (topic.count == 0) return Status::Error(bag.path() + ": " + topic.name + ": the " + role + " topic is empty");
+  if (topic.count == 0)
+    return Status::Error(bag.path() + ": " + topic.name + ": the " + role + " topic is empty");
   return Status::Ok();
 }
 
 // The pose of `stamp` on a trajectory sorted by stamp: exact at a sample, else interpolated
 // (linear translation, slerp) between the two around it when they are at most max_gap apart.
 // nullopt outside the trajectory or in a gap.
-std::optional<Pose3> PoseAt(const std::vector<RosStampedPose>& trajectory, std::int64_t stamp, std::int64_t max_gap) {
-  const auto after = std::lower_bound(trajectory.begin(), trajectory.end(), stamp,
-                                      [](const RosStampedPose& pose, std::int64_t t) { return pose.header.stamp < t; });
+std::optional<Pose3> PoseAt(const std::vector<RosStampedPose>& trajectory, std::int64_t stamp,
+                            std::int64_t max_gap) {
+  const auto after =
+      std::lower_bound(trajectory.begin(), trajectory.end(), stamp,
+                       [](const RosStampedPose& pose, std::int64_t t) { return pose.header.stamp < t; });
   if (after == trajectory.end()) return std::nullopt;
   if (after->header.stamp == stamp) return after->parent_T_child;
   if (after == trajectory.begin()) return std::nullopt;
@@ -148,7 +156,8 @@ Status CameraFromInfo(const RosCameraInfo& info, const std::string& where, Camer
   }
   if (!(camera->fx > 0 && camera->fy > 0) || camera->width <= 0 || camera->height <= 0) {
     return Status::Error(where + ": no calibration (K has fx " + ShortestNumberText(camera->fx) + ", fy " +
-                         ShortestNumberText(camera->fy) + ", size " + SizeText(camera->width, camera->height) + ")");
+                         ShortestNumberText(camera->fy) + ", size " +
+                         SizeText(camera->width, camera->height) + ")");
   }
   for (double value : info.d) {
     if (!std::isfinite(value)) return Status::Error(where + ": D is not finite");
@@ -179,7 +188,8 @@ Status CameraFromInfo(const RosCameraInfo& info, const std::string& where, Camer
                          " coefficients) is not supported: the sequence format has radtan (plumb_bob) and "
                          "equidistant; recalibrate with one of them");
   }
-  return Status::Error(where + ": unknown distortion model '" + model + "' (expected plumb_bob or equidistant)");
+  return Status::Error(where + ": unknown distortion model '" + model +
+                       "' (expected plumb_bob or equidistant)");
 }
 
 // sequence.yaml for an equidistant lens (SPEC section 1: distortion_model, 1x4 k1..k4), which
@@ -191,8 +201,10 @@ Status WriteEquidistantCalibration(const std::string& path, const Calibration& c
   try {
     cv::FileStorage storage(".yaml", cv::FileStorage::WRITE | cv::FileStorage::MEMORY);
     storage << "image_width" << camera.width << "image_height" << camera.height;
-    storage << "camera_matrix" << cv::Mat(cv::Matx33d(camera.fx, 0, camera.cx, 0, camera.fy, camera.cy, 0, 0, 1));
-    storage << "distortion_model" << "equidistant";
+    storage << "camera_matrix"
+            << cv::Mat(cv::Matx33d(camera.fx, 0, camera.cx, 0, camera.fy, camera.cy, 0, 0, 1));
+    storage << "distortion_model"
+            << "equidistant";
     storage << "distortion_coefficients" << cv::Mat(cv::Matx<double, 1, 4>(k[0], k[1], k[2], k[3]));
     cv::Mat T;
     cv::eigen2cv(Eigen::Matrix4d(calibration.base_T_camera.Matrix4()), T);
@@ -231,9 +243,9 @@ Status RawImageToMat(const RosImage& image, const std::string& where, int* mono1
   const std::uint64_t row = std::uint64_t{image.width} * channels * depth_bytes;
   if (image.width == 0 || image.height == 0 || image.step < row ||
       image.data.size() < std::uint64_t{image.step} * (image.height - 1) + row) {
-    return Status::Error(where + ": image data of " + std::to_string(image.data.size()) + " bytes does not hold " +
-                         std::to_string(image.height) + " rows of " + std::to_string(row) + " bytes (step " +
-                         std::to_string(image.step) + ")");
+    return Status::Error(where + ": image data of " + std::to_string(image.data.size()) +
+                         " bytes does not hold " + std::to_string(image.height) + " rows of " +
+                         std::to_string(row) + " bytes (step " + std::to_string(image.step) + ")");
   }
   const int type = depth_bytes == 2 ? CV_16UC1 : CV_MAKETYPE(CV_8U, channels);
   cv::Mat view(static_cast<int>(image.height), static_cast<int>(image.width), type,
@@ -260,7 +272,8 @@ Status RawImageToMat(const RosImage& image, const std::string& where, int* mono1
     for (int r = 0; r < copy.rows; ++r) {
       const std::uint16_t* p = copy.ptr<std::uint16_t>(r);
       std::uint8_t* q = out->ptr<std::uint8_t>(r);
-      for (int c = 0; c < copy.cols; ++c) q[c] = static_cast<std::uint8_t>(std::min(255, p[c] >> *mono16_shift));
+      for (int c = 0; c < copy.cols; ++c)
+        q[c] = static_cast<std::uint8_t>(std::min(255, p[c] >> *mono16_shift));
     }
     return Status::Ok();
   }
@@ -280,7 +293,8 @@ Status RawImageToMat(const RosImage& image, const std::string& where, int* mono1
 
 Status Rosbag2ImportOptions::Check() const {
   if (every < 1) return Status::Error("--every must be >= 1");
-  if (!(min_motion >= 0) || !(min_rotation >= 0)) return Status::Error("--min_motion and --min_rotation must be >= 0");
+  if (!(min_motion >= 0) || !(min_rotation >= 0))
+    return Status::Error("--min_motion and --min_rotation must be >= 0");
   if (!(start_time >= 0) || !(end_time > start_time)) {
     return Status::Error("the time window needs 0 <= --start_time < --end_time");
   }
@@ -288,8 +302,8 @@ Status Rosbag2ImportOptions::Check() const {
   return scale.Check();
 }
 
-Status ImportRosbag2(const std::string& bag_path, const Rosbag2ImportOptions& options, const std::string& output_dir,
-                     Rosbag2ImportSummary* summary) {
+Status ImportRosbag2(const std::string& bag_path, const Rosbag2ImportOptions& options,
+                     const std::string& output_dir, Rosbag2ImportSummary* summary) {
   SFM_RETURN_IF_ERROR(options.Check());
   *summary = Rosbag2ImportSummary();
   Rosbag2Bag bag;
@@ -329,8 +343,8 @@ Status ImportRosbag2(const std::string& bag_path, const Rosbag2ImportOptions& op
 
   // The topics.
   int image_index = -1, odometry_index = -1, info_index = -1, truth_index = -1;
-  SFM_RETURN_IF_ERROR(ChooseTopic(bag, "image", "image_topic", options.image_topic, {kRosImage, kRosCompressedImage},
-                                  {}, &image_index));
+  SFM_RETURN_IF_ERROR(ChooseTopic(bag, "image", "image_topic", options.image_topic,
+                                  {kRosImage, kRosCompressedImage}, {}, &image_index));
   const BagTopic image_topic = bag.topics()[image_index];
   {
     std::vector<int> odometry_types;
@@ -338,10 +352,10 @@ Status ImportRosbag2(const std::string& bag_path, const Rosbag2ImportOptions& op
       if (bag.topics()[i].type == kRosOdometry) odometry_types.push_back(static_cast<int>(i));
     }
     // Odometry messages first; stamped poses or transforms when the bag has no Odometry topic.
-    const std::vector<std::string> types = odometry_types.empty() && options.odometry_topic.empty()
-                                               ? std::vector<std::string>{kRosPoseStamped, kRosTransformStamped}
-                                               : std::vector<std::string>{kRosOdometry, kRosPoseStamped,
-                                                                          kRosTransformStamped};
+    const std::vector<std::string> types =
+        odometry_types.empty() && options.odometry_topic.empty()
+            ? std::vector<std::string>{kRosPoseStamped, kRosTransformStamped}
+            : std::vector<std::string>{kRosOdometry, kRosPoseStamped, kRosTransformStamped};
     SFM_RETURN_IF_ERROR(ChooseTopic(bag, "odometry", "odometry_topic", options.odometry_topic, types,
                                     odometry_types.size() == 1 ? odometry_types : std::vector<int>{},
                                     &odometry_index));
@@ -380,8 +394,8 @@ Status ImportRosbag2(const std::string& bag_path, const Rosbag2ImportOptions& op
   Camera camera;
   bool equidistant = false;
   std::vector<double> equidistant_k;
-  SFM_RETURN_IF_ERROR(
-      CameraFromInfo(info, bag.path() + ": " + summary->camera_info_topic, &camera, &equidistant, &equidistant_k));
+  SFM_RETURN_IF_ERROR(CameraFromInfo(info, bag.path() + ": " + summary->camera_info_topic, &camera,
+                                     &equidistant, &equidistant_k));
 
   // The frames: the window, the odometry at each stamp, every N-th, then the keyframe motion.
   std::vector<ImageStamp> images = data[image_topic.name].images;
@@ -389,8 +403,9 @@ Status ImportRosbag2(const std::string& bag_path, const Rosbag2ImportOptions& op
                    [](const ImageStamp& a, const ImageStamp& b) { return a.stamp < b.stamp; });
   summary->images_on_topic = static_cast<int>(images.size());
   std::vector<RosStampedPose> odometry = data[summary->odometry_topic].poses;
-  std::stable_sort(odometry.begin(), odometry.end(),
-                   [](const RosStampedPose& a, const RosStampedPose& b) { return a.header.stamp < b.header.stamp; });
+  std::stable_sort(odometry.begin(), odometry.end(), [](const RosStampedPose& a, const RosStampedPose& b) {
+    return a.header.stamp < b.header.stamp;
+  });
   const std::int64_t first_stamp = images.front().stamp;
   std::vector<ImageStamp> windowed;
   for (const ImageStamp& image : images) {
@@ -402,11 +417,13 @@ Status ImportRosbag2(const std::string& bag_path, const Rosbag2ImportOptions& op
     }
   }
   if (windowed.empty()) {
-    return Status::Error(image_where + ": no image in the time window [" + ShortestNumberText(options.start_time) +
-                         ", " + ShortestNumberText(options.end_time) + "] s after the first (the topic spans " +
+    return Status::Error(image_where + ": no image in the time window [" +
+                         ShortestNumberText(options.start_time) + ", " +
+                         ShortestNumberText(options.end_time) + "] s after the first (the topic spans " +
                          ShortestNumberText(Seconds(images.back().stamp - first_stamp)) + " s)");
   }
-  const std::int64_t max_gap = static_cast<std::int64_t>(std::llround(options.max_odometry_gap * kNanoseconds));
+  const std::int64_t max_gap =
+      static_cast<std::int64_t>(std::llround(options.max_odometry_gap * kNanoseconds));
   const double window_start = Seconds(windowed.front().stamp - first_stamp);
   const double window_end = Seconds(windowed.back().stamp - first_stamp);
   if (odometry.front().header.stamp > windowed.front().stamp + max_gap) {
@@ -439,8 +456,10 @@ Status ImportRosbag2(const std::string& bag_path, const Rosbag2ImportOptions& op
     }
     if ((options.min_motion > 0 || options.min_rotation > 0) && !kept.empty()) {
       const Pose3& last = kept.back().world_T_base;
-      const bool moved = (pose->translation - last.translation).norm() >= options.min_motion && options.min_motion > 0;
-      const bool turned = RotationAngle(pose->rotation, last.rotation) >= options.min_rotation && options.min_rotation > 0;
+      const bool moved =
+          (pose->translation - last.translation).norm() >= options.min_motion && options.min_motion > 0;
+      const bool turned =
+          RotationAngle(pose->rotation, last.rotation) >= options.min_rotation && options.min_rotation > 0;
       if (!moved && !turned) {
         ++summary->dropped_by_motion;
         continue;
@@ -453,20 +472,23 @@ Status ImportRosbag2(const std::string& bag_path, const Rosbag2ImportOptions& op
                          std::to_string(images.size()) + " (" + std::to_string(summary->outside_window) +
                          " outside the time window, " + std::to_string(summary->in_odometry_gaps) +
                          " in odometry gaps, " + std::to_string(summary->dropped_by_every) + " by --every, " +
-                         std::to_string(summary->dropped_by_motion) + " by the keyframe motion); a sequence needs 2");
+                         std::to_string(summary->dropped_by_motion) +
+                         " by the keyframe motion); a sequence needs 2");
   }
   std::vector<Pose3> truth;
   if (truth_index >= 0) {
     std::vector<RosStampedPose> poses = data[summary->groundtruth_topic].poses;
-    std::stable_sort(poses.begin(), poses.end(),
-                     [](const RosStampedPose& a, const RosStampedPose& b) { return a.header.stamp < b.header.stamp; });
+    std::stable_sort(poses.begin(), poses.end(), [](const RosStampedPose& a, const RosStampedPose& b) {
+      return a.header.stamp < b.header.stamp;
+    });
     for (const Kept& frame : kept) {
       const std::optional<Pose3> pose = PoseAt(poses, frame.image.stamp, max_gap);
       if (!pose) {
-        return Status::Error(bag.path() + ": " + summary->groundtruth_topic + ": no ground truth at the image of " +
-                             ShortestNumberText(Seconds(frame.image.stamp - first_stamp)) +
-                             " s (it covers " + ShortestNumberText(Seconds(poses.front().header.stamp - first_stamp)) +
-                             " to " + ShortestNumberText(Seconds(poses.back().header.stamp - first_stamp)) +
+        return Status::Error(bag.path() + ": " + summary->groundtruth_topic +
+                             ": no ground truth at the image of " +
+                             ShortestNumberText(Seconds(frame.image.stamp - first_stamp)) + " s (it covers " +
+                             ShortestNumberText(Seconds(poses.front().header.stamp - first_stamp)) + " to " +
+                             ShortestNumberText(Seconds(poses.back().header.stamp - first_stamp)) +
                              " s); narrow the window with --start_time / --end_time");
       }
       truth.push_back(*pose);
@@ -479,9 +501,11 @@ Status ImportRosbag2(const std::string& bag_path, const Rosbag2ImportOptions& op
   if (camera_frame.empty()) camera_frame = data[image_topic.name].image_frame;
   if (camera_frame.empty()) camera_frame = info.header.frame_id;
   Pose3 base_T_camera = Pose3::Identity();
-  std::string transform_note = "T_base_camera: identity (base and camera frame '" + camera_frame + "' are one)";
+  std::string transform_note =
+      "T_base_camera: identity (base and camera frame '" + camera_frame + "' are one)";
   if (base_frame.empty()) {
-    return Status::Error(odometry_where + ": the odometry names no base frame (PoseStamped); give --base_frame");
+    return Status::Error(odometry_where +
+                         ": the odometry names no base frame (PoseStamped); give --base_frame");
   }
   if (base_frame != camera_frame) {
     std::vector<RosStampedPose> transforms;
@@ -489,7 +513,8 @@ Status ImportRosbag2(const std::string& bag_path, const Rosbag2ImportOptions& op
     const std::optional<Pose3> found = StaticTransform(transforms, base_frame, camera_frame);
     if (!found) {
       return Status::Error(bag.path() + ": /tf_static: no transform from the base frame '" + base_frame +
-                           "' to the camera frame '" + camera_frame + "' (" + std::to_string(transforms.size()) +
+                           "' to the camera frame '" + camera_frame + "' (" +
+                           std::to_string(transforms.size()) +
                            " static transforms); name the frames with --base_frame / --camera_frame");
     }
     base_T_camera = *found;
@@ -548,15 +573,16 @@ Status ImportRosbag2(const std::string& bag_path, const Rosbag2ImportOptions& op
                            SizeText(first_size.width, first_size.height) + " (images of changing size)");
     }
     if (image.cols != camera.width || image.rows != camera.height) {
-      return Status::Error(what + ": image is " + SizeText(image.cols, image.rows) + ", " + summary->camera_info_topic +
-                           " says " + SizeText(camera.width, camera.height));
+      return Status::Error(what + ": image is " + SizeText(image.cols, image.rows) + ", " +
+                           summary->camera_info_topic + " says " + SizeText(camera.width, camera.height));
     }
     if (image.size() != size) cv::resize(cv::Mat(image), image, size, 0, 0, cv::INTER_AREA);
     char name[32];
     std::snprintf(name, sizeof(name), "images/%06d.png", found->second);
     std::vector<unsigned char> png;
     if (!cv::imencode(".png", image, png)) return Status::Error(what + ": PNG encoding failed");
-    SFM_RETURN_IF_ERROR(WriteFileAtomically((temporary.path() / name).string(), std::string(png.begin(), png.end())));
+    SFM_RETURN_IF_ERROR(
+        WriteFileAtomically((temporary.path() / name).string(), std::string(png.begin(), png.end())));
     ++written;
     return Status::Ok();
   }));
@@ -567,7 +593,8 @@ Status ImportRosbag2(const std::string& bag_path, const Rosbag2ImportOptions& op
 
   // The text files.
   const fs::path& root = temporary.path();
-  std::string image_list = "# timestamp image (imported from a ROS 2 bag by import_sequence; see import_notes.txt)\n";
+  std::string image_list =
+      "# timestamp image (imported from a ROS 2 bag by import_sequence; see import_notes.txt)\n";
   std::vector<StampedPose> odometry_poses, truth_poses;
   for (size_t i = 0; i < kept.size(); ++i) {
     const double t = Seconds(kept[i].image.stamp);
@@ -579,7 +606,8 @@ Status ImportRosbag2(const std::string& bag_path, const Rosbag2ImportOptions& op
   }
   SFM_RETURN_IF_ERROR(WriteFileAtomically((root / "images.txt").string(), image_list));
   SFM_RETURN_IF_ERROR(WriteTumTrajectory((root / "odometry.txt").string(), odometry_poses));
-  if (!truth_poses.empty()) SFM_RETURN_IF_ERROR(WriteTumTrajectory((root / "groundtruth.txt").string(), truth_poses));
+  if (!truth_poses.empty())
+    SFM_RETURN_IF_ERROR(WriteTumTrajectory((root / "groundtruth.txt").string(), truth_poses));
   Calibration calibration;
   calibration.camera = ScaleCamera(camera, size);
   calibration.base_T_camera = base_T_camera;
@@ -591,25 +619,31 @@ Status ImportRosbag2(const std::string& bag_path, const Rosbag2ImportOptions& op
   SFM_RETURN_IF_ERROR(equidistant ? WriteEquidistantCalibration(yaml, calibration, equidistant_k)
                                   : WriteCalibration(yaml, calibration));
   summary->frames = static_cast<int>(kept.size());
-  std::string notes = "# How this sequence was imported (import_sequence --format rosbag2; see docs/importers.md)\n";
+  std::string notes =
+      "# How this sequence was imported (import_sequence --format rosbag2; see docs/importers.md)\n";
   notes += "format: ROS 2 bag (" + bag.storage() + "), " + bag.path() + "\n";
-  notes += "images: " + image_topic.name + " (" + image_topic.type + "), " + std::to_string(kept.size()) + " of " +
-           std::to_string(images.size()) + " (" + std::to_string(summary->outside_window) + " outside the window, " +
-           std::to_string(summary->in_odometry_gaps) + " in odometry gaps, " +
-           std::to_string(summary->dropped_by_every) + " by --every, " + std::to_string(summary->dropped_by_motion) +
+  notes += "images: " + image_topic.name + " (" + image_topic.type + "), " + std::to_string(kept.size()) +
+           " of " + std::to_string(images.size()) + " (" + std::to_string(summary->outside_window) +
+           " outside the window, " + std::to_string(summary->in_odometry_gaps) + " in odometry gaps, " +
+           std::to_string(summary->dropped_by_every) + " by --every, " +
+           std::to_string(summary->dropped_by_motion) +
            " by the keyframe motion); timestamps: header stamps, seconds\n";
-  if (summary->mono16_shift >= 0) notes += "mono16 images: shifted right by " + std::to_string(summary->mono16_shift) + " bits\n";
+  if (summary->mono16_shift >= 0)
+    notes += "mono16 images: shifted right by " + std::to_string(summary->mono16_shift) + " bits\n";
   if (size.width != camera.width) {
-    notes += "images scaled from " + SizeText(camera.width, camera.height) + " to " + SizeText(size.width, size.height) + "\n";
+    notes += "images scaled from " + SizeText(camera.width, camera.height) + " to " +
+             SizeText(size.width, size.height) + "\n";
   }
-  notes += "camera: " + summary->camera_info_topic + " (" + (equidistant ? "equidistant" : "plumb_bob") + ")\n";
+  notes +=
+      "camera: " + summary->camera_info_topic + " (" + (equidistant ? "equidistant" : "plumb_bob") + ")\n";
   notes += "odometry: " + summary->odometry_topic + ", world_T_base interpolated at the image stamps\n";
-  if (!truth.empty()) notes += "ground truth: " + summary->groundtruth_topic + ", interpolated at the image stamps\n";
+  if (!truth.empty())
+    notes += "ground truth: " + summary->groundtruth_topic + ", interpolated at the image stamps\n";
   notes += transform_note + "\n";
   SFM_RETURN_IF_ERROR(WriteFileAtomically((root / "import_notes.txt").string(), notes));
   SFM_RETURN_IF_ERROR(MoveIntoPlace(&temporary, target));
-  LOG(INFO) << "rosbag2: wrote " << kept.size() << " frames of " << SizeText(size.width, size.height) << " from "
-            << image_topic.name << " to " << target.string();
+  LOG(INFO) << "rosbag2: wrote " << kept.size() << " frames of " << SizeText(size.width, size.height)
+            << " from " << image_topic.name << " to " << target.string();
   return Status::Ok();
 }
 

@@ -20,10 +20,11 @@ struct Rosbag2ImportOptions {
   std::string image_topic, odometry_topic, camera_info_topic, groundtruth_topic;
   // Frame names for T_base_camera; empty: the odometry's child_frame_id and the images' frame_id.
   std::string base_frame, camera_frame;
-  int every = 1;              // keep every N-th image (after the time window)
-  double min_motion = 0;      // m: then keep an image only when the odometry moved this far since the last kept one ...
-  double min_rotation = 0;    // rad: ... or turned this much (0 and 0: keep all)
-  double start_time = 0;      // s after the first image's stamp
+  int every = 1;  // keep every N-th image (after the time window)
+  double min_motion =
+      0;  // m: then keep an image only when the odometry moved this far since the last kept one ...
+  double min_rotation = 0;  // rad: ... or turned this much (0 and 0: keep all)
+  double start_time = 0;    // s after the first image's stamp
   double end_time = std::numeric_limits<double>::infinity();  // s after the first image's stamp
   double max_odometry_gap = 0.5;  // s: images further than this from an odometry sample are not interpolated
   ImageScaleOptions scale;
@@ -52,7 +53,7 @@ struct Rosbag2ImportSummary {
 // does not cover the kept images, a camera model other than plumb_bob or equidistant, no path
 // from the base to the camera frame on /tf_static, fewer than 2 images kept, and the storage's
 // errors (a corrupt MCAP file: truncated chunk, CRC mismatch, unknown compression).
-Status ImportRosbag2(const std::string& bag_path, const Rosbag2ImportOptions& options, const std::string& output_dir,
-                     Rosbag2ImportSummary* summary);
+Status ImportRosbag2(const std::string& bag_path, const Rosbag2ImportOptions& options,
+                     const std::string& output_dir, Rosbag2ImportSummary* summary);
 
 }  // namespace sfm
