@@ -87,30 +87,38 @@ DEFINE_string(tum_camera, "fr1", "tum: which Kinect's published calibration to u
 DEFINE_int32(tum_stride, sfm::TumImportOptions().stride, "tum: keep every N-th image that has ground truth.");
 DEFINE_double(tum_max_groundtruth_gap, sfm::TumImportOptions().max_groundtruth_gap,
               "tum: skip images between ground-truth poses more than this many seconds apart.");
-DEFINE_string(image_topic, "", "rosbag2: sensor_msgs/msg/Image or CompressedImage topic; empty: the bag's only one.");
-DEFINE_string(odometry_topic, "",
-              "rosbag2: nav_msgs/msg/Odometry (or geometry_msgs/msg/PoseStamped, TransformStamped) topic of the "
-              "robot base; empty: the bag's only one.");
-DEFINE_string(camera_info_topic, "",
-              "rosbag2: sensor_msgs/msg/CameraInfo topic; empty: the bag's only one, or the one beside the image "
-              "topic.");
-DEFINE_string(groundtruth_topic, "", "rosbag2: pose topic of the base's true poses (groundtruth.txt); empty: none.");
-DEFINE_string(base_frame, "", "rosbag2: robot base frame for T_base_camera; empty: the odometry's child_frame_id.");
+DEFINE_string(image_topic, "",
+              "rosbag2: sensor_msgs/msg/Image or CompressedImage topic; empty: the bag's only one.");
+DEFINE_string(
+    odometry_topic, "",
+    "rosbag2: nav_msgs/msg/Odometry (or geometry_msgs/msg/PoseStamped, TransformStamped) topic of the "
+    "robot base; empty: the bag's only one.");
+DEFINE_string(
+    camera_info_topic, "",
+    "rosbag2: sensor_msgs/msg/CameraInfo topic; empty: the bag's only one, or the one beside the image "
+    "topic.");
+DEFINE_string(groundtruth_topic, "",
+              "rosbag2: pose topic of the base's true poses (groundtruth.txt); empty: none.");
+DEFINE_string(base_frame, "",
+              "rosbag2: robot base frame for T_base_camera; empty: the odometry's child_frame_id.");
 DEFINE_string(camera_frame, "", "rosbag2: camera frame for T_base_camera; empty: the images' frame_id.");
 DEFINE_int32(every, 1, "rosbag2: keep every N-th image.");
 DEFINE_double(min_motion, 0,
               "rosbag2: keyframes: keep an image only when the odometry moved at least this many metres (or "
               "turned --min_rotation) since the last kept one; 0 and 0: keep all.");
-DEFINE_double(min_rotation, 0, "rosbag2: keyframes: the rotation, radians, that also keeps an image (see --min_motion).");
+DEFINE_double(min_rotation, 0,
+              "rosbag2: keyframes: the rotation, radians, that also keeps an image (see --min_motion).");
 DEFINE_double(start_time, 0, "rosbag2: first image kept, seconds after the image topic's first stamp.");
 DEFINE_double(end_time, std::numeric_limits<double>::infinity(),
               "rosbag2: last image kept, seconds after the image topic's first stamp.");
-DEFINE_double(max_odometry_gap, sfm::Rosbag2ImportOptions().max_odometry_gap,
-              "rosbag2: seconds; images further than this from odometry samples are skipped, and odometry that "
-              "starts or stops this much beyond the images is an error.");
-DEFINE_string(odometry_noise, "",
-              "rosbag2: 'translation_sigma,rotation_sigma' written to sequence.yaml (SPEC's odometry noise keys); "
-              "empty: left out, the pipeline's defaults.");
+DEFINE_double(
+    max_odometry_gap, sfm::Rosbag2ImportOptions().max_odometry_gap,
+    "rosbag2: seconds; images further than this from odometry samples are skipped, and odometry that "
+    "starts or stops this much beyond the images is an error.");
+DEFINE_string(
+    odometry_noise, "",
+    "rosbag2: 'translation_sigma,rotation_sigma' written to sequence.yaml (SPEC's odometry noise keys); "
+    "empty: left out, the pipeline's defaults.");
 
 namespace {
 
@@ -134,11 +142,12 @@ sfm::Status ImportRosbag2() {
   if (!FLAGS_odometry_noise.empty()) {
     sfm::OdometryNoise noise;
     char extra = 0;
-    if (std::sscanf(FLAGS_odometry_noise.c_str(), "%lf,%lf%c", &noise.translation_sigma, &noise.rotation_sigma,
-                    &extra) != 2 ||
+    if (std::sscanf(FLAGS_odometry_noise.c_str(), "%lf,%lf%c", &noise.translation_sigma,
+                    &noise.rotation_sigma, &extra) != 2 ||
         !(noise.translation_sigma > 0) || !(noise.rotation_sigma > 0)) {
-      return sfm::Status::Error("--odometry_noise must be 'translation_sigma,rotation_sigma', two numbers > 0 (found '" +
-                                FLAGS_odometry_noise + "')");
+      return sfm::Status::Error(
+          "--odometry_noise must be 'translation_sigma,rotation_sigma', two numbers > 0 (found '" +
+          FLAGS_odometry_noise + "')");
     }
     options.odometry_noise = noise;
   }
@@ -173,7 +182,8 @@ sfm::Status ReadDataSet(sfm::ImportedSequence* sequence) {
 int main(int argc, char** argv) {
   gflags::SetUsageMessage(
       "makes a SPEC sequence directory from a data set with ground-truth cameras or a ROS 2 bag.\n"
-      "  import_sequence --format vgg|strecha|tum|rosbag2 --input <data set dir or bag> --output <sequence dir> [flags]");
+      "  import_sequence --format vgg|strecha|tum|rosbag2 --input <data set dir or bag> --output <sequence "
+      "dir> [flags]");
   gflags::SetVersionString("0.1.0");
   gflags::ParseCommandLineFlags(&argc, &argv, true);
   FLAGS_logtostderr = true;
@@ -183,7 +193,8 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "import_sequence: unexpected argument '%s' (flags are --name=value; see --help)\n", argv[1]);
     return 2;
   }
-  if (FLAGS_format != "vgg" && FLAGS_format != "strecha" && FLAGS_format != "tum" && FLAGS_format != "rosbag2") {
+  if (FLAGS_format != "vgg" && FLAGS_format != "strecha" && FLAGS_format != "tum" &&
+      FLAGS_format != "rosbag2") {
     std::fprintf(stderr, "import_sequence: --format must be vgg, strecha, tum or rosbag2 (found '%s')\n",
                  FLAGS_format.c_str());
     return 2;

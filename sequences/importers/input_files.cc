@@ -103,7 +103,8 @@ Status DecodeCaptured(const std::string& where, const Decode& decode, cv::Mat* i
   }
   const std::string diagnostics = OneLine(capture.Release() + exception);
   if (decoded.empty()) {
-    return Status::Error(where + ": cannot decode image" + (diagnostics.empty() ? "" : " (" + diagnostics + ")"));
+    return Status::Error(where + ": cannot decode image" +
+                         (diagnostics.empty() ? "" : " (" + diagnostics + ")"));
   }
   if (diagnostics.find("Premature end of JPEG file") != std::string::npos) {
     return Status::Error(where + ": cannot decode image (truncated: " + diagnostics + ")");
@@ -117,14 +118,17 @@ Status DecodeCaptured(const std::string& where, const Decode& decode, cv::Mat* i
 
 Status DecodeImage(const std::string& path, int flags, cv::Mat* image) {
   std::error_code error;
-  if (!std::filesystem::is_regular_file(path, error)) return Status::Error(path + ": image file does not exist");
-  return DecodeCaptured(path, [&] { return cv::imread(path, flags); }, image);
+  if (!std::filesystem::is_regular_file(path, error))
+    return Status::Error(path + ": image file does not exist");
+  return DecodeCaptured(
+      path, [&] { return cv::imread(path, flags); }, image);
 }
 
 Status DecodeImageBytes(const std::string& where, const std::vector<unsigned char>& bytes, int flags,
                         cv::Mat* image) {
   if (bytes.empty()) return Status::Error(where + ": cannot decode image (no data)");
-  return DecodeCaptured(where, [&] { return cv::imdecode(bytes, flags); }, image);
+  return DecodeCaptured(
+      where, [&] { return cv::imdecode(bytes, flags); }, image);
 }
 
 }  // namespace sfm

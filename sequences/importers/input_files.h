@@ -26,5 +26,4 @@ Status DecodeImage(const std::string& path, int flags, cv::Mat* image);
 Status DecodeImageBytes(const std::string& where, const std::vector<unsigned char>& bytes, int flags,
                         cv::Mat* image);
 
-
 }  // namespace sfm
