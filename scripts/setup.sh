@@ -4,7 +4,8 @@
 set -euo pipefail
 
 SFM_PACKAGES=(build-essential cmake pkg-config libeigen3-dev libceres-dev libopencv-dev
-  libopencv-contrib-dev libgflags-dev libgoogle-glog-dev libgtest-dev libgmock-dev libbenchmark-dev)
+  libopencv-contrib-dev libgflags-dev libgoogle-glog-dev libgtest-dev libgmock-dev libbenchmark-dev
+  libzstd-dev liblz4-dev zlib1g-dev libsqlite3-dev libyaml-cpp-dev libfastcdr-dev)
 
 sfm_install_missing_packages() {
   local missing=()
