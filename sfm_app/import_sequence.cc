@@ -16,7 +16,7 @@
 #include <string>
 
 #include "sequences/importers/imported_sequence.h"
-#include "sequences/importers/rosbag2/rosbag2_importer.h"
+#include "sequences/importers/rosbag/bag_importer.h"
 #include "sequences/importers/strecha_importer.h"
 #include "sequences/importers/tum_importer.h"
 #include "sequences/importers/vgg_importer.h"
@@ -112,7 +112,7 @@ DEFINE_double(start_time, 0, "rosbag2: first image kept, seconds after the image
 DEFINE_double(end_time, std::numeric_limits<double>::infinity(),
               "rosbag2: last image kept, seconds after the image topic's first stamp.");
 DEFINE_double(
-    max_odometry_gap, sfm::Rosbag2ImportOptions().max_odometry_gap,
+    max_odometry_gap, sfm::BagImportOptions().max_odometry_gap,
     "rosbag2: seconds; images further than this from odometry samples are skipped, and odometry that "
     "starts or stops this much beyond the images is an error.");
 DEFINE_string(
@@ -123,7 +123,7 @@ DEFINE_string(
 namespace {
 
 sfm::Status ImportRosbag2() {
-  sfm::Rosbag2ImportOptions options;
+  sfm::BagImportOptions options;
   options.image_topic = FLAGS_image_topic;
   options.odometry_topic = FLAGS_odometry_topic;
   options.camera_info_topic = FLAGS_camera_info_topic;
@@ -151,7 +151,7 @@ sfm::Status ImportRosbag2() {
     }
     options.odometry_noise = noise;
   }
-  sfm::Rosbag2ImportSummary summary;
+  sfm::BagImportSummary summary;
   return sfm::ImportRosbag2(FLAGS_input, options, FLAGS_output, &summary);
 }
 

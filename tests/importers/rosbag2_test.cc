@@ -18,9 +18,9 @@
 #include <sstream>
 
 #include "frontend/sequence/sequence.h"
-#include "sequences/importers/rosbag2/mcap_reader.h"
-#include "sequences/importers/rosbag2/ros2_messages.h"
-#include "sequences/importers/rosbag2/rosbag2_bag.h"
+#include "sequences/importers/rosbag/mcap_reader.h"
+#include "sequences/importers/rosbag/ros2_messages.h"
+#include "sequences/importers/rosbag/rosbag2_bag.h"
 #include "tests/importers/rosbag2_test_bags.h"
 #include "tests/test_data.h"
 

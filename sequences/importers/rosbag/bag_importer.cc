@@ -1,4 +1,4 @@
-#include "sequences/importers/rosbag2/rosbag2_importer.h"
+#include "sequences/importers/rosbag/bag_importer.h"
 
 #include <glog/logging.h>
 
@@ -15,8 +15,8 @@
 
 #include "geometry/tum_io.h"
 #include "sequences/importers/input_files.h"
-#include "sequences/importers/rosbag2/ros2_messages.h"
-#include "sequences/importers/rosbag2/rosbag2_bag.h"
+#include "sequences/importers/rosbag/recording.h"
+#include "sequences/importers/rosbag/ros2_messages.h"
 #include "sequences/importers/sequence_output.h"
 #include "util/atomic_file.h"
 #include "util/number_text.h"
@@ -37,7 +37,7 @@ struct ImageStamp {
   int message = 0;         // index among the topic's messages, in storage order
 };
 
-// What the first pass keeps of each topic (by index into Rosbag2Bag::topics()).
+// What the first pass keeps of each topic (by topic name).
 struct TopicData {
   std::vector<ImageStamp> images;
   std::string image_frame;
@@ -49,7 +49,7 @@ struct TopicData {
 
 bool IsImageType(const std::string& type) { return type == kRosImage || type == kRosCompressedImage; }
 
-std::string TopicList(const Rosbag2Bag& bag, const std::vector<int>& indices) {
+std::string TopicList(const Recording& bag, const std::vector<int>& indices) {
   std::string text;
   for (int index : indices) {
     const BagTopic& topic = bag.topics()[index];
@@ -60,7 +60,7 @@ std::string TopicList(const Rosbag2Bag& bag, const std::vector<int>& indices) {
 }
 
 // Picks the topic for one role: the one named, or the only candidate of the accepted types.
-Status ChooseTopic(const Rosbag2Bag& bag, const std::string& role, const std::string& flag,
+Status ChooseTopic(const Recording& bag, const std::string& role, const std::string& flag,
                    const std::string& named, const std::vector<std::string>& types,
                    const std::vector<int>& preferred, int* chosen) {
   std::vector<int> candidates;
@@ -291,7 +291,7 @@ Status RawImageToMat(const RosImage& image, const std::string& where, int* mono1
 
 }  // namespace
 
-Status Rosbag2ImportOptions::Check() const {
+Status BagImportOptions::Check() const {
   if (every < 1) return Status::Error("--every must be >= 1");
   if (!(min_motion >= 0) || !(min_rotation >= 0))
     return Status::Error("--min_motion and --min_rotation must be >= 0");
@@ -302,39 +302,37 @@ Status Rosbag2ImportOptions::Check() const {
   return scale.Check();
 }
 
-Status ImportRosbag2(const std::string& bag_path, const Rosbag2ImportOptions& options,
-                     const std::string& output_dir, Rosbag2ImportSummary* summary) {
+Status ImportRecording(Recording* recording, const BagImportOptions& options, const std::string& output_dir,
+                       BagImportSummary* summary) {
   SFM_RETURN_IF_ERROR(options.Check());
-  *summary = Rosbag2ImportSummary();
-  Rosbag2Bag bag;
-  SFM_RETURN_IF_ERROR(bag.Open(bag_path));
+  *summary = BagImportSummary();
+  Recording& bag = *recording;
 
   // Pass 1: every topic the importer may use, images by their headers only.
   std::map<std::string, TopicData> data;  // by topic name
-  SFM_RETURN_IF_ERROR(bag.ReadMessages([&](const BagTopic& topic, const BagMessage& message) {
+  SFM_RETURN_IF_ERROR(bag.ReadMessages([&](const BagTopic& topic, const RecordedMessage& message) {
     if (!topic.problem.empty()) return Status::Ok();
     TopicData& kept = data[topic.name];
     if (!kept.decode_error.empty()) return Status::Ok();
-    const std::string what = bag.path() + ": " + topic.name + ": message " + std::to_string(topic.count - 1);
     Status status;
     if (IsImageType(topic.type)) {
       RosHeader header;
-      status = DecodeRosHeaderOnly(message.data, message.size, what, &header);
+      status = message.ImageHeader(&header);
       if (status.ok()) {
         if (kept.images.empty()) kept.image_frame = header.frame_id;
         kept.images.push_back({header.stamp, static_cast<int>(topic.count - 1)});
       }
     } else if (IsRosPoseType(topic.type)) {
       RosStampedPose pose;
-      status = DecodeRosStampedPose(topic.type, message.data, message.size, what, &pose);
+      status = message.StampedPose(&pose);
       if (status.ok()) kept.poses.push_back(pose);
     } else if (topic.type == kRosCameraInfo) {
       RosCameraInfo info;
-      status = DecodeRosCameraInfo(message.data, message.size, what, &info);
+      status = message.CameraInfo(&info);
       if (status.ok() && !kept.camera_info) kept.camera_info = info;
     } else if (topic.type == kRosTfMessage && topic.name == "/tf_static") {
       std::vector<RosStampedPose> transforms;
-      status = DecodeRosTfMessage(message.data, message.size, what, &transforms);
+      status = message.TfMessage(&transforms);
       kept.static_transforms.insert(kept.static_transforms.end(), transforms.begin(), transforms.end());
     }
     if (!status.ok()) kept.decode_error = status.message();
@@ -532,7 +530,7 @@ Status ImportRosbag2(const std::string& bag_path, const Rosbag2ImportOptions& op
   for (size_t i = 0; i < kept.size(); ++i) frame_of_message[kept[i].image.message] = static_cast<int>(i);
   int written = 0, first_size_frame = -1;
   cv::Size first_size;
-  SFM_RETURN_IF_ERROR(bag.ReadMessages([&](const BagTopic& topic, const BagMessage& message) {
+  SFM_RETURN_IF_ERROR(bag.ReadMessages([&](const BagTopic& topic, const RecordedMessage& message) {
     if (topic.name != image_topic.name) return Status::Ok();
     const auto found = frame_of_message.find(static_cast<int>(topic.count - 1));
     if (found == frame_of_message.end()) return Status::Ok();
@@ -540,11 +538,11 @@ Status ImportRosbag2(const std::string& bag_path, const Rosbag2ImportOptions& op
     cv::Mat image;
     if (topic.type == kRosImage) {
       RosImage raw;
-      SFM_RETURN_IF_ERROR(DecodeRosImage(message.data, message.size, what, &raw));
+      SFM_RETURN_IF_ERROR(message.Image(&raw));
       SFM_RETURN_IF_ERROR(RawImageToMat(raw, what, &summary->mono16_shift, &image));
     } else {
       RosCompressedImage compressed;
-      SFM_RETURN_IF_ERROR(DecodeRosCompressedImage(message.data, message.size, what, &compressed));
+      SFM_RETURN_IF_ERROR(message.CompressedImage(&compressed));
       cv::Mat decoded;
       SFM_RETURN_IF_ERROR(DecodeImageBytes(what + " (" + compressed.format + ")", compressed.data,
                                            cv::IMREAD_ANYCOLOR | cv::IMREAD_ANYDEPTH, &decoded));
@@ -594,7 +592,7 @@ Status ImportRosbag2(const std::string& bag_path, const Rosbag2ImportOptions& op
   // The text files.
   const fs::path& root = temporary.path();
   std::string image_list =
-      "# timestamp image (imported from a ROS 2 bag by import_sequence; see import_notes.txt)\n";
+      "# timestamp image (imported from a bag by import_sequence; see import_notes.txt)\n";
   std::vector<StampedPose> odometry_poses, truth_poses;
   for (size_t i = 0; i < kept.size(); ++i) {
     const double t = Seconds(kept[i].image.stamp);
@@ -619,9 +617,8 @@ Status ImportRosbag2(const std::string& bag_path, const Rosbag2ImportOptions& op
   SFM_RETURN_IF_ERROR(equidistant ? WriteEquidistantCalibration(yaml, calibration, equidistant_k)
                                   : WriteCalibration(yaml, calibration));
   summary->frames = static_cast<int>(kept.size());
-  std::string notes =
-      "# How this sequence was imported (import_sequence --format rosbag2; see docs/importers.md)\n";
-  notes += "format: ROS 2 bag (" + bag.storage() + "), " + bag.path() + "\n";
+  std::string notes = "# How this sequence was imported (import_sequence; see docs/importers.md)\n";
+  notes += "format: " + bag.format() + ", " + bag.path() + "\n";
   notes += "images: " + image_topic.name + " (" + image_topic.type + "), " + std::to_string(kept.size()) +
            " of " + std::to_string(images.size()) + " (" + std::to_string(summary->outside_window) +
            " outside the window, " + std::to_string(summary->in_odometry_gaps) + " in odometry gaps, " +
@@ -642,8 +639,8 @@ Status ImportRosbag2(const std::string& bag_path, const Rosbag2ImportOptions& op
   notes += transform_note + "\n";
   SFM_RETURN_IF_ERROR(WriteFileAtomically((root / "import_notes.txt").string(), notes));
   SFM_RETURN_IF_ERROR(MoveIntoPlace(&temporary, target));
-  LOG(INFO) << "rosbag2: wrote " << kept.size() << " frames of " << SizeText(size.width, size.height)
-            << " from " << image_topic.name << " to " << target.string();
+  LOG(INFO) << "bag: wrote " << kept.size() << " frames of " << SizeText(size.width, size.height) << " from "
+            << image_topic.name << " to " << target.string();
   return Status::Ok();
 }
 

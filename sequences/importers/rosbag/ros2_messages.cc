@@ -1,4 +1,4 @@
-#include "sequences/importers/rosbag2/ros2_messages.h"
+#include "sequences/importers/rosbag/ros2_messages.h"
 
 #include <fastcdr/Cdr.h>
 #include <fastcdr/FastBuffer.h>

@@ -1,4 +1,4 @@
-#include "sequences/importers/rosbag2/mcap_reader.h"
+#include "sequences/importers/rosbag/mcap_reader.h"
 
 #include <glog/logging.h>
 #include <lz4frame.h>

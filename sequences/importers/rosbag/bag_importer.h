@@ -1,6 +1,7 @@
-// A ROS 2 bag (rosbag2_bag.h) as a SPEC sequence directory (SPEC section 1): the images of one
-// image topic, the robot's own odometry interpolated at their stamps, the camera from a
-// CameraInfo topic, T_base_camera from /tf_static, and ground truth from an optional pose topic.
+// A robot's recording (recording.h: a ROS 2 or ROS 1 bag) as a SPEC sequence directory (SPEC
+// section 1): the images of one image topic, the robot's own odometry interpolated at their stamps, the
+// camera from a CameraInfo topic, T_base_camera from /tf_static, and ground truth from an optional pose
+// topic.
 #pragma once
 
 #include <limits>
@@ -9,11 +10,12 @@
 
 #include "frontend/sequence/sequence.h"
 #include "sequences/importers/image_scaling.h"
+#include "sequences/importers/rosbag/recording.h"
 #include "util/status.h"
 
 namespace sfm {
 
-struct Rosbag2ImportOptions {
+struct BagImportOptions {
   // Topics; empty: found automatically when the bag has exactly one topic of the kind (odometry:
   // nav_msgs/msg/Odometry, else geometry_msgs/msg/PoseStamped or TransformStamped). Ground truth
   // is read only when named.
@@ -35,14 +37,14 @@ struct Rosbag2ImportOptions {
 };
 
 // What an import did, for the log and the tests.
-struct Rosbag2ImportSummary {
+struct BagImportSummary {
   std::string image_topic, odometry_topic, camera_info_topic, groundtruth_topic;
   int images_on_topic = 0, frames = 0;
   int outside_window = 0, in_odometry_gaps = 0, dropped_by_every = 0, dropped_by_motion = 0;
   int mono16_shift = -1;  // bits a mono16 image was shifted right to 8 bits (-1: none was)
 };
 
-// Reads the bag and writes `output_dir` (images/NNNNNN.png, images.txt, odometry.txt,
+// Reads the recording and writes `output_dir` (images/NNNNNN.png, images.txt, odometry.txt,
 // groundtruth.txt when a ground-truth topic is named, sequence.yaml, import_notes.txt) through a
 // temporary sibling renamed into place, so a failed import leaves nothing. Fails with one line
 // naming the bag, the topic and the problem: a named topic the bag does not have (the topics of
@@ -53,7 +55,12 @@ struct Rosbag2ImportSummary {
 // does not cover the kept images, a camera model other than plumb_bob or equidistant, no path
 // from the base to the camera frame on /tf_static, fewer than 2 images kept, and the storage's
 // errors (a corrupt MCAP file: truncated chunk, CRC mismatch, unknown compression).
-Status ImportRosbag2(const std::string& bag_path, const Rosbag2ImportOptions& options,
-                     const std::string& output_dir, Rosbag2ImportSummary* summary);
+Status ImportRecording(Recording* recording, const BagImportOptions& options, const std::string& output_dir,
+                       BagImportSummary* summary);
+
+// A ROS 2 bag (rosbag2_bag.h; a folder with metadata.yaml, or one .mcap or .db3 file), its
+// messages decoded from CDR (ros2_messages.h), through ImportRecording.
+Status ImportRosbag2(const std::string& bag_path, const BagImportOptions& options,
+                     const std::string& output_dir, BagImportSummary* summary);
 
 }  // namespace sfm

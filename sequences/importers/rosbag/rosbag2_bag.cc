@@ -1,4 +1,4 @@
-#include "sequences/importers/rosbag2/rosbag2_bag.h"
+#include "sequences/importers/rosbag/rosbag2_bag.h"
 
 #include <sqlite3.h>
 #include <yaml-cpp/yaml.h>
@@ -8,7 +8,7 @@
 #include <map>
 #include <memory>
 
-#include "sequences/importers/rosbag2/mcap_reader.h"
+#include "sequences/importers/rosbag/mcap_reader.h"
 
 namespace sfm {
 namespace {
