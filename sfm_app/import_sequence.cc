@@ -3,8 +3,9 @@
 //
 //   build/bin/import_sequence --format vgg|strecha|tum --input <data set dir> --output <sequence dir>
 //   build/bin/import_sequence --format rosbag2 --input <bag folder, .mcap or .db3> --output <sequence dir>
+//   build/bin/import_sequence --format rosbag --input <ROS 1 .bag file> --output <sequence dir>
 //
-// A ROS 2 bag gives the robot's own odometry and camera: nothing is simulated for it.
+// A bag gives the robot's own odometry and camera: nothing is simulated for it.
 //
 // docs/importers.md describes each format, the noise model and the figures measured on the data.
 #include <gflags/gflags.h>
@@ -17,6 +18,7 @@
 
 #include "sequences/importers/imported_sequence.h"
 #include "sequences/importers/rosbag/bag_importer.h"
+#include "sequences/importers/rosbag/rosbag1_recording.h"
 #include "sequences/importers/strecha_importer.h"
 #include "sequences/importers/tum_importer.h"
 #include "sequences/importers/vgg_importer.h"
@@ -28,9 +30,9 @@ const sfm::SequenceWriteOptions kDefaults;
 DEFINE_string(format, "",
               "Data set format: 'vgg' (Oxford VGG multi-view: <name>.NNN.pgm, <name>.NNN.P, <name>.p3d), "
               "'strecha' (images/*.jpg, gt_dense_cameras/*.camera) or 'tum' (TUM RGB-D: rgb.txt, rgb/, "
-              "groundtruth.txt) or 'rosbag2' (a ROS 2 bag: its folder with metadata.yaml, or one .mcap or "
-              ".db3 file). Required.");
-DEFINE_string(input, "", "Data set directory (rosbag2: the bag folder or storage file). Required.");
+              "groundtruth.txt), 'rosbag2' (a ROS 2 bag: its folder with metadata.yaml, or one .mcap or "
+              ".db3 file) or 'rosbag' (a ROS 1 .bag file). Required.");
+DEFINE_string(input, "", "Data set directory (rosbag2: the bag folder or storage file; rosbag: the .bag file). Required.");
 DEFINE_string(output, "",
               "Sequence directory to create (written to a temporary sibling and renamed into place). Required.");
 DEFINE_bool(overwrite, false, "Replace --output when it exists and is not empty.");
@@ -88,41 +90,41 @@ DEFINE_int32(tum_stride, sfm::TumImportOptions().stride, "tum: keep every N-th i
 DEFINE_double(tum_max_groundtruth_gap, sfm::TumImportOptions().max_groundtruth_gap,
               "tum: skip images between ground-truth poses more than this many seconds apart.");
 DEFINE_string(image_topic, "",
-              "rosbag2: sensor_msgs/msg/Image or CompressedImage topic; empty: the bag's only one.");
+              "bags: sensor_msgs/msg/Image or CompressedImage topic; empty: the bag's only one.");
 DEFINE_string(
     odometry_topic, "",
-    "rosbag2: nav_msgs/msg/Odometry (or geometry_msgs/msg/PoseStamped, TransformStamped) topic of the "
+    "bags: nav_msgs/msg/Odometry (or geometry_msgs/msg/PoseStamped, TransformStamped) topic of the "
     "robot base; empty: the bag's only one.");
 DEFINE_string(
     camera_info_topic, "",
-    "rosbag2: sensor_msgs/msg/CameraInfo topic; empty: the bag's only one, or the one beside the image "
+    "bags: sensor_msgs/msg/CameraInfo topic; empty: the bag's only one, or the one beside the image "
     "topic.");
 DEFINE_string(groundtruth_topic, "",
-              "rosbag2: pose topic of the base's true poses (groundtruth.txt); empty: none.");
+              "bags: pose topic of the base's true poses (groundtruth.txt); empty: none.");
 DEFINE_string(base_frame, "",
-              "rosbag2: robot base frame for T_base_camera; empty: the odometry's child_frame_id.");
-DEFINE_string(camera_frame, "", "rosbag2: camera frame for T_base_camera; empty: the images' frame_id.");
-DEFINE_int32(every, 1, "rosbag2: keep every N-th image.");
+              "bags: robot base frame for T_base_camera; empty: the odometry's child_frame_id.");
+DEFINE_string(camera_frame, "", "bags: camera frame for T_base_camera; empty: the images' frame_id.");
+DEFINE_int32(every, 1, "bags: keep every N-th image.");
 DEFINE_double(min_motion, 0,
-              "rosbag2: keyframes: keep an image only when the odometry moved at least this many metres (or "
+              "bags: keyframes: keep an image only when the odometry moved at least this many metres (or "
               "turned --min_rotation) since the last kept one; 0 and 0: keep all.");
 DEFINE_double(min_rotation, 0,
-              "rosbag2: keyframes: the rotation, radians, that also keeps an image (see --min_motion).");
-DEFINE_double(start_time, 0, "rosbag2: first image kept, seconds after the image topic's first stamp.");
+              "bags: keyframes: the rotation, radians, that also keeps an image (see --min_motion).");
+DEFINE_double(start_time, 0, "bags: first image kept, seconds after the image topic's first stamp.");
 DEFINE_double(end_time, std::numeric_limits<double>::infinity(),
-              "rosbag2: last image kept, seconds after the image topic's first stamp.");
+              "bags: last image kept, seconds after the image topic's first stamp.");
 DEFINE_double(
     max_odometry_gap, sfm::BagImportOptions().max_odometry_gap,
-    "rosbag2: seconds; images further than this from odometry samples are skipped, and odometry that "
+    "bags: seconds; images further than this from odometry samples are skipped, and odometry that "
     "starts or stops this much beyond the images is an error.");
 DEFINE_string(
     odometry_noise, "",
-    "rosbag2: 'translation_sigma,rotation_sigma' written to sequence.yaml (SPEC's odometry noise keys); "
+    "bags: 'translation_sigma,rotation_sigma' written to sequence.yaml (SPEC's odometry noise keys); "
     "empty: left out, the pipeline's defaults.");
 
 namespace {
 
-sfm::Status ImportRosbag2() {
+sfm::Status ImportBag() {
   sfm::BagImportOptions options;
   options.image_topic = FLAGS_image_topic;
   options.odometry_topic = FLAGS_odometry_topic;
@@ -152,7 +154,8 @@ sfm::Status ImportRosbag2() {
     options.odometry_noise = noise;
   }
   sfm::BagImportSummary summary;
-  return sfm::ImportRosbag2(FLAGS_input, options, FLAGS_output, &summary);
+  return FLAGS_format == "rosbag" ? sfm::ImportRosbag1(FLAGS_input, options, FLAGS_output, &summary)
+                                  : sfm::ImportRosbag2(FLAGS_input, options, FLAGS_output, &summary);
 }
 
 sfm::Status ReadDataSet(sfm::ImportedSequence* sequence) {
@@ -181,8 +184,8 @@ sfm::Status ReadDataSet(sfm::ImportedSequence* sequence) {
 
 int main(int argc, char** argv) {
   gflags::SetUsageMessage(
-      "makes a SPEC sequence directory from a data set with ground-truth cameras or a ROS 2 bag.\n"
-      "  import_sequence --format vgg|strecha|tum|rosbag2 --input <data set dir or bag> --output <sequence "
+      "makes a SPEC sequence directory from a data set with ground-truth cameras or a ROS 2 or ROS 1 bag.\n"
+      "  import_sequence --format vgg|strecha|tum|rosbag2|rosbag --input <data set dir or bag> --output <sequence "
       "dir> [flags]");
   gflags::SetVersionString("0.1.0");
   gflags::ParseCommandLineFlags(&argc, &argv, true);
@@ -194,8 +197,8 @@ int main(int argc, char** argv) {
     return 2;
   }
   if (FLAGS_format != "vgg" && FLAGS_format != "strecha" && FLAGS_format != "tum" &&
-      FLAGS_format != "rosbag2") {
-    std::fprintf(stderr, "import_sequence: --format must be vgg, strecha, tum or rosbag2 (found '%s')\n",
+      FLAGS_format != "rosbag2" && FLAGS_format != "rosbag") {
+    std::fprintf(stderr, "import_sequence: --format must be vgg, strecha, tum, rosbag2 or rosbag (found '%s')\n",
                  FLAGS_format.c_str());
     return 2;
   }
@@ -216,8 +219,8 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "import_sequence: --input and --output must name directories\n");
     return 2;
   }
-  if (FLAGS_format == "rosbag2") {
-    const sfm::Status status = ImportRosbag2();
+  if (FLAGS_format == "rosbag2" || FLAGS_format == "rosbag") {
+    const sfm::Status status = ImportBag();
     if (!status.ok()) {
       std::fprintf(stderr, "import_sequence: %s\n", status.message().c_str());
       return 1;

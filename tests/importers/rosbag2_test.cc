@@ -21,6 +21,7 @@
 #include "sequences/importers/rosbag/mcap_reader.h"
 #include "sequences/importers/rosbag/ros2_messages.h"
 #include "sequences/importers/rosbag/rosbag2_bag.h"
+#include "tests/importers/bag_test_support.h"
 #include "tests/importers/rosbag2_test_bags.h"
 #include "tests/test_data.h"
 
@@ -270,27 +271,11 @@ TEST(McapReader, ChunkAndDataSectionCrcMismatches) {
 
 // --- Bags written from a generated sequence -------------------------------------------------
 
-struct AppRun {
-  int exit_status = -1;
-  std::string errors;  // stderr without glog's informational lines
-};
-
-AppRun RunProgram(const std::string& binary, const std::string& arguments, const fs::path& scratch) {
-  const fs::path err = scratch / "stderr.txt";
-  const std::string command = binary + " " + arguments + " 2>" + err.string() + " >/dev/null";
-  const int status = std::system(command.c_str());
-  AppRun run;
-  run.exit_status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  std::istringstream lines(ReadBytes(err));
-  std::string line;
-  while (std::getline(lines, line)) {
-    if (!line.empty() && line[0] != 'I') run.errors += line + "\n";
-  }
-  return run;
-}
+using testing::AppRun;
+using testing::ExpectSameSequence;
 
 AppRun Import(const std::string& arguments, const fs::path& scratch) {
-  return RunProgram(SFM_IMPORT_SEQUENCE_BINARY, "--format rosbag2 " + arguments, scratch);
+  return testing::RunProgram(SFM_IMPORT_SEQUENCE_BINARY, "--format rosbag2 " + arguments, scratch.string());
 }
 
 struct BagContent {
@@ -403,38 +388,6 @@ class RosbagRoundTrip : public ::testing::Test {
     return dir.string();
   }
 
-  // The imported sequence against the generated one: every image bit-identical (grey, or its
-  // three equal channels), timestamps, odometry, ground truth and T_base_camera within 1e-9, K exact.
-  static void ExpectSameSequence(const std::string& imported_dir, bool colour) {
-    Sequence imported;
-    const Status status = ReadSequence(imported_dir, &imported);
-    ASSERT_TRUE(status.ok()) << status.message();
-    ASSERT_EQ(imported.frames.size(), sequence_->frames.size());
-    ASSERT_TRUE(imported.has_groundtruth);
-    const Calibration& a = sequence_->calibration;
-    const Calibration& b = imported.calibration;
-    EXPECT_EQ(b.camera.K(), a.camera.K());
-    EXPECT_EQ(b.camera.distortion, a.camera.distortion);
-    EXPECT_LT((b.base_T_camera.Matrix4() - a.base_T_camera.Matrix4()).cwiseAbs().maxCoeff(), 1e-9);
-    for (size_t i = 0; i < imported.frames.size(); ++i) {
-      const Frame& x = sequence_->frames[i];
-      const Frame& y = imported.frames[i];
-      EXPECT_NEAR(y.timestamp, x.timestamp, 1e-9);
-      EXPECT_LT((y.world_T_base_odometry.translation - x.world_T_base_odometry.translation).norm(), 1e-9);
-      EXPECT_LT(RotationAngle(y.world_T_base_odometry.rotation, x.world_T_base_odometry.rotation), 1e-9);
-      EXPECT_LT((y.world_T_base_groundtruth->translation - x.world_T_base_groundtruth->translation).norm(),
-                1e-9);
-      EXPECT_LT(RotationAngle(y.world_T_base_groundtruth->rotation, x.world_T_base_groundtruth->rotation),
-                1e-9);
-      cv::Mat original = cv::imread(sequence_->directory + "/" + x.image_path, cv::IMREAD_UNCHANGED);
-      const cv::Mat read = cv::imread(imported_dir + "/" + y.image_path, cv::IMREAD_UNCHANGED);
-      if (colour) cv::cvtColor(cv::Mat(original), original, cv::COLOR_GRAY2BGR);
-      ASSERT_EQ(read.type(), original.type()) << i;
-      ASSERT_EQ(read.size(), original.size()) << i;
-      EXPECT_EQ(cv::norm(read, original, cv::NORM_INF), 0) << "frame " << i;
-    }
-  }
-
   static std::string* scratch_;
   static Sequence* sequence_;
 };
@@ -480,7 +433,7 @@ TEST_F(RosbagRoundTrip, ImagesBitIdenticalPosesWithin1e9) {
                               fs::path(*scratch_));
     ASSERT_EQ(run.exit_status, 0) << v.name << ": " << run.errors;
     SCOPED_TRACE(v.name);
-    ExpectSameSequence(output, v.colour);
+    ExpectSameSequence(*sequence_, output, v.colour);
   }
 }
 
@@ -497,12 +450,11 @@ TEST_F(RosbagRoundTrip, JunctionSfmGivesTheSameOutputs) {
                    fs::path(*scratch_))
                 .exit_status,
             0);
-  const fs::path scratch(*scratch_);
   for (const std::string& which : {std::string("original"), std::string("imported")}) {
     const std::string sequence = which == "original" ? sequence_->directory : imported;
     const AppRun run =
-        RunProgram(SFM_JUNCTION_SFM_BINARY,
-                   "--sequence " + sequence + " --output " + *scratch_ + "/out_" + which, scratch);
+        testing::RunProgram(SFM_JUNCTION_SFM_BINARY,
+                            "--sequence " + sequence + " --output " + *scratch_ + "/out_" + which, *scratch_);
     ASSERT_EQ(run.exit_status, 0) << run.errors;
   }
   const std::map<std::string, std::string> a = sfm::testing::ReadTree(*scratch_ + "/out_original");
