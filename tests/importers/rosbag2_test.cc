@@ -13,6 +13,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <sstream>
@@ -336,6 +337,7 @@ std::vector<BagMessageSpec> SequenceMessages(const Sequence& sequence, const Bag
     }
     std::vector<double> d(camera.distortion.begin(), camera.distortion.end());
     if (content.distortion_model == "rational_polynomial") d.resize(8, 0.01);
+    if (content.distortion_model == "equidistant") d = {0.01, -0.02, 0.03, -0.04};
     messages.push_back(
         {"/camera/camera_info", kRosCameraInfo, received,
          testing::CdrCameraInfo(stamp, "camera_optical", camera.width, camera.height,
@@ -486,6 +488,24 @@ TEST_F(RosbagRoundTrip, OdometryInterpolatedAtImageStamps) {
     EXPECT_LT((imported.frames[i].world_T_base_odometry.translation - expected.translation).norm(), 1e-12);
     EXPECT_LT(RotationAngle(imported.frames[i].world_T_base_odometry.rotation, expected.rotation), 1e-12);
   }
+}
+
+// An equidistant (fisheye) CameraInfo becomes SPEC's distortion_model: equidistant with its four
+// coefficients exactly.
+TEST_F(RosbagRoundTrip, EquidistantCameraInfoIsWrittenAsSuch) {
+  BagContent content;
+  content.distortion_model = "equidistant";
+  const std::string bag = WriteBag("equidistant", "mcap", content);
+  const std::string output = *scratch_ + "/equidistant_imported";
+  const AppRun run = Import("--input " + bag + " --output " + output, fs::path(*scratch_));
+  ASSERT_EQ(run.exit_status, 0) << run.errors;
+  cv::FileStorage yaml(output + "/sequence.yaml", cv::FileStorage::READ);
+  EXPECT_EQ(static_cast<std::string>(yaml["distortion_model"]), "equidistant");
+  cv::Mat k;
+  yaml["distortion_coefficients"] >> k;
+  ASSERT_EQ(k.total(), 4u);
+  const double expected[4] = {0.01, -0.02, 0.03, -0.04};
+  for (int i = 0; i < 4; ++i) EXPECT_EQ(k.at<double>(i), expected[i]) << i;
 }
 
 // --every, the time window and the keyframe motion pick the frames they say.

@@ -507,7 +507,10 @@ Status ImportRecording(Recording* recording, const BagImportOptions& options, co
   }
   if (base_frame != camera_frame) {
     std::vector<RosStampedPose> transforms;
-    if (bag.FindTopic("/tf_static") >= 0) transforms = data["/tf_static"].static_transforms;
+    if (bag.FindTopic("/tf_static") >= 0) {
+      if (!data["/tf_static"].decode_error.empty()) return Status::Error(data["/tf_static"].decode_error);
+      transforms = data["/tf_static"].static_transforms;
+    }
     const std::optional<Pose3> found = StaticTransform(transforms, base_frame, camera_frame);
     if (!found) {
       return Status::Error(bag.path() + ": /tf_static: no transform from the base frame '" + base_frame +
