@@ -11,7 +11,6 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <queue>
-#include <set>
 
 #include "geometry/tum_io.h"
 #include "sequences/importers/input_files.h"
@@ -531,8 +530,8 @@ Status ImportRecording(Recording* recording, const BagImportOptions& options, co
   const cv::Size size = ScaledImageSize(camera.width, camera.height, options.scale);
   std::map<int, int> frame_of_message;
   for (size_t i = 0; i < kept.size(); ++i) frame_of_message[kept[i].image.message] = static_cast<int>(i);
-  int written = 0, first_size_frame = -1;
-  cv::Size first_size;
+  int written = 0;
+  cv::Size first_size;  // of the first image read: all must have it
   SFM_RETURN_IF_ERROR(bag.ReadMessages([&](const BagTopic& topic, const RecordedMessage& message) {
     if (topic.name != image_topic.name) return Status::Ok();
     const auto found = frame_of_message.find(static_cast<int>(topic.count - 1));
@@ -565,10 +564,7 @@ Status ImportRecording(Recording* recording, const BagImportOptions& options, co
         image = decoded;
       }
     }
-    if (first_size_frame < 0) {
-      first_size_frame = found->second;
-      first_size = image.size();
-    }
+    if (first_size.empty()) first_size = image.size();
     if (image.size() != first_size) {
       return Status::Error(what + ": image is " + SizeText(image.cols, image.rows) + ", earlier ones " +
                            SizeText(first_size.width, first_size.height) + " (images of changing size)");
