@@ -1,11 +1,13 @@
 #include "geometry/camera.h"
 
-#include "geometry/image_undistorter.h"
-
-#include <cmath>
+#include <glog/logging.h>
 
 #include <Eigen/LU>
-#include <glog/logging.h>
+#include <cmath>
+#include <opencv2/calib3d.hpp>
+#include <vector>
+
+#include "geometry/image_undistorter.h"
 
 namespace sfm {
 namespace {
@@ -15,7 +17,25 @@ namespace {
 constexpr double kUndistortStepTolerance = 1e-12;
 constexpr int kUndistortMaxIterations = 50;
 
+// cv::fisheye::undistortPoints' Newton iteration on theta: 1e-14 rad is ~1e-11 px for any focal length.
+const cv::TermCriteria kFisheyeUndistortCriteria(cv::TermCriteria::COUNT + cv::TermCriteria::EPS,
+                                                 kUndistortMaxIterations, 1e-14);
+
 }  // namespace
+
+bool ParseDistortionModel(const std::string& name, DistortionModel* model) {
+  if (name == "radtan")
+    *model = DistortionModel::kRadTan;
+  else if (name == "equidistant")
+    *model = DistortionModel::kEquidistant;
+  else
+    return false;
+  return true;
+}
+
+const char* DistortionModelName(DistortionModel model) {
+  return model == DistortionModel::kEquidistant ? "equidistant" : "radtan";
+}
 
 Eigen::Matrix3d Camera::K() const {
   Eigen::Matrix3d K;
@@ -24,13 +44,27 @@ Eigen::Matrix3d Camera::K() const {
 }
 
 bool Camera::HasDistortion() const {
+  if (model == DistortionModel::kEquidistant) return true;
   for (double d : distortion) {
     if (d != 0) return true;
   }
   return false;
 }
 
+cv::Mat Camera::DistortionCoefficients() const {
+  const int count = model == DistortionModel::kEquidistant ? 4 : 5;
+  cv::Mat coefficients(1, count, CV_64F);
+  for (int i = 0; i < count; ++i) coefficients.at<double>(i) = distortion[i];
+  return coefficients;
+}
+
 Eigen::Vector2d Camera::Distort(const Eigen::Vector2d& normalised) const {
+  if (model == DistortionModel::kEquidistant) {
+    const std::vector<cv::Point2d> in{{normalised.x(), normalised.y()}};
+    std::vector<cv::Point2d> out;
+    cv::fisheye::distortPoints(in, out, cv::Matx33d::eye(), DistortionCoefficients());
+    return {out[0].x, out[0].y};
+  }
   const auto& [k1, k2, p1, p2, k3] = distortion;
   const double x = normalised.x(), y = normalised.y();
   const double r2 = x * x + y * y;
@@ -41,6 +75,13 @@ Eigen::Vector2d Camera::Distort(const Eigen::Vector2d& normalised) const {
 
 Eigen::Vector2d Camera::Undistort(const Eigen::Vector2d& distorted) const {
   if (!HasDistortion()) return distorted;
+  if (model == DistortionModel::kEquidistant) {
+    const std::vector<cv::Point2d> in{{distorted.x(), distorted.y()}};
+    std::vector<cv::Point2d> out;
+    cv::fisheye::undistortPoints(in, out, cv::Matx33d::eye(), DistortionCoefficients(), cv::noArray(),
+                                 cv::noArray(), kFisheyeUndistortCriteria);
+    return {out[0].x, out[0].y};
+  }
   const auto& [k1, k2, p1, p2, k3] = distortion;
   // The distorted point is the natural start: the model is a perturbation of the identity.
   Eigen::Vector2d u = distorted;

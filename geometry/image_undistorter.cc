@@ -53,6 +53,17 @@ void FullViewCanvas(const Camera& camera, int pad, Eigen::Vector2d* offset, cv::
 }
 
 double RadialFoldRadius(const Camera& camera) {
+  if (camera.model == DistortionModel::kEquidistant) {
+    // d/dtheta [theta (1 + k1 theta^2 + k2 theta^4 + k3 theta^6 + k4 theta^8)], scanned in steps of
+    // 1e-4 rad up to a right angle, where the normalised radius tan(theta) ends.
+    const double k1 = camera.distortion[0], k2 = camera.distortion[1], k3 = camera.distortion[2],
+                 k4 = camera.distortion[3];
+    for (double theta = 0; theta < 0.5 * M_PI; theta += 1e-4) {
+      const double t2 = theta * theta;
+      if (1 + t2 * (3 * k1 + t2 * (5 * k2 + t2 * (7 * k3 + t2 * 9 * k4))) <= 0) return std::tan(theta);
+    }
+    return std::numeric_limits<double>::infinity();
+  }
   const double k1 = camera.distortion[0], k2 = camera.distortion[1], k3 = camera.distortion[4];
   // d/dr [r (1 + k1 r^2 + k2 r^4 + k3 r^6)], scanned in steps of 1e-3 up to r = 10 (a 168 degree
   // field of view: beyond any lens this polynomial model describes).
@@ -116,8 +127,7 @@ ImageUndistorter::ImageUndistorter(const Camera& camera, UndistortInterpolation 
       canvas_size_(camera.width, camera.height) {
   if (!camera.HasDistortion()) return;
   const cv::Matx33d camera_matrix(camera.fx, 0, camera.cx, 0, camera.fy, camera.cy, 0, 0, 1);
-  const cv::Matx<double, 1, 5> coefficients(camera.distortion[0], camera.distortion[1], camera.distortion[2],
-                                            camera.distortion[3], camera.distortion[4]);
+  const cv::Mat coefficients = camera.DistortionCoefficients();
   cv::Matx33d canvas_matrix = camera_matrix;
   // 3 px beyond the field of view: the reach of the detector's smoothing and Sobel support, so
   // that the canvas's own border is never next to a seen pixel.
@@ -125,8 +135,8 @@ ImageUndistorter::ImageUndistorter(const Camera& camera, UndistortInterpolation 
     // A strong barrel lens given by k1 alone folds back before the stored image's corners: the
     // canvas would mirror the image and grow without bound (k1 = -0.25, k2 = 0 on 640 x 480 gave
     // 51258 x 43612 px). The same-size view is what this calibration can describe.
-    LOG_FIRST_N(WARNING, 1) << "lens distortion (k1 " << camera.distortion[0] << ", k2 "
-                            << camera.distortion[1]
+    LOG_FIRST_N(WARNING, 1) << DistortionModelName(camera.model) << " lens distortion (k1 "
+                            << camera.distortion[0] << ", k2 " << camera.distortion[1]
                             << ") is not one-to-one over the stored image's field of view: detecting on the "
                                "undistorted image of the stored size";
   } else if (view == UndistortView::kFullView) {
@@ -139,8 +149,13 @@ ImageUndistorter::ImageUndistorter(const Camera& camera, UndistortInterpolation 
     border_mode_ = cv::BORDER_REPLICATE;
   }
   // Float maps: the fixed-point CV_16SC2 maps quantise to 1/32 px.
-  cv::initUndistortRectifyMap(camera_matrix, coefficients, cv::noArray(), canvas_matrix, canvas_size_,
-                              CV_32FC1, map_x_, map_y_);
+  if (camera.model == DistortionModel::kEquidistant) {
+    cv::fisheye::initUndistortRectifyMap(camera_matrix, coefficients, cv::Matx33d::eye(), canvas_matrix,
+                                         canvas_size_, CV_32FC1, map_x_, map_y_);
+  } else {
+    cv::initUndistortRectifyMap(camera_matrix, coefficients, cv::noArray(), canvas_matrix, canvas_size_,
+                                CV_32FC1, map_x_, map_y_);
+  }
 }
 
 cv::Mat ImageUndistorter::Apply(const cv::Mat& image) const {

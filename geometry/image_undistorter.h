@@ -87,7 +87,9 @@ void FullViewCanvas(const Camera& camera, int pad, Eigen::Vector2d* offset, cv::
 
 // The normalised radius at which the radial distortion r (1 + k1 r^2 + k2 r^4 + k3 r^6) stops
 // growing (its derivative reaches 0), +infinity when it grows up to r = 10: beyond it the model
-// folds back and an undistorted pixel is not one stored pixel.
+// folds back and an undistorted pixel is not one stored pixel. Equidistant: tan(theta) at the
+// angle where theta (1 + k1 theta^2 + .. + k4 theta^8) stops growing, +infinity when it grows up to
+// a right angle.
 double RadialFoldRadius(const Camera& camera);
 
 // True when the full-view canvas (offset, size from FullViewCanvas) lies inside the radial fold

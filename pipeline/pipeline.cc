@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <filesystem>
 #include <opencv2/core.hpp>
 #include <sstream>
@@ -12,6 +13,7 @@
 #include <vector>
 
 #include "backend/bundle_adjustment/bundle_adjuster.h"
+#include "backend/initialization/loop_candidates.h"
 #include "backend/initialization/odometry_noise_estimate.h"
 #include "backend/initialization/pose_graph.h"
 #include "backend/initialization/trajectory_evidence.h"
@@ -20,7 +22,6 @@
 #include "backend/triangulation/reconstruction.h"
 #include "backend/triangulation/track_extension.h"
 #include "backend/triangulation/triangulate_tracks.h"
-#include "geometry/image_undistorter.h"
 #include "frontend/junctions/junction_detector.h"
 #include "frontend/junctions/topology.h"
 #include "frontend/matching/junction_matcher.h"
@@ -28,10 +29,11 @@
 #include "frontend/segments/undistorted_segments.h"
 #include "frontend/sequence/sequence.h"
 #include "frontend/tracks/tracks.h"
-#include "util/atomic_file.h"
-#include "util/progress.h"
+#include "geometry/image_undistorter.h"
 #include "pipeline/pipeline_outputs.h"
 #include "pipeline/report/report.h"
+#include "util/atomic_file.h"
+#include "util/progress.h"
 
 namespace sfm {
 namespace {
@@ -124,6 +126,9 @@ constexpr double kImageRotationSigmaFloor = 2e-4;
 // as unreliable: the location noise alone gives about one.
 constexpr double kUnreliableRmsLocationSigmas = 3;
 
+// A loop pair needs this many times the inliers of any pair's pose (CloseLoops).
+constexpr int kLoopInlierFactor = 2;
+
 // A measured odometry rotation noise this many times the declared one widens the matcher's gates
 // (MeasureOdometryNoise).
 constexpr double kRematchNoiseFactor = 1.5;
@@ -199,8 +204,13 @@ Status InitialTrajectory(const Sequence& sequence, const PipelineOptions& option
   InitializationSummary& summary = result->initialization;
   result->evidence.pair_inliers.clear();
   for (const MatchingDiagnostics& pair : diagnostics) result->evidence.pair_inliers.push_back(pair.refinement.inliers);
-  const std::vector<RelativePoseConstraint> constraints = VisualConstraints(
+  std::vector<RelativePoseConstraint> constraints = VisualConstraints(
       result->pairs, result->junctions, diagnostics, RefinementSettings(options.Matching()), &summary.pairs);
+  for (RelativePoseConstraint& constraint : constraints) {
+    for (const std::array<int, 3>& loop : summary.loops) {
+      if (constraint.frame_i == loop[0] && constraint.frame_j == loop[1]) constraint.robust = false;
+    }
+  }
   // The pose graph solves for the odometry's rotation bias: its odometry factors are weighted by
   // the spread about the bias.
   OdometryNoise noise = summary.used;
@@ -228,6 +238,54 @@ Status InitialTrajectory(const Sequence& sequence, const PipelineOptions& option
             << " pairs beyond 3 sigma, odometry rotation bias " << summary.pose_graph.rotation_bias.transpose()
             << " rad per frame; " << summary.seconds << " s";
   return Status::Ok();
+}
+
+// Loop closure (docs/initialization.md, "Loop closure"): pairs far apart along the trajectory whose
+// views overlap on the initial trajectory (LoopCandidates) are matched like any pair, under the
+// initial trajectory with the odometry's noise over every frame between them; a pair whose matches
+// give a relative pose (the matcher's refinement inside that uncertainty, then
+// RelativePoseFromMatches) joins the matched pairs: its matches join the tracks, its pose the pose
+// graph. Returns whether any did.
+bool CloseLoops(const Sequence& sequence, const PipelineOptions& options, Progress* progress,
+                std::vector<MatchingDiagnostics>* diagnostics, PipelineResult* result) {
+  const Calibration& calibration = sequence.calibration;
+  const Eigen::Matrix3d K = calibration.camera.K();
+  const std::vector<std::pair<int, int>> candidates =
+      LoopCandidates(K, calibration.camera.width, calibration.camera.height, result->world_T_camera_initial,
+                     result->landmarks);
+  InitializationSummary& summary = result->initialization;
+  summary.loop_candidates = static_cast<int>(candidates.size());
+  if (candidates.empty()) return false;
+  const std::vector<Pose3> bases = BasesFromCameras(result->world_T_camera_initial, calibration.base_T_camera);
+  const MatchingOptions matching = options.Matching();
+  for (size_t c = 0; c < candidates.size(); ++c) {
+    progress->Update("loop closure", "pair", static_cast<int>(c) + 1, static_cast<int>(candidates.size()));
+    const auto [a, b] = candidates[c];
+    const PairGeometry geometry =
+        PairGeometryFromOdometry(K, calibration.base_T_camera, bases[a], bases[b], summary.used.translation_sigma,
+                                 summary.used.rotation_sigma, b - a);
+    if (!(geometry.camera2_T_camera1.translation.allFinite() && geometry.covariance.allFinite())) continue;
+    FramePairMatches matches;
+    matches.frame_a = a;
+    matches.frame_b = b;
+    MatchingDiagnostics pair_diagnostics;
+    matches.matches = MatchJunctions(result->junctions[a], result->graphs[a], result->junctions[b], result->graphs[b],
+                                     geometry, matching, &pair_diagnostics);
+    // A wrong loop bends the whole trajectory: twice the inliers a pair's pose needs.
+    if (pair_diagnostics.refinement.inliers < kLoopInlierFactor * matching.refine_min_inliers) continue;
+    VisualConstraintCounts counts;
+    if (VisualConstraints({matches}, result->junctions, {pair_diagnostics}, RefinementSettings(matching), &counts)
+            .empty()) {
+      continue;
+    }
+    summary.loops.push_back({a, b, pair_diagnostics.refinement.inliers});
+    result->pairs.push_back(std::move(matches));
+    diagnostics->push_back(std::move(pair_diagnostics));
+  }
+  progress->Finish();
+  LOG(INFO) << "loop closure: " << summary.loops.size() << " of " << candidates.size()
+            << " candidate pairs gave a relative pose";
+  return !summary.loops.empty();
 }
 
 // world_T_base of every frame's odometry.
@@ -496,6 +554,18 @@ void SelectWireframe(const Sequence& sequence, const PipelineOptions& options, P
             << report.lines_uncertain_end0 + report.lines_uncertain_end1 << " undetermined, "
             << report.lines_unbounded << " unbounded; " << report.lines_far_end_at_point
             << " far ends at drawn points";
+  if (!options.topology_edges) return;
+  TopologyEdgeOptions topology = options.topology_edge_options;
+  topology.pixel_sigma_px = report.pixel_sigma_px > 0 ? report.pixel_sigma_px : wireframe.pixel_sigma_px;
+  topology.max_gap_px = -std::log(options.junctions.min_probability) / options.junctions.endpoint_model.mu;
+  topology.min_plane_angle_deg = options.triangulation.line.min_plane_angle_deg;
+  AddTopologyEdges(poses, result->junctions, topology, &result->wireframe_landmarks, &result->topology_edges);
+  const TopologyEdgeReport& edges = result->topology_edges;
+  LOG(INFO) << "wireframe: " << edges.edges << " edges between drawn points joined in the images ("
+            << edges.candidates << " candidates, " << edges.unsupported
+            << " not shown by enough of the frames seeing both, " << edges.undetermined
+            << " in an epipolar plane across the motion, " << edges.splits << " splits at points on them); "
+            << edges.lines_dropped << " lines lying on them dropped";
 }
 
 }  // namespace
@@ -513,6 +583,7 @@ Status PipelineOptions::Check() const {
   SFM_RETURN_IF_ERROR(Matching().Check());
   SFM_RETURN_IF_ERROR(triangulation.Check());
   if (extend_tracks) SFM_RETURN_IF_ERROR(track_extension.Check());
+  if (topology_edges) SFM_RETURN_IF_ERROR(topology_edge_options.Check());
   return bundle_adjustment_options.Check();
 }
 
@@ -553,6 +624,10 @@ Status RunPipeline(const PipelineOptions& options, PipelineResult* result_out) {
   stage_start = Clock::now();
   SFM_RETURN_IF_ERROR(InitialTrajectory(sequence, options, diagnostics, &result));
   Reconstruct(sequence, options, &result);
+  if (CloseLoops(sequence, options, &progress, &diagnostics, &result)) {
+    SFM_RETURN_IF_ERROR(InitialTrajectory(sequence, options, diagnostics, &result));
+    Reconstruct(sequence, options, &result);
+  }
   if (options.bundle_adjustment) {
     SFM_RETURN_IF_ERROR(Refine(sequence, options, &result));
     MeasureOdometryTranslationNoise(sequence, options, &result);

@@ -5,14 +5,15 @@
 #include <string>
 
 #include "backend/bundle_adjustment/bundle_adjustment_options.h"
+#include "backend/triangulation/topology_edges.h"
 #include "backend/triangulation/track_extension.h"
 #include "backend/triangulation/triangulation_options.h"
-#include "geometry/image_undistorter.h"
 #include "frontend/junctions/junction_options.h"
 #include "frontend/matching/matching_options.h"
 #include "frontend/segments/segment_detector.h"
-#include "util/status.h"
+#include "geometry/image_undistorter.h"
 #include "pipeline/pipeline_result.h"
+#include "util/status.h"
 
 namespace sfm {
 
@@ -40,6 +41,13 @@ struct PipelineOptions {
   // rounds then judge the new observations (docs/tracks_and_triangulation.md, "Track extension").
   bool extend_tracks = true;
   TrackExtensionOptions track_extension;
+  // Wireframe edges between drawn points that the images show joined by one line segment
+  // (topology_edges.h). Of topology_edge_options, pixel_sigma_px, max_gap_px and
+  // min_plane_angle_deg are not read: the run uses the wireframe selection's pixel noise, the
+  // junction detector's end-point allowance, -ln(junctions.min_probability) /
+  // junctions.endpoint_model.mu, and the line triangulation's min_plane_angle_deg.
+  bool topology_edges = true;
+  TopologyEdgeOptions topology_edge_options;
 
   // `matching` with the end-point model of junction detection: eq. (5) models the detected
   // end-points once, for both stages.

@@ -1,5 +1,6 @@
 #include "pipeline/pipeline_outputs.h"
 
+#include <algorithm>
 #include <array>
 #include <cstdio>
 #include <filesystem>
@@ -7,10 +8,10 @@
 
 #include "backend/export/colmap_model.h"
 #include "backend/export/ply_io.h"
-#include "geometry/tum_io.h"
 #include "frontend/junctions/junctions_json.h"
 #include "frontend/matching/matches_csv.h"
 #include "frontend/tracks/tracks_csv.h"
+#include "geometry/tum_io.h"
 #include "util/atomic_file.h"
 #include "util/json_format.h"
 
@@ -33,20 +34,27 @@ std::vector<StampedPose> Stamped(const Sequence& sequence, const std::vector<Pos
 }
 
 // Junction points are vertices; each 3D line segment is an edge from its junction point (where it
-// has one, so edges meet at junctions) or its own first end, to its far end.
+// has one, so edges meet at junctions) or its own first end, to its far end; each edge between two
+// points that the images show joined (Landmarks::point_edges) is an edge between their vertices.
 ReconstructedWireframe WireframeOf(const Landmarks& landmarks) {
   ReconstructedWireframe wireframe;
-  for (const PointLandmark& point : landmarks.points) wireframe.vertices.push_back(point.position);
+  for (const PointLandmark& point : landmarks.points) {
+    wireframe.vertices.push_back(point.position);
+    wireframe.track_ids.push_back(point.track_id);
+  }
   for (const LineLandmark& line : landmarks.lines) {
     int first = line.point_landmark;
     if (first < 0) {
       first = static_cast<int>(wireframe.vertices.size());
       wireframe.vertices.push_back(line.end0);
+      wireframe.track_ids.push_back(-1);
     }
     const int last = static_cast<int>(wireframe.vertices.size());
     wireframe.vertices.push_back(line.end1);
+    wireframe.track_ids.push_back(-1);
     wireframe.edges.emplace_back(first, last);
   }
+  for (const auto& [a, b] : landmarks.point_edges) wireframe.edges.emplace_back(a, b);
   return wireframe;
 }
 
@@ -65,6 +73,12 @@ ColmapModel ColmapModelOf(const Sequence& sequence, const std::vector<Pose3>& wo
     }
     model.points.push_back(std::move(colmap_point));
   }
+  // POINT3D_ID = track_id + 1 (COLMAP's ids start at 1), the link from wireframe.ply's track_id,
+  // when every point has a track (else the writer's index + 1).
+  const bool tracked = std::all_of(landmarks.points.begin(), landmarks.points.end(),
+                                   [](const PointLandmark& point) { return point.track_id >= 0; });
+  for (size_t i = 0; tracked && i < model.points.size(); ++i)
+    model.points[i].id = landmarks.points[i].track_id + 1;
   return model;
 }
 
@@ -105,8 +119,15 @@ std::string RotationBiasJson(const PipelineResult& result, bool refined) {
 // Not in SPEC's list: how many landmarks wireframe.ply draws and why the others are left out.
 std::string WireframeJson(const PipelineResult& result) {
   const WireframeSelectionReport& report = result.wireframe_selection;
+  const TopologyEdgeReport& edges = result.topology_edges;
   return "{\"points\": " + std::to_string(report.points_kept) +
-         ", \"lines\": " + std::to_string(report.lines_kept) +
+         ", \"lines\": " + std::to_string(result.wireframe_landmarks.lines.size()) +
+         ", \"point_edges\": " + std::to_string(result.wireframe_landmarks.point_edges.size()) +
+         ", \"point_edge_candidates\": " + std::to_string(edges.candidates) +
+         ", \"point_edges_unsupported\": " + std::to_string(edges.unsupported) +
+         ", \"point_edges_undetermined\": " + std::to_string(edges.undetermined) +
+         ", \"point_edge_splits\": " + std::to_string(edges.splits) +
+         ", \"lines_on_point_edges\": " + std::to_string(edges.lines_dropped) +
          ", \"pixel_sigma_px\": " + JsonNumber(report.pixel_sigma_px) +
          ", \"points_untestable\": " + std::to_string(report.points_untestable) +
          ", \"points_occlusion_untested\": " + std::to_string(report.points_occlusion_untested) +
@@ -146,6 +167,16 @@ std::optional<double> Sim3Scale(const std::optional<DriftMetrics>& drift) {
   return drift ? std::optional<double>(drift->sim3_scale) : std::nullopt;
 }
 
+// [a, b, inliers] of each closed loop, comma separated.
+std::string LoopsJson(const std::vector<std::array<int, 3>>& loops) {
+  std::string json;
+  for (size_t i = 0; i < loops.size(); ++i) {
+    json += (i ? ", [" : "[") + std::to_string(loops[i][0]) + ", " + std::to_string(loops[i][1]) + ", " +
+            std::to_string(loops[i][2]) + "]";
+  }
+  return json;
+}
+
 std::string InitializationJson(const PipelineResult& result) {
   const InitializationSummary& summary = result.initialization;
   if (!summary.ran) return "null";
@@ -174,6 +205,8 @@ std::string InitializationJson(const PipelineResult& result) {
                                    ", \"distance_sigma\": " + JsonNumber(translation.distance_sigma) + "}"
                              : std::string("null"))
        << ", \"rematched\": " << (summary.rematched ? "true" : "false")
+       << ", \"loops\": {\"candidates\": " << summary.loop_candidates << ", \"closed\": [" << LoopsJson(summary.loops)
+       << "]}"
        << ", \"pose_graph\": {\"constraints\": " << summary.pose_graph.constraints
        << ", \"constraints_beyond_3_sigma\": " << summary.pose_graph.constraints_rejected
        << ", \"iterations\": " << summary.pose_graph.iterations << "}"

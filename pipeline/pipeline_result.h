@@ -1,6 +1,7 @@
 // What one junction_sfm run computes, stage by stage; the outputs are written from it.
 #pragma once
 
+#include <array>
 #include <optional>
 #include <string>
 #include <vector>
@@ -11,10 +12,11 @@
 #include "backend/initialization/visual_constraints.h"
 #include "backend/metrics/drift.h"
 #include "backend/triangulation/landmarks.h"
+#include "backend/triangulation/topology_edges.h"
 #include "backend/triangulation/wireframe_selection.h"
-#include "geometry/pose.h"
 #include "frontend/junctions/junction.h"
 #include "frontend/tracks/tracks.h"
+#include "geometry/pose.h"
 
 namespace sfm {
 
@@ -42,6 +44,10 @@ struct InitializationSummary {
   OdometryNoise declared;                  // sequence.yaml's (or the default)
   OdometryNoise used;                      // what the matcher's gates and the priors were weighted by
   bool rematched = false;                  // matching ran again with the measured noise
+  // Loop closure: pairs whose views overlap far apart along the trajectory, matched; those that
+  // gave a relative pose, (frame a, frame b, inliers).
+  int loop_candidates = 0;
+  std::vector<std::array<int, 3>> loops;
   PoseGraphSummary pose_graph;
   double seconds = 0;
 };
@@ -78,6 +84,7 @@ struct PipelineResult {
   // The landmarks wireframe.ply draws: those SelectWireframeLandmarks keeps on the final poses.
   Landmarks wireframe_landmarks;
   WireframeSelectionReport wireframe_selection;
+  TopologyEdgeReport topology_edges;      // the edges between drawn points (AddTopologyEdges)
   int unobservable_lines = 0;             // segment tracks dropped as parallel to the motion
   std::vector<Pose3> world_T_camera_odometry;
   std::vector<Pose3> world_T_camera_initial;               // the pose graph's (InitializationSummary)

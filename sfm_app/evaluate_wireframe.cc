@@ -7,7 +7,9 @@
 // Reads <output>/wireframe.ply (junction_sfm's vertices and edges, in the odometry's world frame)
 // and the true wireframe of <sequence>/truth/ (ReadGroundTruth). The generator's odometry starts on
 // the true first pose, so both are in one frame and no alignment is applied for the main figure:
-// each reconstructed vertex is measured by its distance to the nearest true edge (a 3D segment).
+// precision (the share of reconstructed vertices within --threshold of a true edge) and completeness
+// (the share of the seen true edges' length within --threshold of a reconstructed edge), overall and
+// per edge direction (sfm_app/wireframe_evaluation.h; docs/metrics.md, "Wireframe").
 //
 // A second, diagnostic figure takes out what a monocular camera cannot see (docs/bundle_adjustment.md,
 // "What the camera cannot correct"): the scale about the first camera that best maps the refined
@@ -15,10 +17,19 @@
 // (<output>/trajectory_groundtruth.txt) is applied to the vertices before measuring.
 //
 // Prints one JSON object on stdout:
-//   {"vertices": N, "edges": E, "threshold_m": t, "within": n, "share": n/N, "median_m": ..,
-//    "p90_m": .., "scaled": {"scale": s, "within": .., "share": .., "median_m": .., "p90_m": ..}}
+//   {"vertices": N, "edges": E, "threshold_m": t, "within": n, "share": n/N (precision), "median_m": ..,
+//    "p90_m": .., "seen_length_m": .., "covered_length_m": .., "completeness": ..,
+//    "edge_length_m": .., "edge_share": (edge precision),
+//    "by_direction": {"along": {"vertices": .., "share": .., "seen_length_m": .., "completeness": ..},
+//                     "across": {..}, "vertical": {..}},
+//    "scaled": {"scale": s, and the same figures}}
 // ("scaled" is null when the trajectories are missing). Errors: one line on stderr, exit 1 (bad
 // input) or 2 (bad flags).
+#include <gflags/gflags.h>
+#include <glog/logging.h>
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -27,56 +38,16 @@
 #include <string>
 #include <vector>
 
-#include <Eigen/Core>
-#include <Eigen/Geometry>
-#include <gflags/gflags.h>
-#include <glog/logging.h>
-
 #include "backend/export/ply_io.h"
 #include "geometry/tum_io.h"
 #include "sequences/generator/ground_truth.h"
+#include "sfm_app/wireframe_evaluation.h"
 
 DEFINE_string(sequence, "", "Generated sequence directory with truth/ (required).");
 DEFINE_string(output, "", "junction_sfm output directory with wireframe.ply (required).");
 DEFINE_double(threshold, 0.05, "Distance, m, within which a vertex counts as on a true edge.");
 
 namespace {
-
-struct Figures {
-  int within = 0;
-  double share = std::numeric_limits<double>::quiet_NaN();
-  double median = std::numeric_limits<double>::quiet_NaN();
-  double p90 = std::numeric_limits<double>::quiet_NaN();
-};
-
-double DistanceToSegment(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
-  const Eigen::Vector3d ab = b - a;
-  const double length2 = ab.squaredNorm();
-  double t = length2 > 0 ? (p - a).dot(ab) / length2 : 0.0;
-  t = std::clamp(t, 0.0, 1.0);
-  return (p - (a + t * ab)).norm();
-}
-
-Figures Measure(const std::vector<Eigen::Vector3d>& vertices, const sfm::Wireframe& truth, double threshold) {
-  Figures figures;
-  std::vector<double> distances;
-  distances.reserve(vertices.size());
-  for (const Eigen::Vector3d& p : vertices) {
-    double best = std::numeric_limits<double>::infinity();
-    for (const sfm::WireEdge& edge : truth.edges) {
-      best = std::min(best, DistanceToSegment(p, truth.vertices[edge.vertex_a], truth.vertices[edge.vertex_b]));
-    }
-    distances.push_back(best);
-    if (best <= threshold) ++figures.within;
-  }
-  if (!distances.empty()) {
-    figures.share = static_cast<double>(figures.within) / distances.size();
-    std::sort(distances.begin(), distances.end());
-    figures.median = distances[distances.size() / 2];
-    figures.p90 = distances[std::min(distances.size() - 1, static_cast<size_t>(0.9 * distances.size()))];
-  }
-  return figures;
-}
 
 std::string Number(double value) {
   if (!std::isfinite(value)) return "null";
@@ -85,9 +56,27 @@ std::string Number(double value) {
   return text;
 }
 
-std::string FiguresJson(const Figures& figures) {
-  return "\"within\": " + std::to_string(figures.within) + ", \"share\": " + Number(figures.share) +
-         ", \"median_m\": " + Number(figures.median) + ", \"p90_m\": " + Number(figures.p90);
+double Share(double part, double whole) {
+  return whole > 0 ? part / whole : std::numeric_limits<double>::quiet_NaN();
+}
+
+std::string FiguresJson(const sfm::WireframeFigures& figures) {
+  std::string json = "\"within\": " + std::to_string(figures.within) +
+                     ", \"share\": " + Number(figures.precision) +
+                     ", \"median_m\": " + Number(figures.median_m) + ", \"p90_m\": " + Number(figures.p90_m) +
+                     ", \"seen_length_m\": " + Number(figures.seen_length_m) +
+                     ", \"covered_length_m\": " + Number(figures.covered_length_m) +
+                     ", \"completeness\": " + Number(figures.completeness) +
+                     ", \"edge_length_m\": " + Number(figures.edge_length_m) +
+                     ", \"edge_share\": " + Number(figures.edge_precision) + ", \"by_direction\": {";
+  for (int k = 0; k < sfm::kEdgeDirections; ++k) {
+    json += std::string(k ? ", " : "") + "\"" + sfm::EdgeDirectionName(static_cast<sfm::EdgeDirection>(k)) +
+            "\": {\"vertices\": " + std::to_string(figures.vertices_by_direction[k]) + ", \"share\": " +
+            Number(Share(figures.within_by_direction[k], figures.vertices_by_direction[k])) +
+            ", \"seen_length_m\": " + Number(figures.seen_length_by_direction[k]) + ", \"completeness\": " +
+            Number(Share(figures.covered_length_by_direction[k], figures.seen_length_by_direction[k])) + "}";
+  }
+  return json + "}";
 }
 
 int Fail(const std::string& message) {
@@ -114,7 +103,14 @@ int main(int argc, char** argv) {
   status = sfm::ReadPly((fs::path(FLAGS_output) / "wireframe.ply").string(), &wireframe);
   if (!status.ok()) return Fail(status.message());
 
-  const Figures plain = Measure(wireframe.vertices, truth.wireframe, FLAGS_threshold);
+  sfm::WireframeEvaluationOptions options;
+  options.threshold_m = FLAGS_threshold;
+  const std::vector<bool> seen = sfm::SeenTrueEdges(truth, options.min_views);
+  const std::vector<sfm::EdgeDirection> direction = sfm::ClassifyTrueEdges(truth);
+  const auto measure = [&](const std::vector<Eigen::Vector3d>& vertices) {
+    return sfm::EvaluateWireframe(vertices, wireframe.edges, truth.wireframe, seen, direction, options);
+  };
+  const sfm::WireframeFigures plain = measure(wireframe.vertices);
 
   // Diagnostic: the refined map scaled about the first camera by the scale that best maps the
   // refined camera positions onto the true ones. The first pose is shared (the odometry starts on
@@ -144,7 +140,7 @@ int main(int argc, char** argv) {
       std::vector<Eigen::Vector3d> moved;
       moved.reserve(wireframe.vertices.size());
       for (const Eigen::Vector3d& v : wireframe.vertices) moved.push_back(first + scale * (v - first));
-      const Figures aligned = Measure(moved, truth.wireframe, FLAGS_threshold);
+      const sfm::WireframeFigures aligned = measure(moved);
       scaled = "{\"scale\": " + Number(scale) + ", " + FiguresJson(aligned) + "}";
     }
   }

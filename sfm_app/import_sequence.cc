@@ -2,10 +2,11 @@
 // section 1), with odometry simulated from the true poses by a stated, seeded noise model.
 //
 //   build/bin/import_sequence --format vgg|strecha|tum --input <data set dir> --output <sequence dir>
+//   build/bin/import_sequence --format euroc --input <ASL folder> --odometry <file> --output <sequence dir>
 //   build/bin/import_sequence --format rosbag2 --input <bag folder, .mcap or .db3> --output <sequence dir>
 //   build/bin/import_sequence --format rosbag --input <ROS 1 .bag file> --output <sequence dir>
 //
-// A bag gives the robot's own odometry and camera: nothing is simulated for it.
+// EuRoC folders and bags give the robot's own odometry: nothing is simulated for them.
 //
 // docs/importers.md describes each format, the noise model and the figures measured on the data.
 #include <gflags/gflags.h>
@@ -16,6 +17,8 @@
 #include <limits>
 #include <string>
 
+#include "sequences/importers/calibration_files.h"
+#include "sequences/importers/euroc_importer.h"
 #include "sequences/importers/imported_sequence.h"
 #include "sequences/importers/rosbag/bag_importer.h"
 #include "sequences/importers/rosbag/rosbag1_recording.h"
@@ -27,11 +30,13 @@ namespace {
 const sfm::SequenceWriteOptions kDefaults;
 }  // namespace
 
-DEFINE_string(format, "",
-              "Data set format: 'vgg' (Oxford VGG multi-view: <name>.NNN.pgm, <name>.NNN.P, <name>.p3d), "
-              "'strecha' (images/*.jpg, gt_dense_cameras/*.camera) or 'tum' (TUM RGB-D: rgb.txt, rgb/, "
-              "groundtruth.txt), 'rosbag2' (a ROS 2 bag: its folder with metadata.yaml, or one .mcap or "
-              ".db3 file) or 'rosbag' (a ROS 1 .bag file). Required.");
+DEFINE_string(
+    format, "",
+    "Data set format: 'vgg' (Oxford VGG multi-view: <name>.NNN.pgm, <name>.NNN.P, <name>.p3d), "
+    "'strecha' (images/*.jpg, gt_dense_cameras/*.camera), 'tum' (TUM RGB-D: rgb.txt, rgb/, "
+    "groundtruth.txt), 'euroc' (EuRoC / ASL: cam0/data.csv, cam0/data/, cam0/sensor.yaml, with the robot's "
+    "--odometry), 'rosbag2' (a ROS 2 bag: its folder with metadata.yaml, or one .mcap or .db3 file) or "
+    "'rosbag' (a ROS 1 .bag file). Required.");
 DEFINE_string(input, "", "Data set directory (rosbag2: the bag folder or storage file; rosbag: the .bag file). Required.");
 DEFINE_string(output, "",
               "Sequence directory to create (written to a temporary sibling and renamed into place). Required.");
@@ -85,6 +90,17 @@ DEFINE_bool(
     "vgg: resample each image to the sequence's one K (H_i = K K_i^-1, cropped to the rectangle all frames "
     "cover) and keep each P's own pose, exact for the warped images; writes image_warps.txt. "
     "--vgg_refit_poses is then not used.");
+DEFINE_string(
+    odometry, "",
+    "euroc: the robot's odometry file, world_T_base (TUM, or ASL CSV 'timestamp [ns],x,y,z,qw,qx,qy,qz'); "
+    "required, since ASL folders hold none.");
+DEFINE_string(calibration, "",
+              "euroc: the camera calibration instead of cam0/sensor.yaml: a Kalibr camchain (cam0), a ROS "
+              "camera_info YAML, an EuRoC sensor.yaml or an OpenCV YAML as sequence.yaml.");
+DEFINE_string(
+    base_T_body, "",
+    "euroc: 'tx ty tz qx qy qz qw', the pose of the calibration's reference frame (Kalibr: the IMU; "
+    "EuRoC: the body B; camera_info: the camera itself) in the robot base frame; empty: the identity.");
 DEFINE_string(tum_camera, "fr1", "tum: which Kinect's published calibration to use: fr1, fr2 or fr3.");
 DEFINE_int32(tum_stride, sfm::TumImportOptions().stride, "tum: keep every N-th image that has ground truth.");
 DEFINE_double(tum_max_groundtruth_gap, sfm::TumImportOptions().max_groundtruth_gap,
@@ -182,11 +198,28 @@ sfm::Status ReadDataSet(sfm::ImportedSequence* sequence) {
 
 }  // namespace
 
+// --format euroc: a robot's recording with its own odometry, written as it is (no simulated noise).
+int ImportEuroc() {
+  sfm::EurocImportOptions options;
+  options.odometry_path = FLAGS_odometry;
+  options.calibration_path = FLAGS_calibration;
+  sfm::RecordedSequence sequence;
+  sfm::Status status = sfm::ParsePoseText(FLAGS_base_T_body, "--base_T_body", &options.base_T_body);
+  if (status.ok()) status = sfm::ReadEurocSequence(FLAGS_input, options, &sequence);
+  if (status.ok()) status = sfm::WriteRecordedSequence(sequence, FLAGS_output, FLAGS_overwrite);
+  if (!status.ok()) {
+    std::fprintf(stderr, "import_sequence: %s\n", status.message().c_str());
+    return 1;
+  }
+  return 0;
+}
+
 int main(int argc, char** argv) {
   gflags::SetUsageMessage(
-      "makes a SPEC sequence directory from a data set with ground-truth cameras or a ROS 2 or ROS 1 bag.\n"
-      "  import_sequence --format vgg|strecha|tum|rosbag2|rosbag --input <data set dir or bag> --output <sequence "
-      "dir> [flags]");
+      "makes a SPEC sequence directory from a data set with ground-truth cameras, an EuRoC folder or a ROS 2 or "
+      "ROS 1 bag.\n"
+      "  import_sequence --format vgg|strecha|tum|euroc|rosbag2|rosbag --input <data set dir or bag> --output "
+      "<sequence dir> [flags]");
   gflags::SetVersionString("0.1.0");
   gflags::ParseCommandLineFlags(&argc, &argv, true);
   FLAGS_logtostderr = true;
@@ -197,8 +230,8 @@ int main(int argc, char** argv) {
     return 2;
   }
   if (FLAGS_format != "vgg" && FLAGS_format != "strecha" && FLAGS_format != "tum" &&
-      FLAGS_format != "rosbag2" && FLAGS_format != "rosbag") {
-    std::fprintf(stderr, "import_sequence: --format must be vgg, strecha, tum, rosbag2 or rosbag (found '%s')\n",
+      FLAGS_format != "euroc" && FLAGS_format != "rosbag2" && FLAGS_format != "rosbag") {
+    std::fprintf(stderr, "import_sequence: --format must be vgg, strecha, tum, euroc, rosbag2 or rosbag (found '%s')\n",
                  FLAGS_format.c_str());
     return 2;
   }
@@ -219,6 +252,7 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "import_sequence: --input and --output must name directories\n");
     return 2;
   }
+  if (FLAGS_format == "euroc") return ImportEuroc();
   if (FLAGS_format == "rosbag2" || FLAGS_format == "rosbag") {
     const sfm::Status status = ImportBag();
     if (!status.ok()) {

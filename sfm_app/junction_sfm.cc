@@ -68,12 +68,6 @@ DEFINE_string(floor_prior, FloorPriorName(kDefaults.bundle_adjustment_options.fl
               "Bundle adjustment: ground-plane prior that fixes the odometry's scale: 'auto' (when the rig, the "
               "odometry and the map show a ground robot with its base origin on the floor), 'on' (whenever a floor "
               "plane is found) or 'off'.");
-DEFINE_bool(floor_base_prior, kDefaults.bundle_adjustment_options.floor_base_prior,
-            "Bundle adjustment: with the floor prior applied and the odometry on the floor plane, also hold every "
-            "base pose's height and tilt there (floor sigma, and floor sigma / camera height rad).");
-DEFINE_bool(floor_scale_line_search, kDefaults.bundle_adjustment_options.floor_scale_line_search,
-            "Bundle adjustment: with the floor prior applied, after the last solve, a line search on the odometry's "
-            "scale factor (three solves with it held, a parabola, a last solve at its minimum).");
 DEFINE_string(
     odometry_rotation_bias,
     kDefaults.bundle_adjustment_options.estimate_odometry_rotation_bias            ? "on"
@@ -87,12 +81,8 @@ DEFINE_bool(extend_tracks, kDefaults.extend_tracks,
             "Track extension: project every point landmark into the frames its track misses and join the one "
             "compatible junction inside its uncertainty gate, or merge the track it belongs to; inside the "
             "bundle adjustment, after its first fine solve.");
-DEFINE_bool(extend_tracks_merge, kDefaults.track_extension.merge_tracks,
-            "Track extension: merge two tracks when a projection finds the other's junction.");
 DEFINE_double(extend_tracks_pixel_sigma, kDefaults.track_extension.pixel_sigma_px,
               "Track extension: pixel noise of a junction location in the gate, pixels.");
-DEFINE_double(extend_tracks_rotation_step, kDefaults.track_extension.rotation_step_rad,
-              "Track extension: the refined poses' rotation error per frame (random walk) in the gate, radians.");
 DEFINE_double(extend_tracks_max_gate_px, kDefaults.track_extension.max_gate_px,
               "Track extension: the largest gate radius, pixels (a wider gate is not searched).");
 DEFINE_double(extend_tracks_max_angle_deg, kDefaults.track_extension.max_angle_deg,
@@ -103,9 +93,6 @@ DEFINE_double(wireframe_tolerance_m, kDefaults.triangulation.wireframe.tolerance
               "(docs/tracks_and_triangulation.md, \"An accuracy asked of the map\").");
 DEFINE_double(wireframe_tolerance_share, kDefaults.triangulation.wireframe.tolerance_share,
               "Wireframe selection: the share of drawn vertices asked to be within --wireframe_tolerance_m.");
-DEFINE_bool(wireframe_plane_noise, kDefaults.triangulation.wireframe.line_sigma_subtracts_plane_noise,
-            "Wireframe selection: a line vertex's sigma subtracts the information its planes' own noise "
-            "fakes (a line whose planes spread no more than that noise is undetermined).");
 DEFINE_double(wireframe_far_end_at_point_px, kDefaults.triangulation.wireframe.far_end_at_point_px,
               "Wireframe selection: a line's far end is taken at a drawn junction point when its observed "
               "image lines lie within this many pixels of its projections (median over the views, across "
@@ -113,10 +100,6 @@ DEFINE_double(wireframe_far_end_at_point_px, kDefaults.triangulation.wireframe.f
 DEFINE_double(wireframe_far_end_along_px, kDefaults.triangulation.wireframe.far_end_along_px,
               "Wireframe selection, --wireframe_far_end_at_point_px: the largest median distance, pixels, "
               "along the observed image lines between the point's projections and the far end-points.");
-DEFINE_int32(wireframe_line_end_along_sigma, kDefaults.triangulation.wireframe.line_end_along_sigma,
-             "Wireframe selection, rule 2: a back-projected line end's sigma includes its position along "
-             "the line (0: off; 1: a line's own end0; 2: end0 and end1; docs/tracks_and_triangulation.md, "
-             "\"A line end's position along the line\").");
 
 namespace {
 
@@ -155,23 +138,17 @@ const std::vector<sfm::HelpFlag> kHelpTable = {
      "Observations with a larger error (px) are removed, then solved again."},
     {"ba_loss_scale", kBackEnd, "Scale of the robust loss on image residuals, px."},
     {"floor_prior", kBackEnd, "Ground-plane prior fixing the odometry's scale: auto | on | off."},
-    {"floor_base_prior", kBackEnd, "With the floor prior: hold each base pose's height and tilt on it."},
-    {"floor_scale_line_search", kBackEnd, "With the floor prior: line search on the odometry's scale."},
     {"odometry_rotation_bias", kBackEnd,
      "Estimate the odometry's constant rotation per step: auto | on | off."},
     {"extend_tracks", kBackEnd, "Extend tracks into the frames they miss during the adjustment."},
-    {"extend_tracks_merge", kBackEnd, "Track extension: merge two tracks that meet."},
     {"extend_tracks_pixel_sigma", kBackEnd, "Track extension: junction location noise, px."},
-    {"extend_tracks_rotation_step", kBackEnd, "Track extension: pose rotation error per frame, rad."},
     {"extend_tracks_max_gate_px", kBackEnd, "Track extension: largest search radius, px."},
     {"extend_tracks_max_angle_deg", kBackEnd, "Track extension: largest segment direction error, degrees."},
     {"wireframe_tolerance_m", kWireframe, "Accuracy asked of the drawn map, m (0: off)."},
     {"wireframe_tolerance_share", kWireframe, "Share of drawn vertices asked to be within it."},
-    {"wireframe_plane_noise", kWireframe, "A line's sigma discounts its planes' own noise."},
     {"wireframe_far_end_at_point_px", kWireframe,
      "Take a line's far end at a junction point within px (0: off)."},
     {"wireframe_far_end_along_px", kWireframe, "Largest distance along the line for that, px."},
-    {"wireframe_line_end_along_sigma", kWireframe, "Line end sigma along the line: 0 off, 1 end0, 2 both."},
 };
 
 // The option fields the flags set, with their flags, so that a Check() message names the flag
@@ -181,14 +158,12 @@ const std::vector<std::pair<std::string, std::string>> kOptionFlags = {
     {"robust_loss_scale_px", "ba_loss_scale"},
     {"outlier_threshold_px", "ba_outlier_threshold"},
     {"pixel_sigma_px", "extend_tracks_pixel_sigma"},
-    {"rotation_step_rad", "extend_tracks_rotation_step"},
     {"max_gate_px", "extend_tracks_max_gate_px"},
     {"max_angle_deg", "extend_tracks_max_angle_deg"},
     {"tolerance_m", "wireframe_tolerance_m"},
     {"tolerance_share", "wireframe_tolerance_share"},
     {"far_end_at_point_px", "wireframe_far_end_at_point_px"},
     {"far_end_along_px", "wireframe_far_end_along_px"},
-    {"line_end_along_sigma", "wireframe_line_end_along_sigma"},
     {"max_epipolar_distance_px", "match_max_distance"},
     {"tau1", "match_tau1"},
     {"tau2", "match_tau2"},
@@ -217,8 +192,6 @@ bool OptionsFromFlags(sfm::PipelineOptions* options, std::string* error) {
   options->bundle_adjustment = FLAGS_bundle_adjustment;
   options->extend_tracks = FLAGS_extend_tracks;
   options->track_extension.pixel_sigma_px = FLAGS_extend_tracks_pixel_sigma;
-  options->track_extension.merge_tracks = FLAGS_extend_tracks_merge;
-  options->track_extension.rotation_step_rad = FLAGS_extend_tracks_rotation_step;
   options->track_extension.max_gate_px = FLAGS_extend_tracks_max_gate_px;
   options->track_extension.max_angle_deg = FLAGS_extend_tracks_max_angle_deg;
   options->bundle_adjustment_options.outlier_threshold_px = FLAGS_ba_outlier_threshold;
@@ -229,14 +202,10 @@ bool OptionsFromFlags(sfm::PipelineOptions* options, std::string* error) {
     return false;
   }
   options->bundle_adjustment_options.num_threads = FLAGS_threads;
-  options->triangulation.wireframe.line_sigma_subtracts_plane_noise = FLAGS_wireframe_plane_noise;
   options->triangulation.wireframe.tolerance_m = FLAGS_wireframe_tolerance_m;
   options->triangulation.wireframe.tolerance_share = FLAGS_wireframe_tolerance_share;
   options->triangulation.wireframe.far_end_at_point_px = FLAGS_wireframe_far_end_at_point_px;
   options->triangulation.wireframe.far_end_along_px = FLAGS_wireframe_far_end_along_px;
-  options->triangulation.wireframe.line_end_along_sigma = FLAGS_wireframe_line_end_along_sigma;
-  options->bundle_adjustment_options.floor_base_prior = FLAGS_floor_base_prior;
-  options->bundle_adjustment_options.floor_scale_line_search = FLAGS_floor_scale_line_search;
   if (FLAGS_floor_prior == "auto") {
     options->bundle_adjustment_options.floor_prior = sfm::FloorPriorMode::kAuto;
   } else if (FLAGS_floor_prior == "on") {

@@ -6,12 +6,13 @@
 // Writes a SPEC section 1 sequence (sequence.yaml, images.txt, images/, odometry.txt,
 // groundtruth.txt) plus truth/. With no other flag it makes the default sequence
 // (sequences/regenerate_default.sh). Every default below is the library's (GeneratorOptions).
-#include <cinttypes>
-#include <cstdio>
-#include <string>
-
 #include <gflags/gflags.h>
 #include <glog/logging.h>
+
+#include <cinttypes>
+#include <cmath>
+#include <cstdio>
+#include <string>
 
 #include "sequences/generator/sequence_writer.h"
 
@@ -60,11 +61,16 @@ DEFINE_double(fx, kDefaults.camera.fx, "Focal length x, px.");
 DEFINE_double(fy, kDefaults.camera.fy, "Focal length y, px.");
 DEFINE_double(cx, kDefaults.camera.cx, "Principal point x, px; negative: (width - 1) / 2.");
 DEFINE_double(cy, kDefaults.camera.cy, "Principal point y, px; negative: (height - 1) / 2.");
-DEFINE_double(k1, kDefaults.camera.distortion[0], "Radial distortion k1 (OpenCV model).");
-DEFINE_double(k2, kDefaults.camera.distortion[1], "Radial distortion k2.");
-DEFINE_double(p1, kDefaults.camera.distortion[2], "Tangential distortion p1.");
-DEFINE_double(p2, kDefaults.camera.distortion[3], "Tangential distortion p2.");
-DEFINE_double(k3, kDefaults.camera.distortion[4], "Radial distortion k3.");
+DEFINE_string(lens, sfm::DistortionModelName(kDefaults.camera.model),
+              "Lens model (sequence.yaml's distortion_model): radtan (OpenCV's k1 k2 p1 p2 k3; all zero: a "
+              "pinhole) | equidistant (cv::fisheye's k1 k2 k3 k4; --fx, --fy default to a 150 degree "
+              "diagonal field of view).");
+DEFINE_double(k1, kDefaults.camera.distortion[0], "Radial distortion k1 (radtan or equidistant).");
+DEFINE_double(k2, kDefaults.camera.distortion[1], "Radial distortion k2 (radtan or equidistant).");
+DEFINE_double(p1, kDefaults.camera.distortion[2], "Tangential distortion p1 (radtan).");
+DEFINE_double(p2, kDefaults.camera.distortion[3], "Tangential distortion p2 (radtan).");
+DEFINE_double(k3, kDefaults.camera.distortion[4], "Radial distortion k3 (radtan or equidistant).");
+DEFINE_double(k4, 0, "Radial distortion k4 (equidistant).");
 DEFINE_double(camera_height, kDefaults.camera.mount_height, "Camera centre above the floor, m.");
 DEFINE_double(camera_forward, kDefaults.camera.mount_forward, "Camera centre ahead of the robot base origin, m.");
 DEFINE_double(camera_pitch, kDefaults.camera.pitch, "Optical axis below the horizontal, rad.");
@@ -85,6 +91,10 @@ DEFINE_double(odometry_noise_scale, 1.0,
               "Multiplies the four odometry noise terms above, defaults or given (3: three times as poor).");
 
 namespace {
+
+// --lens=equidistant's field of view across the image diagonal when --fx, --fy are not given: a
+// typical robot fisheye (issue 21).
+constexpr double kEquidistantDiagonalDeg = 150;
 
 // Builds the options from the flags; false with a message when a name is not known.
 bool OptionsFromFlags(sfm::GeneratorOptions* options, std::string* problem) {
@@ -119,7 +129,26 @@ bool OptionsFromFlags(sfm::GeneratorOptions* options, std::string* problem) {
   options->camera.fy = FLAGS_fy;
   options->camera.cx = FLAGS_cx;
   options->camera.cy = FLAGS_cy;
-  options->camera.distortion = {FLAGS_k1, FLAGS_k2, FLAGS_p1, FLAGS_p2, FLAGS_k3};
+  if (!sfm::ParseDistortionModel(FLAGS_lens, &options->camera.model)) {
+    *problem = "--lens must be radtan or equidistant, not '" + FLAGS_lens + "'";
+    return false;
+  }
+  if (options->camera.model == sfm::DistortionModel::kEquidistant) {
+    if (FLAGS_p1 != 0 || FLAGS_p2 != 0) {
+      *problem = "--lens=equidistant has no tangential terms: leave --p1 and --p2 at 0";
+      return false;
+    }
+    options->camera.distortion = {FLAGS_k1, FLAGS_k2, FLAGS_k3, FLAGS_k4, 0};
+    const double focal = options->camera.EquidistantFocalForDiagonal(kEquidistantDiagonalDeg * M_PI / 180);
+    if (gflags::GetCommandLineFlagInfoOrDie("fx").is_default) options->camera.fx = focal;
+    if (gflags::GetCommandLineFlagInfoOrDie("fy").is_default) options->camera.fy = focal;
+  } else {
+    if (FLAGS_k4 != 0) {
+      *problem = "--k4 is a coefficient of --lens=equidistant only";
+      return false;
+    }
+    options->camera.distortion = {FLAGS_k1, FLAGS_k2, FLAGS_p1, FLAGS_p2, FLAGS_k3};
+  }
   options->camera.mount_height = FLAGS_camera_height;
   options->camera.mount_forward = FLAGS_camera_forward;
   options->camera.pitch = FLAGS_camera_pitch;

@@ -245,7 +245,7 @@ Status BundleAdjustment::Filter() {
     floor_.Select(/*first=*/false, parameters_, *landmarks_, summary_);
     SFM_RETURN_IF_ERROR(Solve(options.robust_loss_scale_px, /*with_lines=*/true, options.function_tolerance));
   }
-  if (options.floor_scale_line_search) SFM_RETURN_IF_ERROR(SearchScale());
+  SFM_RETURN_IF_ERROR(SearchScale());
   WritePoses();
   return Status::Ok();
 }

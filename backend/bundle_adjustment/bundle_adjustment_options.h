@@ -72,18 +72,6 @@ struct BundleAdjustmentOptions {
   // may be from the plane of the base origin (floor flatness, wheels sinking in), also the unit
   // of every floor threshold (docs/bundle_adjustment.md, "Floor prior").
   double floor_sigma_m = 0.01;
-  // With the floor prior applied and the odometry showing the rig on the floor (every pose at z = 0,
-  // level; FloorPriorRigProblem), also hold every base pose there: z with floor_sigma_m and the
-  // tilt with floor_sigma_m / camera height (the tilt that moves the floor under the camera by one
-  // sigma, the rig check's own tolerance). docs/bundle_adjustment.md, "Floor prior".
-  bool floor_base_prior = true;
-  // When the floor prior applies, after the last joint solve, a line search on the odometry's
-  // scale factor: two solves with it held at lambda (1 +- translation_sigma / sqrt(steps)), a
-  // parabola through their costs and the last solve's at lambda, a last solve at its minimum (at most two
-  // such steps away), kept if its cost is lower. The joint solves stop with the scale part-way along its
-  // shallow direction; held, they converge (docs/bundle_adjustment.md, "Floor scale bias: the start
-  // and the line search").
-  bool floor_scale_line_search = true;
   // Landmarks a floor plane needs at least (besides being a peak of the height distribution).
   int floor_min_landmarks = 10;
 

@@ -35,8 +35,9 @@ void FloorPriorState::Select(bool first, const AdjustmentParameters& parameters,
     const std::string rig_problem = FloorPriorRigProblem(setup_.base_T_camera, setup_.odometry, sigma_m);
     // Even when forced on, a floor must be below the camera.
     if (!rig_problem.empty() && (automatic || !(camera_height_m > 0))) return skip(rig_problem);
-    // The base poses are held on the floor only where the odometry shows them there.
-    base_on_floor_ = options.floor_base_prior && rig_problem.empty();
+    // The base poses are held on the floor (z with the floor sigma, tilt with floor sigma / camera
+    // height) only where the odometry shows them there.
+    base_on_floor_ = rig_problem.empty();
   }
   double camera_z_m = 0;
   for (const PoseParameters& pose : parameters.poses) {

@@ -6,6 +6,7 @@
 #include <cctype>
 #include <filesystem>
 #include <initializer_list>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -39,6 +40,11 @@ double Mean(size_t total, size_t count) {
   return count == 0 ? 0.0 : static_cast<double>(total) / static_cast<double>(count);
 }
 
+// The POINT3D_ID of model.points[i].
+long PointId(const ColmapModel& model, size_t i) {
+  return model.points[i].id > 0 ? model.points[i].id : static_cast<long>(i) + 1;
+}
+
 // A 2D point of images.txt: where it is and which 3D point it observes.
 struct ImagePoint {
   Eigen::Vector2d pixel;  // OpenCV convention
@@ -66,8 +72,13 @@ Status Validate(const std::string& directory, const ColmapModel& model) {
       return Status::Error(which + ": the pose is not finite");
     }
   }
+  std::set<long> ids;
   for (size_t i = 0; i < model.points.size(); ++i) {
     const ColmapPoint& point = model.points[i];
+    if (!ids.insert(PointId(model, i)).second) {
+      return Status::Error(points_file + ": point " + std::to_string(i) + " repeats the POINT3D_ID " +
+                           std::to_string(PointId(model, i)));
+    }
     if (!point.position.allFinite()) {
       return Status::Error(points_file + ": point " + std::to_string(i) + " has a non-finite position");
     }
@@ -83,13 +94,31 @@ Status Validate(const std::string& directory, const ColmapModel& model) {
   return Status::Ok();
 }
 
+// A fisheye's undistorted image cannot hold its view (at 90 degrees off axis it is infinite), so
+// an equidistant camera is written as COLMAP's OPENCV_FISHEYE (the same cv::fisheye model) and its
+// observations in the stored image's pixels; the radial-tangential model stays a PINHOLE camera of
+// the undistorted images.
+bool WritesStoredPixels(const Camera& camera) { return camera.model == DistortionModel::kEquidistant; }
+
+// An observation (undistorted pixel, OpenCV convention) as the model's camera sees it, OpenCV convention.
+Eigen::Vector2d ModelPixel(const Camera& camera, const Eigen::Vector2d& undistorted) {
+  return WritesStoredPixels(camera) ? camera.DistortPixel(undistorted) : undistorted;
+}
+
 std::string CamerasText(const Camera& camera) {
+  std::string line = "1 PINHOLE ";
+  std::string coefficients;
+  if (WritesStoredPixels(camera)) {
+    line = "1 OPENCV_FISHEYE ";
+    const auto& d = camera.distortion;
+    coefficients = " " + Numbers({d[0], d[1], d[2], d[3]});
+  }
   return "# Camera list with one line of data per camera:\n"
          "#   CAMERA_ID, MODEL, WIDTH, HEIGHT, PARAMS[]\n"
-         "# Number of cameras: 1\n"
-         "1 PINHOLE " +
-         std::to_string(camera.width) + " " + std::to_string(camera.height) + " " +
-         Numbers({camera.fx, camera.fy, camera.cx + kColmapPixelShift, camera.cy + kColmapPixelShift}) + "\n";
+         "# Number of cameras: 1\n" +
+         line + std::to_string(camera.width) + " " + std::to_string(camera.height) + " " +
+         Numbers({camera.fx, camera.fy, camera.cx + kColmapPixelShift, camera.cy + kColmapPixelShift}) +
+         coefficients + "\n";
 }
 
 std::string ImagesText(const ColmapModel& model, const std::vector<std::vector<ImagePoint>>& image_points,
@@ -113,15 +142,16 @@ std::string ImagesText(const ColmapModel& model, const std::vector<std::vector<I
       if (!points_line.empty()) points_line += ' ';
       points_line +=
           Numbers({image_point.pixel.x() + kColmapPixelShift, image_point.pixel.y() + kColmapPixelShift}) +
-          " " + std::to_string(image_point.point_index + 1);
+          " " + std::to_string(PointId(model, image_point.point_index));
     }
     text += points_line + "\n";
   }
   return text;
 }
 
-// Mean distance in pixels between the observations and the projections of the point (K only,
-// matching the undistorted observations), or kUnknownError when a camera does not see it in front.
+// Mean distance in pixels between the observations and the projections of the point (K only for
+// the undistorted observations of a PINHOLE camera, the lens too for OPENCV_FISHEYE), or
+// kUnknownError when a camera does not see it in front.
 double ReprojectionError(const ColmapModel& model, const ColmapPoint& point) {
   if (point.track.empty()) return kUnknownError;
   double sum = 0;
@@ -129,7 +159,10 @@ double ReprojectionError(const ColmapModel& model, const ColmapPoint& point) {
     const Eigen::Vector3d point_camera =
         model.images[observation.image_index].world_T_camera.Inverse() * point.position;
     if (!(point_camera.z() > 0)) return kUnknownError;
-    sum += (model.camera.ProjectUndistorted(point_camera) - observation.pixel).norm();
+    const Eigen::Vector2d projected = WritesStoredPixels(model.camera)
+                                          ? model.camera.Project(point_camera)
+                                          : model.camera.ProjectUndistorted(point_camera);
+    sum += (projected - ModelPixel(model.camera, observation.pixel)).norm();
   }
   return sum / static_cast<double>(point.track.size());
 }
@@ -144,7 +177,7 @@ std::string Points3DText(const ColmapModel& model, const std::vector<std::vector
       ", mean track length: " + ShortestNumberText(Mean(observations, model.points.size())) + "\n";
   for (size_t i = 0; i < model.points.size(); ++i) {
     const ColmapPoint& point = model.points[i];
-    text += std::to_string(i + 1) + " " +
+    text += std::to_string(PointId(model, i)) + " " +
             Numbers({point.position.x(), point.position.y(), point.position.z()}) + " " + kPointColour + " " +
             ShortestNumberText(ReprojectionError(model, point));
     for (size_t j = 0; j < point.track.size(); ++j) {
@@ -175,7 +208,7 @@ Status WriteColmapModel(const std::string& directory, const ColmapModel& model) 
     for (const ColmapObservation& observation : model.points[i].track) {
       std::vector<ImagePoint>& in_image = image_points[observation.image_index];
       point2d_indices[i].push_back(static_cast<int>(in_image.size()));
-      in_image.push_back({observation.pixel, static_cast<int>(i)});
+      in_image.push_back({ModelPixel(model.camera, observation.pixel), static_cast<int>(i)});
       ++observations;
     }
   }

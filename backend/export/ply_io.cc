@@ -6,13 +6,14 @@
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
+#include <limits>
 #include <sstream>
 #include <utility>
 #include <vector>
 
+#include "util/atomic_file.h"
 #include "util/number_text.h"
 #include "util/text_file.h"
-#include "util/atomic_file.h"
 
 namespace sfm {
 namespace {
@@ -96,13 +97,19 @@ Status FormatPly(const ReconstructedWireframe& wireframe, std::string* text) {
   std::string out = "ply\nformat ascii 1.0\n";
   out += "element vertex " + std::to_string(vertex_count) + "\n";
   out += "property double x\nproperty double y\nproperty double z\n";
+  const bool with_tracks = !wireframe.track_ids.empty();
+  if (with_tracks && wireframe.track_ids.size() != vertex_count) {
+    return Status::Error(std::to_string(wireframe.track_ids.size()) + " track ids for " +
+                         std::to_string(vertex_count) + " vertices");
+  }
+  if (with_tracks) out += "property int track_id\n";
   out += "element edge " + std::to_string(wireframe.edges.size()) + "\n";
   out += "property int vertex1\nproperty int vertex2\nend_header\n";
   for (size_t i = 0; i < vertex_count; ++i) {
     const Eigen::Vector3d& v = wireframe.vertices[i];
     if (!v.allFinite()) return Status::Error("vertex " + std::to_string(i) + " has a non-finite coordinate");
-    out +=
-        ShortestNumberText(v.x()) + " " + ShortestNumberText(v.y()) + " " + ShortestNumberText(v.z()) + "\n";
+    out += ShortestNumberText(v.x()) + " " + ShortestNumberText(v.y()) + " " + ShortestNumberText(v.z());
+    out += with_tracks ? " " + std::to_string(wireframe.track_ids[i]) + "\n" : "\n";
   }
   for (size_t i = 0; i < wireframe.edges.size(); ++i) {
     const auto [a, b] = wireframe.edges[i];
@@ -128,6 +135,7 @@ Status WritePly(const std::string& path, const ReconstructedWireframe& wireframe
 Status ReadPly(const std::string& path, ReconstructedWireframe* wireframe) {
   wireframe->vertices.clear();
   wireframe->edges.clear();
+  wireframe->track_ids.clear();
   std::ifstream in(path);
   if (!in) return Status::Error(path + ": cannot open (" + std::strerror(errno) + ")");
   int line_number = 0;
@@ -142,6 +150,7 @@ Status ReadPly(const std::string& path, ReconstructedWireframe* wireframe) {
     const int first = PropertyIndex(element, is_vertex ? "x" : "vertex1");
     const int second = PropertyIndex(element, is_vertex ? "y" : "vertex2");
     const int third = PropertyIndex(element, "z");
+    const int track = is_vertex ? PropertyIndex(element, "track_id") : -1;
     if ((is_vertex || is_edge) && element.has_list_property) {
       return Status::Error(path + ": element " + element.name + " has a list property (not supported)");
     }
@@ -171,6 +180,13 @@ Status ReadPly(const std::string& path, ReconstructedWireframe* wireframe) {
           return Status::Error(where + "vertex coordinates are not finite numbers");
         }
         wireframe->vertices.push_back(v);
+        if (track >= 0) {
+          long id = 0;
+          if (!ParseLong(words[track], &id) || id < -1 || id > std::numeric_limits<int>::max()) {
+            return Status::Error(where + "track_id is not an integer >= -1");
+          }
+          wireframe->track_ids.push_back(static_cast<int>(id));
+        }
       } else {
         long a = 0, b = 0;
         if (!ParseLong(words[first], &a) || !ParseLong(words[second], &b)) {

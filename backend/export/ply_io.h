@@ -12,18 +12,20 @@ namespace sfm {
 
 // The PLY text of a wireframe. The header is exactly
 //   ply / format ascii 1.0 / element vertex N / property double x / property double y /
-//   property double z / element edge M / property int vertex1 / property int vertex2 / end_header
-// (one item per line), then one "x y z" line per vertex (metres, shortest round-trip numbers) and
-// one "vertex1 vertex2" line per edge. Fails on a non-finite vertex coordinate or an edge index
-// outside [0, N), naming the vertex or edge.
+//   property double z / [property int track_id /] element edge M / property int vertex1 /
+//   property int vertex2 / end_header
+// (one item per line; track_id when wireframe.track_ids is not empty), then one "x y z [track_id]"
+// line per vertex (metres, shortest round-trip numbers) and one "vertex1 vertex2" line per edge.
+// Fails on a non-finite vertex coordinate, an edge index outside [0, N) or a track_ids of another
+// size than the vertices, naming the vertex or edge.
 Status FormatPly(const ReconstructedWireframe& wireframe, std::string* text);
 
 // FormatPly written atomically to `path` (util/atomic_file.h); errors are prefixed by the path.
 Status WritePly(const std::string& path, const ReconstructedWireframe& wireframe);
 
-// Reads an ASCII PLY file holding `element vertex` with scalar properties x, y, z (others are
-// ignored) and optionally `element edge` with vertex1, vertex2; other elements are skipped.
-// Enough for our own files and the tests; binary PLY is reported as unsupported. Fails, naming the
+// Reads an ASCII PLY file holding `element vertex` with scalar properties x, y, z, optionally
+// track_id (others are ignored) and optionally `element edge` with vertex1, vertex2; other elements are
+// skipped. Enough for our own files and the tests; binary PLY is reported as unsupported. Fails, naming the
 // file and line, on a malformed header or data line and on an edge index outside the vertices.
 Status ReadPly(const std::string& path, ReconstructedWireframe* wireframe);
 

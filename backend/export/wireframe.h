@@ -12,6 +12,9 @@ struct ReconstructedWireframe {
   std::vector<Eigen::Vector3d> vertices;
   // 3D line segments as pairs of 0-based indices into `vertices`.
   std::vector<std::pair<int, int>> edges;
+  // Empty, or one per vertex: the junction track (tracks.csv's track_id) a 3D junction point was
+  // triangulated from, -1 for a segment end-point.
+  std::vector<int> track_ids;
 };
 
 }  // namespace sfm

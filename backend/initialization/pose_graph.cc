@@ -104,7 +104,8 @@ Status SolvePoseGraph(const std::vector<Pose3>& world_T_base_odometry, const Pos
     const int i = constraint.frame_i, j = constraint.frame_j;
     pair_blocks.push_back(problem.AddResidualBlock(
         RelativePoseCost::Create(base_T_camera, constraint.camera_j_T_camera_i, SquareRoot(constraint.information)),
-        new ceres::CauchyLoss(options.loss_scale_sigmas), poses[i].rotation.data(), poses[i].translation.data(),
+        constraint.robust ? new ceres::CauchyLoss(options.loss_scale_sigmas) : nullptr, poses[i].rotation.data(),
+        poses[i].translation.data(),
         poses[j].rotation.data(), poses[j].translation.data()));
   }
   for (PoseParameters& pose : poses) problem.SetManifold(pose.rotation.data(), new ceres::EigenQuaternionManifold);

@@ -35,6 +35,10 @@ struct RelativePoseConstraint {
   int frame_j = 0;  // > frame_i
   Pose3 camera_j_T_camera_i;
   Eigen::Matrix<double, 6, 6> information = Eigen::Matrix<double, 6, 6>::Zero();  // symmetric PSD
+  // false for a loop closure: its pose was gated against the trajectory's uncertainty over all
+  // the frames between the two, so the pose graph's Cauchy loss, which would read the drift it
+  // corrects as its own error, is not applied.
+  bool robust = true;
 };
 
 struct PoseGraphOptions {

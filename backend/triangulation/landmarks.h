@@ -3,9 +3,9 @@
 // Pixels are undistorted pixels (K only); positions are in the world frame, metres.
 #pragma once
 
-#include <vector>
-
 #include <Eigen/Core>
+#include <utility>
+#include <vector>
 
 namespace sfm {
 
@@ -47,6 +47,9 @@ struct LineLandmark {
 struct Landmarks {
   std::vector<PointLandmark> points;
   std::vector<LineLandmark> lines;
+  // 3D segments between two points (indices into `points`, first < second) that the images show
+  // joined by one line segment (AddTopologyEdges); only the drawn landmarks have them.
+  std::vector<std::pair<int, int>> point_edges;
 };
 
 }  // namespace sfm

@@ -244,7 +244,7 @@ class Extender {
       const int owner = owner_[f][found];
       if (owner < 0) {
         AddView(t, p, f, found, found_assign);
-      } else if (owner != t && options_.merge_tracks) {
+      } else if (owner != t) {
         if (!Merge(t, p, *covariance, owner, f, found, found_assign)) ++report_.merges_refused;
       }
     }

@@ -37,8 +37,6 @@ struct TrackExtensionOptions {
   // Largest angle between a junction segment and the direction the track predicts for it (its 3D
   // line projected, or the segment of the track's nearest view), degrees, in (0, 90).
   double max_angle_deg = 10;
-  // Merge two tracks when a projection finds the other's junction (else only unassigned junctions join).
-  bool merge_tracks = true;
   // Depth below which a projection is not used, metres (the triangulation's depth floor).
   double min_depth_m = kMinDepthM;
 

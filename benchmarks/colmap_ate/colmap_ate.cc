@@ -33,7 +33,8 @@ DEFINE_string(colmap_image_prefix, "images/",
 DEFINE_bool(
     colmap_camera, false,
     "Print the COLMAP camera model and parameters of sequence.yaml's camera and exit: PINHOLE without "
-    "distortion, OPENCV (k1 k2 p1 p2) when k3 is 0, else FULL_OPENCV; cx, cy in COLMAP's pixel convention.");
+    "distortion, OPENCV (k1 k2 p1 p2) when k3 is 0, else FULL_OPENCV, OPENCV_FISHEYE (k1 k2 k3 k4) for "
+    "distortion_model equidistant; cx, cy in COLMAP's pixel convention.");
 DEFINE_string(trajectory, "",
               "TUM trajectory of camera poses world_T_camera, matched to frames by timestamp.");
 
@@ -49,6 +50,7 @@ std::string ColmapCamera(const sfm::Camera& camera) {
                        sfm::ShortestNumberText(camera.cy + kColmapPixelShift);
   if (!camera.HasDistortion()) return "PINHOLE " + params;
   for (int i = 0; i < 4; ++i) params += "," + sfm::ShortestNumberText(camera.distortion[i]);
+  if (camera.model == sfm::DistortionModel::kEquidistant) return "OPENCV_FISHEYE " + params;  // k1 k2 k3 k4
   if (camera.distortion[4] == 0) return "OPENCV " + params;
   // FULL_OPENCV: k1 k2 p1 p2 k3 k4 k5 k6, the rational terms k4..k6 zero (OpenCV's 5-term model).
   return "FULL_OPENCV " + params + "," + sfm::ShortestNumberText(camera.distortion[4]) + ",0,0,0";

@@ -31,6 +31,12 @@ Eigen::Vector2d ClipToImage(const Eigen::Vector2d& from, const Eigen::Vector2d& 
   return from + std::max(0.0, u) * d;
 }
 
+// The length that min_edge_px is compared with: undistorted, or in the stored image (the chord).
+double EdgeLength(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const TrueJunctionOptions& options) {
+  if (options.stored_camera == nullptr) return (b - a).norm();
+  return (options.stored_camera->DistortPixel(b) - options.stored_camera->DistortPixel(a)).norm();
+}
+
 // For every vertex of the frame, the visible edge parts that start at it (clipped to the image
 // when the options give its size).
 std::map<int, std::vector<Arm>> ArmsOfVertices(const Wireframe& wireframe, const FrameTruth& frame,
@@ -38,7 +44,7 @@ std::map<int, std::vector<Arm>> ArmsOfVertices(const Wireframe& wireframe, const
   std::map<int, std::vector<Arm>> arms;
   auto arm = [&](const Eigen::Vector2d& at, const Eigen::Vector2d& far, int index) {
     const Eigen::Vector2d end = ClipToImage(at, far, options.image_width, options.image_height);
-    return Arm{end, (end - at).norm(), index};
+    return Arm{end, EdgeLength(at, end, options), index};
   };
   for (size_t i = 0; i < frame.segments.size(); ++i) {
     const VisibleSegment& s = frame.segments[i];
@@ -163,7 +169,7 @@ FrameTrueJunctions TrueJunctionsOfFrame(const Wireframe& wireframe, const FrameT
     result.vertices.push_back(junction);
   }
   for (const VisibleSegment& s : frame.segments) {
-    if ((s.pixel[1] - s.pixel[0]).norm() < options.min_edge_px) continue;
+    if (EdgeLength(s.pixel[0], s.pixel[1], options) < options.min_edge_px) continue;
     for (int e = 0; e < 2; ++e) {
       if (s.end[e] == SegmentEnd::kOcclusion) result.occlusions.push_back(s.pixel[e]);
     }

@@ -8,13 +8,13 @@
 // - End-point offsets t (eq. 8 sign) of detected segments against true ones, for fitting eq. (5).
 #pragma once
 
-#include <vector>
-
 #include <Eigen/Core>
 #include <opencv2/core.hpp>
+#include <vector>
 
 #include "frontend/junctions/junction.h"
 #include "frontend/segments/line_segment.h"
+#include "geometry/camera.h"
 #include "sequences/generator/ground_truth.h"
 #include "sequences/generator/wireframe.h"
 
@@ -39,6 +39,11 @@ struct TrueJunctionOptions {
   // truth's visible parts already end there; with barrel distortion the stored image sees beyond
   // the undistorted frame, so a part can run on outside the image the detector is given.
   int image_width = 0, image_height = 0;
+  // When not null: min_edge_px is measured in this camera's stored (distorted) image, the chord
+  // between the stored pixels of an edge part's ends, where the sensor resolves it. A wide lens's
+  // undistorted periphery stretches an edge many times (1/cos^2 of the angle off axis for an
+  // equidistant lens, 15x at 75 degrees): a 10 px undistorted edge there is under one stored pixel.
+  const Camera* stored_camera = nullptr;
 };
 
 // A visible wireframe vertex where at least two visible edges meet, not just two collinear ones.

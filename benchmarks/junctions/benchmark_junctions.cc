@@ -68,6 +68,10 @@ DEFINE_bool(
     "Generated: true vertices count only --radius px inside the undistorted image, and a true edge's "
     "length only inside it (with barrel distortion the stored image sees beyond it); false: only the "
     "stored image's border applies.");
+DEFINE_bool(
+    truth_in_stored_pixels, false,
+    "Generated: --min_edge_px and the main recall's --radius in the stored (distorted) image's pixels, "
+    "where the sensor resolves edges; for wide lenses, whose undistorted periphery is stretched many times.");
 DEFINE_double(radius, 3.0, "A true junction is found when a detected one lies within this, px.");
 DEFINE_double(min_edge_px, kTruthDefaults.min_edge_px,
               "Generated: a vertex is detectable when at least two visible edges at least this long (px) meet there.");
@@ -130,6 +134,7 @@ int main(int argc, char** argv) {
   bench.edge_contrast_high = FLAGS_edge_contrast_high;
   bench.min_segment_length = FLAGS_min_segment_length;
   bench.truth_in_image = FLAGS_truth_in_image;
+  bench.truth_in_stored_pixels = FLAGS_truth_in_stored_pixels;
   bench.gt_min_angle_deg = FLAGS_gt_min_angle_deg;
   bench.max_abs_t = FLAGS_max_abs_t;
   bench.junction_repeats = FLAGS_junction_repeats;

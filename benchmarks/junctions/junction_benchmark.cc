@@ -603,6 +603,14 @@ Status MeasureSequence(const JunctionBenchmarkOptions& bench, const std::string&
   auto in_valid = [&](const Eigen::Vector2d& p) { return InMask(valid, p + valid_offset); };
   TrueJunctionOptions truth_options;
   truth_options.min_edge_px = bench.min_edge_px;
+  if (bench.truth_in_stored_pixels) truth_options.stored_camera = &camera;
+  // Where detections and truth are compared (the radius): undistorted, or stored pixels.
+  auto compared = [&](std::vector<Eigen::Vector2d> points) {
+    if (bench.truth_in_stored_pixels) {
+      for (Eigen::Vector2d& p : points) p = camera.DistortPixel(p);
+    }
+    return points;
+  };
   if (bench.truth_in_image) {
     truth_options.image_width = camera.width;
     truth_options.image_height = camera.height;
@@ -718,7 +726,7 @@ Status MeasureSequence(const JunctionBenchmarkOptions& bench, const std::string&
       // Recall over detectable vertices, with location error and type.
       s.detectable += static_cast<int>(detectable.size());
       std::vector<bool> detectable_found(detectable.size(), false);
-      for (const PointMatch& match : MatchPoints(detectable, detected, bench.radius)) {
+      for (const PointMatch& match : MatchPoints(compared(detectable), compared(detected), bench.radius)) {
         ++s.detectable_found;
         detectable_found[match.truth] = true;
         s.errors.push_back(match.distance);

@@ -29,6 +29,8 @@ struct JunctionBenchmarkOptions {
   double edge_contrast_high = SegmentDetectorOptions().edge_contrast_high;  // the detectors' high threshold
   double min_segment_length = SegmentDetectorOptions().min_length;  // the detectors', px (report text)
   bool truth_in_image = true;  // generated: truth counts only inside the undistorted image
+  // Generated: min_edge_px and the main recall's radius in the stored image's pixels (wide lenses)
+  bool truth_in_stored_pixels = false;
   double gt_min_angle_deg = SegmentJunctionOptions().min_angle_deg;  // VGG: segments that never meet
   double max_abs_t = EndpointOffsetOptions().max_abs_t;  // end-point samples beyond: gross failures, px
   int junction_repeats = 1;                              // the junction time is the fastest of this many runs

@@ -127,9 +127,25 @@ class CalibrationReader {
     return Status::Ok();
   }
 
-  // A matrix of one of the allowed shapes (rows x cols), as CV_64F with finite entries.
-  Status Matrix(const std::string& key, const std::vector<std::pair<int, int>>& shapes, cv::Mat* matrix) const {
-    const std::string expected = std::to_string(shapes[0].first) + "x" + std::to_string(shapes[0].second);
+  // The optional lens model (SPEC section 1); radtan when the key is absent.
+  Status OptionalDistortionModel(const std::string& key, DistortionModel* model) const {
+    *model = DistortionModel::kRadTan;
+    const cv::FileNode node = storage_[key];
+    if (node.empty() || node.isNone()) return Status::Ok();
+    if (!node.isString()) return Error(key, "must be radtan or equidistant");
+    const std::string name = node.string();
+    if (!ParseDistortionModel(name, model)) {
+      return Error(key, "is '" + name + "', not a known model (radtan or equidistant)");
+    }
+    return Status::Ok();
+  }
+
+  // A matrix of one of the allowed shapes (rows x cols), as CV_64F with finite entries. `what`
+  // follows the first shape in the message on a wrong shape.
+  Status Matrix(const std::string& key, const std::vector<std::pair<int, int>>& shapes, cv::Mat* matrix,
+                const std::string& what = "") const {
+    const std::string expected =
+        std::to_string(shapes[0].first) + "x" + std::to_string(shapes[0].second) + what;
     const cv::FileNode node = storage_[key];
     if (node.empty() || node.isNone()) return Missing(key);
     if (!node.isMap() || node["rows"].empty() || node["cols"].empty() || node["data"].empty()) {
@@ -199,10 +215,20 @@ Status ReadCalibrationKeys(const std::string& path, const std::string& text, con
                                              ", fy " + ShortestNumberText(camera.fy));
   }
 
+  SFM_RETURN_IF_ERROR(reader.OptionalDistortionModel("distortion_model", &camera.model));
   cv::Mat distortion;
-  // OpenCV's own calibration writes either orientation.
-  SFM_RETURN_IF_ERROR(reader.Matrix("distortion_coefficients", {{1, 5}, {5, 1}}, &distortion));
-  for (int i = 0; i < 5; ++i) camera.distortion[i] = distortion.at<double>(i);
+  // OpenCV's own calibration writes either orientation; Kalibr's radtan has no k3 (SPEC section 1).
+  if (camera.model == DistortionModel::kEquidistant) {
+    SFM_RETURN_IF_ERROR(reader.Matrix("distortion_coefficients", {{1, 4}, {4, 1}}, &distortion,
+                                      " (k1 k2 k3 k4 of distortion_model equidistant)"));
+  } else {
+    SFM_RETURN_IF_ERROR(reader.Matrix("distortion_coefficients", {{1, 5}, {5, 1}, {1, 4}, {4, 1}},
+                                      &distortion,
+                                      " (k1 k2 p1 p2 k3) or 1x4 (k1 k2 p1 p2) for distortion_model radtan"));
+  }
+  camera.distortion = {0, 0, 0, 0, 0};
+  for (int i = 0; i < static_cast<int>(distortion.total()); ++i)
+    camera.distortion[i] = distortion.at<double>(i);
 
   cv::Mat T;
   SFM_RETURN_IF_ERROR(reader.Matrix("T_base_camera", {{4, 4}}, &T));
@@ -405,9 +431,10 @@ Status WriteCalibration(const std::string& yaml_path, const Calibration& calibra
     storage << "image_width" << camera.width;
     storage << "image_height" << camera.height;
     storage << "camera_matrix" << cv::Mat(cv::Matx33d(camera.fx, 0, camera.cx, 0, camera.fy, camera.cy, 0, 0, 1));
-    storage << "distortion_coefficients"
-            << cv::Mat(cv::Matx<double, 1, 5>(camera.distortion[0], camera.distortion[1], camera.distortion[2],
-                                              camera.distortion[3], camera.distortion[4]));
+    // Radtan is written as it always was, without the optional key (SPEC section 1's default).
+    if (camera.model != DistortionModel::kRadTan)
+      storage << "distortion_model" << DistortionModelName(camera.model);
+    storage << "distortion_coefficients" << camera.DistortionCoefficients();
     cv::Mat T;
     cv::eigen2cv(Eigen::Matrix4d(calibration.base_T_camera.Matrix4()), T);
     storage << "T_base_camera" << T;

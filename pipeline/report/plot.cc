@@ -133,6 +133,16 @@ Plot::Plot(int width, int height) : width_(width), height_(height) {
   CHECK_GE(height, 150);
 }
 
+double ScaleBarLength(double range) {
+  if (!(range > 0 && std::isfinite(range))) return 0;
+  const double quarter = range / 4;
+  const double power = std::pow(10.0, std::floor(std::log10(quarter)));
+  for (const double m : {5.0, 2.0, 1.0}) {
+    if (m * power <= quarter * (1 + 1e-12)) return m * power;
+  }
+  return power;
+}
+
 void Plot::SetXRange(double lo, double hi) {
   CHECK_LT(lo, hi);
   fixed_x_ = true;
@@ -337,6 +347,31 @@ cv::Mat Plot::Render() const {
   if (!y_label_.empty()) PutVerticalText(&canvas, y_label_, cv::Point(12, area.y + area.height / 2), kLabelFont);
   if (!title_.empty()) {
     PutText(&canvas, title_, cv::Point(area.x + area.width / 2, 17), Align::kCentre, kTitleFont, kText, 1);
+  }
+
+  // Scale bar: in the lower corner hiding less data, on a white box; the legend then avoids it.
+  const double bar_length = scale_bar_unit_.empty() ? 0 : ScaleBarLength(x_hi - x_lo);
+  if (bar_length > 0) {
+    const int bar_px = cvRound(bar_length / (x_hi - x_lo) * (area.width - 1));
+    const std::string label = TickLabel(bar_length, bar_length) + " " + scale_bar_unit_;
+    const cv::Size box(std::max(bar_px, TextWidth(label, kTickFont)) + 16, 34);
+    const cv::Rect left(area.x + 8, area.br().y - box.height - 8, box.width, box.height);
+    const cv::Rect right(area.br().x - box.width - 8, left.y, box.width, box.height);
+    size_t hidden_left = 0, hidden_right = 0;
+    for (const cv::Point2d& p : occupied) {
+      hidden_left += left.contains(cv::Point(cvRound(p.x), cvRound(p.y)));
+      hidden_right += right.contains(cv::Point(cvRound(p.x), cvRound(p.y)));
+    }
+    const cv::Rect at = hidden_right < hidden_left ? right : left;
+    cv::rectangle(canvas, at, cv::Scalar(255, 255, 255), cv::FILLED);
+    const int y = at.br().y - 9, x0 = at.x + 8;
+    cv::line(canvas, cv::Point(x0, y), cv::Point(x0 + bar_px, y), kText, 3);
+    cv::line(canvas, cv::Point(x0, y - 5), cv::Point(x0, y + 3), kText, 1);
+    cv::line(canvas, cv::Point(x0 + bar_px, y - 5), cv::Point(x0 + bar_px, y + 3), kText, 1);
+    PutText(&canvas, label, cv::Point(x0, y - 14), Align::kLeft, kTickFont);
+    for (int px = at.x; px < at.br().x; px += 4) {
+      for (int py = at.y; py < at.br().y; py += 4) occupied.emplace_back(px, py);
+    }
   }
 
   // Legend: in the corner of the plot area that hides the least data.

@@ -16,6 +16,10 @@ namespace sfm::plot {
 // 6 ticks at most gives 0, 2, 4, 6. A range that is empty, of zero width or not finite gives none.
 std::vector<double> NiceTicks(double lo, double hi, int max_ticks, double min_step = 0);
 
+// The length of a map's scale bar for a visible range of `range` data units: the largest 1, 2 or 5
+// times a power of ten not above a quarter of it (0 for a range that is not finite and positive).
+double ScaleBarLength(double range);
+
 // A tick value as text with just the decimals its step needs ("0.05", "2", "-1.5"; never "-0").
 std::string TickLabel(double value, double step);
 
@@ -46,6 +50,9 @@ class Plot {
   void SetYFromZero(bool from_zero) { y_from_zero_ = from_zero; }
   // Ticks on x only at whole numbers (frame indices).
   void SetIntegerX(bool integer) { integer_x_ = integer; }
+  // A scale bar of ScaleBarLength(x range) labelled "<length> <unit>" in a lower corner of the plot
+  // area (the one hiding less data); empty unit: none. For maps drawn with SetEqualAspect.
+  void SetScaleBar(const std::string& unit) { scale_bar_unit_ = unit; }
 
   // A polyline through (x[i], y[i]); a non-finite point breaks it. `label` empty: not in the legend.
   void AddLine(const std::vector<double>& x, const std::vector<double>& y, const cv::Scalar& colour,
@@ -75,7 +82,7 @@ class Plot {
   };
 
   int width_, height_;
-  std::string title_, x_label_, y_label_;
+  std::string title_, x_label_, y_label_, scale_bar_unit_;
   bool equal_aspect_ = false, y_from_zero_ = false, integer_x_ = false;
   bool fixed_x_ = false, fixed_y_ = false;
   double x_lo_ = 0, x_hi_ = 1, y_lo_ = 0, y_hi_ = 1;

@@ -2,7 +2,9 @@
 
 #include <glog/logging.h>
 
+#include <Eigen/Geometry>
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -14,10 +16,10 @@
 
 #include "geometry/alignment.h"
 #include "geometry/image_undistorter.h"
-#include "util/atomic_file.h"
 #include "pipeline/overlay/match_overlay.h"
 #include "pipeline/report/base64.h"
 #include "pipeline/report/plot.h"
+#include "util/atomic_file.h"
 
 namespace sfm {
 namespace {
@@ -145,8 +147,10 @@ std::string SummarySection(const Context& c) {
   html += Row({"3D points", std::to_string(r.landmarks.points.size()), "triangulated junctions"});
   html += Row({"3D lines", std::to_string(r.landmarks.lines.size()),
                std::to_string(r.unobservable_lines) + " more dropped as parallel to the motion"});
-  html += Row({"wireframe", std::to_string(r.wireframe_landmarks.points.size()) + " points, " +
-                                std::to_string(r.wireframe_landmarks.lines.size()) + " lines",
+  html += Row({"wireframe",
+               std::to_string(r.wireframe_landmarks.points.size()) + " points, " +
+                   std::to_string(r.wireframe_landmarks.lines.size()) + " lines, " +
+                   std::to_string(r.wireframe_landmarks.point_edges.size()) + " edges between points",
                "drawn: consistent with their views and well determined (pixel noise " +
                    Num(r.wireframe_selection.pixel_sigma_px, "%.2f") + " px)"});
   html += "</table>\n";
@@ -182,6 +186,14 @@ std::string SummarySection(const Context& c) {
                                                               Num(e.line_rms_px, "%.2f") + " px (lines)"});
     html += Row({"image pairs with a relative pose", std::to_string(r.initialization.pairs.constraints) + " of " +
                                                          std::to_string(r.initialization.pairs.pairs)});
+    std::string loops = std::to_string(r.initialization.loops.size()) + " of " +
+                        std::to_string(r.initialization.loop_candidates) + " candidate pairs";
+    for (size_t i = 0; i < r.initialization.loops.size(); ++i) {
+      const std::array<int, 3>& loop = r.initialization.loops[i];
+      loops += (i ? ", " : ": ") + std::string("frames ") + std::to_string(loop[0]) + "-" + std::to_string(loop[1]) +
+               " (" + std::to_string(loop[2]) + " inliers)";
+    }
+    html += Row({"loops closed", loops});
     html += Row({"camera centres moved from the odometry", Num(e.moved_from_odometry_median_m, "%.3f") +
                                                                " m median, " +
                                                                Num(e.moved_from_odometry_max_m, "%.3f") + " m at most"});
@@ -427,45 +439,99 @@ std::string MatchPictureSection(const Context& c, const std::vector<cv::Mat>& im
   return html;
 }
 
-// A view of the wireframe along one world axis: 3D lines as segments, 3D points as dots, and the
-// camera path, projected orthographically onto the (h, v) plane.
-cv::Mat WireframeView(const Context& c, int h, int v, const std::string& title) {
+// The wireframe's view directions: up from the robot's base frame (UpDirection); `length` the
+// horizontal direction of the map's edges (their directions modulo 90 degrees averaged as 4 theta,
+// weighted by horizontal length: a man-made scene's walls), of the two perpendicular ones the one
+// along which the drawn coordinates spread more, turned to run with the camera path; `across` =
+// up x length (so that the view from above is not mirrored).
+struct ViewAxes {
+  Eigen::Vector3d length, across, up;
+};
+
+ViewAxes WireframeAxes(const Context& c, const std::vector<Eigen::Vector3d>& drawn,
+                       const std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>>& edges) {
+  const std::vector<Pose3>& cameras =
+      c.refined ? c.result.world_T_camera_refined : c.result.world_T_camera_odometry;
+  ViewAxes axes;
+  axes.up = UpDirection(cameras, c.sequence.calibration.base_T_camera);
+  const Eigen::Vector3d e1 = axes.up.unitOrthogonal(), e2 = axes.up.cross(e1);  // any horizontal basis
+  // The mean of 4 theta, then again over the edges within 5 degrees of it (modulo 90), so that
+  // oblique edges do not pull it.
+  double theta = 0;
+  for (int pass = 0; pass < 2; ++pass) {
+    Eigen::Vector2d sum4 = Eigen::Vector2d::Zero();
+    for (const auto& [a, b] : edges) {
+      const Eigen::Vector2d d((b - a).dot(e1), (b - a).dot(e2));
+      const double angle = std::atan2(d.y(), d.x());
+      if (pass == 1 && std::abs(WrapAngle(4 * (angle - theta))) > 4 * kPi / 36) continue;
+      sum4 += d.norm() * Eigen::Vector2d(std::cos(4 * angle), std::sin(4 * angle));
+    }
+    if (sum4.norm() > 0) theta = std::atan2(sum4.y(), sum4.x()) / 4;
+  }
+  const Eigen::Vector3d first = std::cos(theta) * e1 + std::sin(theta) * e2;
+  const Eigen::Vector3d second = axes.up.cross(first);
+  auto spread = [&](const Eigen::Vector3d& direction) {
+    std::vector<double> values;
+    for (const Eigen::Vector3d& p : drawn) values.push_back(p.dot(direction));
+    return values.empty() ? 0.0 : Quantile(values, 0.98) - Quantile(values, 0.02);
+  };
+  axes.length = spread(first) >= spread(second) ? first : second;
+  if (cameras.size() >= 2 &&
+      (cameras.back().translation - cameras.front().translation).dot(axes.length) < 0) {
+    axes.length = -axes.length;
+  }
+  axes.across = axes.up.cross(axes.length);
+  return axes;
+}
+
+// An orthographic view of the wireframe onto the plane of the directions h (to the right) and v
+// (up): 3D lines and edges between points as segments, 3D points as dots, the camera path, and a
+// scale bar.
+cv::Mat WireframeView(const Context& c, const Eigen::Vector3d& h, const Eigen::Vector3d& v,
+                      const std::string& title, const std::string& h_label, const std::string& v_label) {
   const Landmarks& landmarks = c.result.wireframe_landmarks;  // what wireframe.ply holds
   const std::vector<Pose3>& cameras = c.refined ? c.result.world_T_camera_refined : c.result.world_T_camera_odometry;
   std::vector<std::array<double, 4>> segments;
   std::vector<double> hs, vs;  // every drawn coordinate, for the range
-  for (const LineLandmark& line : landmarks.lines) {
-    segments.push_back({line.end0[h], line.end0[v], line.end1[h], line.end1[v]});
-    hs.push_back(line.end0[h]), hs.push_back(line.end1[h]), vs.push_back(line.end0[v]), vs.push_back(line.end1[v]);
-  }
-  std::vector<double> px, py;
+  auto add_segment = [&](const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+    segments.push_back({a.dot(h), a.dot(v), b.dot(h), b.dot(v)});
+    hs.push_back(a.dot(h)), hs.push_back(b.dot(h)), vs.push_back(a.dot(v)), vs.push_back(b.dot(v));
+  };
+  for (const LineLandmark& line : landmarks.lines) add_segment(line.end0, line.end1);
+  for (const auto& [a, b] : landmarks.point_edges)
+    add_segment(landmarks.points[a].position, landmarks.points[b].position);
+  std::vector<double> px, py, cam_h, cam_v;
   for (const PointLandmark& point : landmarks.points) {
-    px.push_back(point.position[h]), py.push_back(point.position[v]);
-    hs.push_back(point.position[h]), vs.push_back(point.position[v]);
+    px.push_back(point.position.dot(h)), py.push_back(point.position.dot(v));
+    hs.push_back(px.back()), vs.push_back(py.back());
   }
+  for (const Pose3& camera : cameras)
+    cam_h.push_back(camera.translation.dot(h)), cam_v.push_back(camera.translation.dot(v));
   Plot figure(kPlotWidth, kPlotHeight);
   figure.SetTitle(title);
-  figure.SetXLabel(std::string(kAxisName[h]) + " [m]");
-  figure.SetYLabel(std::string(kAxisName[v]) + " [m]");
+  figure.SetXLabel(h_label + " [m]");
+  figure.SetYLabel(v_label + " [m]");
   figure.SetEqualAspect(true);
-  figure.AddLine(Coordinate(cameras, h), Coordinate(cameras, v), colour::kOrange,
-                 c.refined ? "cameras (refined)" : "cameras (odometry)", 2);  // first: the map is drawn over it
-  figure.AddSegments(segments, colour::kBlue, "3D lines", 1);
+  figure.SetScaleBar("m");
+  figure.AddLine(cam_h, cam_v, colour::kOrange, c.refined ? "cameras (refined)" : "cameras (odometry)",
+                 2);  // under the map
+  figure.AddSegments(segments, colour::kBlue, "3D lines and edges", 1);
   figure.AddMarkers(px, py, colour::kVermillion, "3D points", 2);
   // The range of the bulk of the map (2 % to 98 %, widened by a tenth) and the cameras, so that a
   // few far-off end-points do not shrink everything else; what lies outside is clipped.
-  auto range = [&](const std::vector<double>& values, int axis, double* lo, double* hi) {
+  auto range = [&](const std::vector<double>& values, const std::vector<double>& path, double* lo,
+                   double* hi) {
     *lo = Quantile(values, 0.02), *hi = Quantile(values, 0.98);
     const double pad = 0.1 * (*hi - *lo);
     *lo -= pad, *hi += pad;
-    for (const Pose3& camera : cameras) *lo = std::min(*lo, camera.translation[axis]), *hi = std::max(*hi, camera.translation[axis]);
+    for (const double x : path) *lo = std::min(*lo, x), *hi = std::max(*hi, x);
     if (!(*hi - *lo > 1e-6)) *lo -= 0.5, *hi += 0.5;
   };
   double lo, hi;
   if (!hs.empty()) {
-    range(hs, h, &lo, &hi);
+    range(hs, cam_h, &lo, &hi);
     figure.SetXRange(lo, hi);
-    range(vs, v, &lo, &hi);
+    range(vs, cam_v, &lo, &hi);
     figure.SetYRange(lo, hi);
   }
   return figure.Render();
@@ -477,24 +543,32 @@ std::string WireframeSection(const Context& c) {
   if (landmarks.lines.empty() && landmarks.points.empty()) {
     return html + Note("No 3D point or line was reconstructed, so there is no wireframe to show.");
   }
-  const auto [a, b] = HorizontalAxes(c.vertical);
-  // The side view looks across the horizontal axis along which the map is longer.
-  std::vector<double> along_a, along_b;
-  for (const PointLandmark& p : landmarks.points) along_a.push_back(p.position[a]), along_b.push_back(p.position[b]);
+  std::vector<Eigen::Vector3d> drawn;
+  std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>> edges;
+  for (const PointLandmark& p : landmarks.points) drawn.push_back(p.position);
   for (const LineLandmark& l : landmarks.lines) {
-    along_a.push_back(l.end0[a]), along_a.push_back(l.end1[a]), along_b.push_back(l.end0[b]), along_b.push_back(l.end1[b]);
+    drawn.push_back(l.end0), drawn.push_back(l.end1);
+    edges.emplace_back(l.end0, l.end1);
   }
-  const double spread_a = Quantile(along_a, 0.98) - Quantile(along_a, 0.02);
-  const double spread_b = Quantile(along_b, 0.98) - Quantile(along_b, 0.02);
-  const int side = spread_b > spread_a ? b : a;
-  html += Note("The 3D lines and points of wireframe.ply projected orthographically, with the camera path; " +
-               std::to_string(landmarks.lines.size()) + " lines, " + std::to_string(landmarks.points.size()) +
-               " points. The view is framed on the bulk of the map (2nd to 98th percentile of the coordinates); "
-               "what lies further out is cut off at the frame.");
-  html += Figure(WireframeView(c, a, b, "wireframe seen from above"), "wireframe from above",
-                 "From above: " + std::string(kAxisName[a]) + " to the right, " + kAxisName[b] + " up.");
-  html += Figure(WireframeView(c, side, c.vertical, "wireframe seen from the side"), "wireframe from the side",
-                 "From the side: " + std::string(kAxisName[side]) + " to the right, " + kAxisName[c.vertical] + " up.");
+  for (const auto& [a, b] : landmarks.point_edges)
+    edges.emplace_back(landmarks.points[a].position, landmarks.points[b].position);
+  const ViewAxes axes = WireframeAxes(c, drawn, edges);
+  html += Note(
+      "The 3D lines, edges and points of wireframe.ply projected orthographically, with the camera path; " +
+      std::to_string(landmarks.lines.size() + landmarks.point_edges.size()) + " edges (" +
+      std::to_string(landmarks.point_edges.size()) + " between points joined in the images), " +
+      std::to_string(landmarks.points.size()) +
+      " points. Up is the robot base's (its z axis; the cameras' up where the data set gives camera "
+      "poses), so the floor is down; to the right, the direction of the map's edges along which it is "
+      "longer, with the camera path. Framed on the bulk of the map (2nd to 98th percentile); what lies "
+      "further out is "
+      "cut off.");
+  html += Figure(
+      WireframeView(c, axes.length, axes.across, "wireframe seen from above", "along the map", "across"),
+      "wireframe from above", "From above: the map's length to the right, across it up.");
+  html += Figure(
+      WireframeView(c, axes.length, axes.up, "wireframe seen from the side", "along the map", "height"),
+      "wireframe from the side", "From the side: the map's length to the right, up (gravity) up.");
   return html;
 }
 
@@ -518,6 +592,16 @@ std::string PngDataUri(const cv::Mat& image) {
   CHECK(cv::imencode(".png", image, png)) << "PNG encoding failed";
   return "data:image/png;base64," +
          Base64Encode(std::string_view(reinterpret_cast<const char*>(png.data()), png.size()));
+}
+
+Eigen::Vector3d UpDirection(const std::vector<Pose3>& world_T_camera, const Pose3& base_T_camera) {
+  const bool rig_is_identity = base_T_camera.translation.norm() < 1e-12 &&
+                               base_T_camera.rotation.angularDistance(Eigen::Quaterniond::Identity()) < 1e-9;
+  const Eigen::Vector3d up_in_base = rig_is_identity ? Eigen::Vector3d(0, -1, 0) : Eigen::Vector3d(0, 0, 1);
+  const Pose3 camera_T_base = base_T_camera.Inverse();
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  for (const Pose3& pose : world_T_camera) sum += (pose * camera_T_base).RotationMatrix() * up_in_base;
+  return sum.norm() > 1e-9 ? Eigen::Vector3d(sum.normalized()) : Eigen::Vector3d::UnitZ();
 }
 
 int VerticalAxis(const std::vector<Pose3>& world_T_camera) {

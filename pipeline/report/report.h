@@ -43,6 +43,13 @@ std::string PngDataUri(const cv::Mat& image);
 // 5 cm, otherwise the axis along which they spread least (a ground robot moves in the horizontal).
 int VerticalAxis(const std::vector<Pose3>& world_T_camera);
 
+// The world's up direction (unit) for the wireframe views, from the robot's base frame: its z axis
+// (up, docs/conventions.md) in the world, averaged over world_T_base = world_T_camera *
+// base_T_camera^-1. Where the rig is the identity (a data set that gives camera poses directly) the
+// base is the camera, and up is the camera's -y (OpenCV y points down in an upright camera).
+// World z when there is no frame (or the average vanishes).
+Eigen::Vector3d UpDirection(const std::vector<Pose3>& world_T_camera, const Pose3& base_T_camera);
+
 // Error of an estimated trajectory per frame, after the alignment the ATE uses (AlignSE3 of the
 // estimated camera positions onto the true ones): the position error |truth_i - T est_i| in
 // metres, and the heading error in radians, (-pi, pi], positive counter-clockwise seen from above:

@@ -15,6 +15,9 @@ Status CameraRigOptions::Check() const {
   for (double d : distortion) {
     if (!(std::abs(d) < 10)) return error("distortion coefficients must be finite and below 10 in magnitude");
   }
+  if (model == DistortionModel::kEquidistant && distortion[4] != 0) {
+    return error("the equidistant lens has four coefficients k1 k2 k3 k4 (the fifth must be 0)");
+  }
   if (!(mount_height > 0.1 && mount_height < 3)) return error("mount_height must be in (0.1, 3) m");
   if (!(std::abs(mount_forward) < 1)) return error("mount_forward must be in (-1, 1) m");
   if (!(std::abs(pitch) < 1.2)) return error("pitch must be in (-1.2, 1.2) rad");
@@ -29,8 +32,17 @@ Camera CameraRigOptions::MakeCamera() const {
   camera.fy = fy;
   camera.cx = cx < 0 ? 0.5 * (width - 1) : cx;
   camera.cy = cy < 0 ? 0.5 * (height - 1) : cy;
+  camera.model = model;
   camera.distortion = distortion;
   return camera;
+}
+
+double CameraRigOptions::EquidistantFocalForDiagonal(double diagonal_rad) const {
+  // cv::fisheye: the corner's distorted radius is f theta_d(theta), theta = half the diagonal.
+  const double theta = 0.5 * diagonal_rad, t2 = theta * theta;
+  const double theta_d =
+      theta * (1 + t2 * (distortion[0] + t2 * (distortion[1] + t2 * (distortion[2] + t2 * distortion[3]))));
+  return 0.5 * std::hypot(width, height) / theta_d;
 }
 
 Pose3 CameraRigOptions::BaseTCamera() const {

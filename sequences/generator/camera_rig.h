@@ -20,12 +20,17 @@ struct CameraRigOptions {
   double fy = 450;   // px
   double cx = -1;    // px; negative: the image centre, (width - 1) / 2
   double cy = -1;    // px; negative: the image centre, (height - 1) / 2
-  std::array<double, 5> distortion{0, 0, 0, 0, 0};  // k1 k2 p1 p2 k3 (OpenCV order)
+  DistortionModel model = DistortionModel::kRadTan;  // the lens (SPEC section 1 distortion_model)
+  // radtan: k1 k2 p1 p2 k3 (OpenCV order); equidistant: k1 k2 k3 k4 (cv::fisheye), the fifth 0
+  std::array<double, 5> distortion{0, 0, 0, 0, 0};
   double mount_height = 1.0;   // m, camera centre above the floor
   double mount_forward = 0.2;  // m, camera centre ahead of the base origin
   double pitch = 0.05;         // rad, optical axis below the horizontal (2.9 deg)
 
   Status Check() const;
+  // The focal length (px, fx = fy) at which the equidistant lens with these coefficients sees
+  // `diagonal_rad` across the image's diagonal (corner to corner through the image centre).
+  double EquidistantFocalForDiagonal(double diagonal_rad) const;
   Camera MakeCamera() const;
   Pose3 BaseTCamera() const;  // base_T_camera
 };

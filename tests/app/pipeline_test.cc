@@ -2,16 +2,18 @@
 // written and readable, and the bundle adjustment improves on the odometry.
 #include "pipeline/pipeline.h"
 
-#include <filesystem>
-#include <fstream>
-#include <sstream>
-
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <set>
+#include <sstream>
+
 #include "backend/export/ply_io.h"
-#include "geometry/tum_io.h"
 #include "frontend/junctions/junctions_json.h"
+#include "geometry/tum_io.h"
 #include "sequences/generator/sequence_writer.h"
 #include "tests/test_data.h"
 
@@ -91,6 +93,35 @@ TEST_F(PipelineOnGeneratedRoom, WritesWireframeColmapModelAndEveryMetricsKey) {
   for (const char* name : {"cameras.txt", "images.txt", "points3D.txt"}) {
     EXPECT_TRUE(fs::exists(out / "colmap" / name)) << name;
   }
+  // Every 3D point vertex names its track: in tracks.csv, and COLMAP's point track_id + 1 at the
+  // same position (bit for bit). The edges between points (topology edges) are written.
+  ASSERT_EQ(wireframe.track_ids.size(), wireframe.vertices.size());
+  std::set<int> tracks;
+  std::istringstream tracks_csv(ReadFile(out / "tracks.csv"));
+  std::string line;
+  std::getline(tracks_csv, line);
+  while (std::getline(tracks_csv, line)) tracks.insert(std::stoi(line.substr(0, line.find(','))));
+  std::map<long, Eigen::Vector3d> colmap_points;
+  std::istringstream points3d(ReadFile(out / "colmap" / "points3D.txt"));
+  while (std::getline(points3d, line)) {
+    if (line.empty() || line[0] == '#') continue;
+    std::istringstream words(line);
+    long id = 0;
+    Eigen::Vector3d x;
+    words >> id >> x.x() >> x.y() >> x.z();
+    colmap_points[id] = x;
+  }
+  int with_track = 0;
+  for (size_t v = 0; v < wireframe.vertices.size(); ++v) {
+    const int track = wireframe.track_ids[v];
+    if (track < 0) continue;
+    ++with_track;
+    EXPECT_TRUE(tracks.count(track)) << "vertex " << v << " track " << track;
+    ASSERT_TRUE(colmap_points.count(track + 1)) << "vertex " << v << " track " << track;
+    EXPECT_EQ(colmap_points[track + 1], wireframe.vertices[v]) << "vertex " << v;
+  }
+  EXPECT_GT(with_track, 20);
+  EXPECT_GT(result_.wireframe_landmarks.point_edges.size(), 10u);
   const std::string metrics = ReadFile(out / "metrics.json");
   for (const char* key :
        {"frames", "junctions_per_frame", "matches_per_pair", "tracks", "points3d", "lines3d",

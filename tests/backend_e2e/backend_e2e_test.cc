@@ -380,6 +380,38 @@ TEST_F(BackendEndToEnd, FloorPriorCorrectsTheOdometryScaleOnlyWithTheBaseOnTheFl
   EXPECT_THAT(ReadFile(output_dir() / "metrics.json"), HasSubstr("\"floor_prior\": {\"used\": false"));
 }
 
+// A fisheye robot (issue 21): make_sequence --scene room --trajectory loop --seed 1 --lens
+// equidistant, 20 frames (a 150-degree diagonal equidistant lens, f = 305.6 px at 640 x 480).
+// Figure protected: the refined ATE at most 0.2 of the odometry's (measured 0.108; 60 frames:
+// 0.062 against the pinhole's 0.093), every junction and landmark finite, and the COLMAP camera an
+// OPENCV_FISHEYE.
+TEST_F(BackendEndToEnd, EquidistantLensRoomReachesTheAteRatioBound) {
+  GeneratorOptions generator;
+  generator.scene.type = SceneType::kRoom;
+  generator.trajectory.type = TrajectoryType::kLoop;
+  generator.trajectory.num_frames = 20;
+  generator.seed = 1;
+  generator.camera.model = DistortionModel::kEquidistant;
+  generator.camera.fx = generator.camera.fy = generator.camera.EquidistantFocalForDiagonal(150 * M_PI / 180);
+  generator.write_truth = false;
+  generator.png_compression = 1;
+  ASSERT_TRUE(GenerateSequence(generator, sequence_dir().string(), /*overwrite=*/true).ok());
+  PipelineResult result;
+  const Status status = RunOn(sequence_dir(), output_dir(), &result);
+  ASSERT_TRUE(status.ok()) << status.message();
+  ASSERT_TRUE(result.drift_odometry.has_value() && result.drift_refined.has_value());
+  const double ratio = result.drift_refined->ate_m / result.drift_odometry->ate_m;
+  size_t junctions = 0;
+  for (const auto& frame : result.junctions) junctions += frame.size();
+  std::printf(
+      "[ figures  ] fisheye room, 20 frames: %.1f junctions per frame, %zu points, ATE %.4f -> %.4f m "
+      "(ratio %.3f)\n",
+      static_cast<double>(junctions) / result.junctions.size(), result.landmarks.points.size(),
+      result.drift_odometry->ate_m, result.drift_refined->ate_m, ratio);
+  EXPECT_LE(ratio, 0.2);
+  EXPECT_THAT(ReadFile(output_dir() / "colmap/cameras.txt"), HasSubstr("\n1 OPENCV_FISHEYE 640 480 "));
+}
+
 // Track extension (--extend_tracks, track_extension.h) on a generated 30-frame corridor (seed 2):
 // the same run without and with it. Figures protected: the point landmarks' mean views rise by at
 // least 6 % (measured: 4.70 -> 5.14, +9 %; 22 tracks merged, 66 junctions added; ATE 0.0032 ->

@@ -42,6 +42,7 @@ struct HeadlineFigures {
   double ate_odometry = 0, ate_refined = 0;
   int wireframe_vertices = 0, wireframe_within = 0;
   int matches_at_vertices = 0, matches_same_vertex = 0;
+  int loops_closed = 0;
 };
 
 double DistanceToSegment(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
@@ -53,7 +54,7 @@ double DistanceToSegment(const Eigen::Vector3d& p, const Eigen::Vector3d& a, con
 
 // Generates the sequence, runs the default pipeline and measures its outputs against the truth.
 HeadlineFigures Measure(const std::string& name, SceneType scene, TrajectoryType trajectory,
-                        std::uint64_t seed, double odometry_noise_scale = 1) {
+                        std::uint64_t seed, double odometry_noise_scale = 1, int frames = kFrames) {
   HeadlineFigures figures;
   const fs::path scratch = testing::MakeScratchDir(name);
   const std::string sequence_dir = (scratch / "sequence").string(),
@@ -61,7 +62,7 @@ HeadlineFigures Measure(const std::string& name, SceneType scene, TrajectoryType
   GeneratorOptions generator;
   generator.scene.type = scene;
   generator.trajectory.type = trajectory;
-  generator.trajectory.num_frames = kFrames;
+  generator.trajectory.num_frames = frames;
   generator.seed = seed;
   generator.odometry = generator.odometry.Scaled(odometry_noise_scale);
   Status status = GenerateSequence(generator, sequence_dir, /*overwrite=*/true);
@@ -81,6 +82,7 @@ HeadlineFigures Measure(const std::string& name, SceneType scene, TrajectoryType
   }
   figures.ate_odometry = result.drift_odometry->ate_m;
   figures.ate_refined = result.drift_refined->ate_m;
+  figures.loops_closed = static_cast<int>(result.initialization.loops.size());
 
   GroundTruth truth;
   status = ReadGroundTruth(sequence_dir, &truth);
@@ -161,6 +163,30 @@ TEST(HeadlineFiguresTest, RoomLoopWithSixTimesTheOdometryNoise) {
                                                   << f.ate_odometry << " m";
   std::printf("6x: ATE ratio %.3f (%.4f / %.4f m)\n", f.ate_refined / f.ate_odometry, f.ate_refined,
               f.ate_odometry);
+}
+
+}  // namespace
+}  // namespace sfm
+
+namespace sfm {
+namespace {
+
+// Loop closure (docs/initialization.md, "Loop closure"): a room loop of 120 frames, one and a half
+// laps, every odometry noise term 3x the default, seed 3. Without loop closure the second lap
+// built its own tracks of the same corners on a drifted trajectory: refined ATE ratio 0.074 and
+// wireframe within 5 cm 0.37. Asserted: at least one loop closed, ratio at most 0.05 and within
+// 5 cm at least 0.9. Measured when the test was written: 3 loops, 0.014, 0.99.
+TEST(HeadlineFiguresTest, RoomLoopOfOneAndAHalfLapsClosesItsLoop) {
+  const HeadlineFigures f = Measure("benchmark_room_loop_laps", SceneType::kRoom, TrajectoryType::kLoop,
+                                    /*seed=*/3, /*scale=*/3, /*frames=*/120);
+  ASSERT_GT(f.ate_odometry, 0);
+  ASSERT_GT(f.wireframe_vertices, 0);
+  const double share = static_cast<double>(f.wireframe_within) / f.wireframe_vertices;
+  EXPECT_GE(f.loops_closed, 1);
+  EXPECT_LE(f.ate_refined / f.ate_odometry, 0.05);
+  EXPECT_GE(share, 0.9);
+  std::printf("1.5 laps at 3x: %d loops, ATE ratio %.3f (%.4f / %.4f m), within 5 cm %.3f\n", f.loops_closed,
+              f.ate_refined / f.ate_odometry, f.ate_refined, f.ate_odometry, share);
 }
 
 }  // namespace

@@ -704,10 +704,9 @@ struct FloorRun {
 // A 60-frame lap of the room with rugs with 3 % too long odometry and a little heading drift
 // (0.004 rad/frame: the scale error dominates), the scene moved to floor_z and the camera
 // `camera_height` m above the base origin.
-FloorRun RunFloorLoop(double floor_z, double camera_height, FloorPriorMode mode, bool base_prior = true,
+FloorRun RunFloorLoop(double floor_z, double camera_height, FloorPriorMode mode,
                       const std::vector<Eigen::Vector3d>& extra_points = {}, bool bias_on_floor = true,
-                      double scale_error = kScaleError, double function_tolerance = 0,
-                      bool line_search = BundleAdjustmentOptions().floor_scale_line_search) {
+                      double scale_error = kScaleError, double function_tolerance = 0) {
   Calibration calibration = RoomCalibration(kSmallDriftRad);
   calibration.base_T_camera.translation.z() = camera_height;
   const std::vector<Pose3> truth = testing::LoopTrajectory(60);
@@ -717,9 +716,7 @@ FloorRun RunFloorLoop(double floor_z, double camera_height, FloorPriorMode mode,
   Observed observed = Observe(scene, calibration, truth, odometry, kPixelNoisePx, 11);
   BundleAdjustmentOptions options;
   options.floor_prior = mode;
-  options.floor_base_prior = base_prior;
   options.estimate_odometry_rotation_bias_on_floor = bias_on_floor;
-  options.floor_scale_line_search = line_search;
   if (function_tolerance > 0) {
     options.function_tolerance = function_tolerance;
     options.intermediate_function_tolerance = std::max(function_tolerance, options.intermediate_function_tolerance);
@@ -773,7 +770,7 @@ TEST(FloorPriorTest, ThreePercentScaleErrorIsCorrected) {
 // the problem stays as it was, bit for bit.
 TEST(FloorPriorTest, RotationBiasIsEstimatedWhereTheFloorPriorMayApply) {
   const FloorRun with = RunFloorLoop(0, 1.0, FloorPriorMode::kAuto);
-  const FloorRun without = RunFloorLoop(0, 1.0, FloorPriorMode::kAuto, true, {}, /*bias_on_floor=*/false);
+  const FloorRun without = RunFloorLoop(0, 1.0, FloorPriorMode::kAuto, {}, /*bias_on_floor=*/false);
   std::printf(
       "[ figures  ] rotation bias on the floor: b_z %.6f rad (odometry drift %.4f rad/frame); scale %.5f "
       "-> %.5f, camera position RMSE %.4f -> %.4f m, odometry scale %.5f -> %.5f\n",
@@ -786,7 +783,7 @@ TEST(FloorPriorTest, RotationBiasIsEstimatedWhereTheFloorPriorMayApply) {
   const FloorRun off = RunFloorLoop(0, 1.0, FloorPriorMode::kOff);
   EXPECT_FALSE(off.summary.odometry_rotation_bias_estimated);
   const FloorRun no_rig = RunFloorLoop(-1.0, 0.0, FloorPriorMode::kAuto);
-  const FloorRun no_rig_without = RunFloorLoop(-1.0, 0.0, FloorPriorMode::kAuto, true, {}, false);
+  const FloorRun no_rig_without = RunFloorLoop(-1.0, 0.0, FloorPriorMode::kAuto, {}, false);
   EXPECT_FALSE(no_rig.summary.odometry_rotation_bias_estimated);
   ASSERT_EQ(no_rig.world_T_base_refined.size(), no_rig_without.world_T_base_refined.size());
   for (size_t f = 0; f < no_rig.world_T_base_refined.size(); ++f) {
@@ -794,37 +791,30 @@ TEST(FloorPriorTest, RotationBiasIsEstimatedWhereTheFloorPriorMayApply) {
   }
 }
 
-// The line search on the scale (floor_scale_line_search): the same 0.5 m lap, odometry 3 % too long
-// and too short, every solve stopped at a loose function tolerance (1e-3) so that the joint solves
-// leave part of the odometry's error. lambda (1 + error) is the trajectory's length against the
-// truth (1 is right). Figures protected: with the line search both within 0.004 of 1 (observed
-// 0.99891 / 0.99701) and within 0.003 of each other (0.0019); without it the two differ by more than
-// 0.005 (0.0062: 1.00068 / 0.99448) and the short one is off by more than 0.004 (0.0055). Fully
-// converged (1e-6) without the search: 0.99908 / 0.99652. At 1e-2 the search's samples, which
-// re-solve only the landmarks in Ceres's inner iterations, stop after one or two iterations, not
-// converged enough for the parabola (0.99604 / 1.00011); at the pipeline's 1e-4 / 1e-6 they are.
+// The line search on the scale: the same 0.5 m lap, odometry 3 % too long and too short, every
+// solve stopped at a loose function tolerance (1e-3) so that the joint solves leave part of the
+// odometry's error. lambda (1 + error) is the trajectory's length against the truth (1 is right).
+// Figures protected: both within 0.004 of 1 (observed 0.99891 / 0.99701) and within 0.003 of each
+// other (0.0019). Without the search the solves stop at 1.00068 / 0.99448 (0.0062 apart, the short
+// one 0.0055 off): both bounds fail. At 1e-2 the search's samples, which re-solve only the
+// landmarks in Ceres's inner iterations, stop after one or two iterations, not converged enough for
+// the parabola (0.99604 / 1.00011); at the pipeline's 1e-4 / 1e-6 they are.
 TEST(FloorPriorTest, TheScaleLineSearchFindsTheScaleTheSolvesStopShortOf) {
   constexpr double kLooseTolerance = 1e-3;
-  auto run = [](bool line_search, double error, double tolerance) {
-    const FloorRun result =
-        RunFloorLoop(0, 0.5, FloorPriorMode::kAuto, true, {}, true, error, tolerance, line_search);
+  auto run = [](double error) {
+    const FloorRun result = RunFloorLoop(0, 0.5, FloorPriorMode::kAuto, {}, true, error, kLooseTolerance);
     EXPECT_TRUE(result.summary.floor_prior_used) << result.summary.floor_prior_report;
-    EXPECT_EQ(result.summary.floor_prior_report.find("scale line search") != std::string::npos, line_search)
+    EXPECT_NE(result.summary.floor_prior_report.find("scale line search"), std::string::npos)
         << result.summary.floor_prior_report;
     return result.summary.odometry_scale * (1 + error);
   };
-  const double long_with = run(true, +kScaleError, kLooseTolerance), short_with = run(true, -kScaleError, kLooseTolerance);
-  const double long_without = run(false, +kScaleError, kLooseTolerance);
-  const double short_without = run(false, -kScaleError, kLooseTolerance);
-  const double long_converged = run(false, +kScaleError, 1e-6), short_converged = run(false, -kScaleError, 1e-6);
+  const double long_scale = run(+kScaleError), short_scale = run(-kScaleError);
   std::printf("[ figures  ] 0.5 m camera, function tolerance %g: lambda * (1 + e) with e = +3 %% / -3 %%: "
-              "%.5f / %.5f with the line search, %.5f / %.5f without; converged without: %.5f / %.5f\n",
-              kLooseTolerance, long_with, short_with, long_without, short_without, long_converged, short_converged);
-  EXPECT_NEAR(long_with, 1.0, 0.004);
-  EXPECT_NEAR(short_with, 1.0, 0.004);
-  EXPECT_LE(std::abs(long_with - short_with), 0.003);
-  EXPECT_GT(std::abs(long_without - short_without), 0.005);  // what the search removes
-  EXPECT_GT(std::abs(short_without - 1.0), 0.004);
+              "%.5f / %.5f\n",
+              kLooseTolerance, long_scale, short_scale);
+  EXPECT_NEAR(long_scale, 1.0, 0.004);
+  EXPECT_NEAR(short_scale, 1.0, 0.004);
+  EXPECT_LE(std::abs(long_scale - short_scale), 0.003);
 }
 
 // ParabolaMinimumStep on hand values: the vertex of the parabola through (-1, c-), (0, c0), (1, c+),
@@ -852,23 +842,19 @@ std::pair<double, double> LargestHeightAndTilt(const std::vector<Pose3>& world_T
   return {height, tilt};
 }
 
-// The base-on-floor prior (floor_base_prior): the same lap with and without it. The odometry is
-// planar and level, so the rig check passes and every base pose is held at z = 0 (sigma 1 cm)
-// and level (sigma 1 cm / 1 m = 0.01 rad). Figures protected (observed with / without it, with
-// the rotation bias that auto estimates; before it 0.7 / 5.6 mm, 1.4 / 2.2 mrad, 0.9993 / 0.9970,
-// 3.7 / 10.9 mm): the largest base height under 2 mm (0.6 / 4.1 mm), the largest tilt under
-// 1.8 mrad (1.3 / 1.9), the refined scale right to 0.2 % (0.9993 / 0.9976) and the camera
-// positions within 6 mm RMS (2.6 / 8.0 mm): each bound fails without the prior.
+// The base-on-floor prior: the odometry is planar and level, so the rig check passes and every
+// base pose is held at z = 0 (sigma 1 cm) and level (sigma 1 cm / 1 m = 0.01 rad). Figures protected
+// (observed with the prior, with the rotation bias that auto estimates; without the prior 4.1 mm,
+// 1.9 mrad, 0.9976, 8.0 mm, each beyond its bound): the largest base height under 2 mm (0.6 mm),
+// the largest tilt under 1.8 mrad (1.3), the refined scale right to 0.2 % (0.9993) and the camera
+// positions within 6 mm RMS (2.6 mm).
 TEST(FloorPriorTest, BasePosesAreHeldOnTheFloor) {
-  const FloorRun with = RunFloorLoop(0, 1.0, FloorPriorMode::kAuto, /*base_prior=*/true);
-  const FloorRun without = RunFloorLoop(0, 1.0, FloorPriorMode::kAuto, /*base_prior=*/false);
+  const FloorRun with = RunFloorLoop(0, 1.0, FloorPriorMode::kAuto);
   EXPECT_NE(with.summary.floor_prior_report.find("base poses held on it"), std::string::npos)
       << with.summary.floor_prior_report;
-  EXPECT_EQ(without.summary.floor_prior_report.find("base poses held on it"), std::string::npos);
   const auto [height_with, tilt_with] = LargestHeightAndTilt(with.world_T_base_refined);
-  const auto [height_without, tilt_without] = LargestHeightAndTilt(without.world_T_base_refined);
-  std::printf("[ figures  ] base poses: largest height %.4f -> %.4f m, largest tilt %.5f -> %.5f rad, scale %.4f -> %.4f\n",
-              height_without, height_with, tilt_without, tilt_with, without.refined_scale, with.refined_scale);
+  std::printf("[ figures  ] base poses: largest height %.4f m, largest tilt %.5f rad, scale %.4f\n", height_with,
+              tilt_with, with.refined_scale);
   EXPECT_LT(height_with, 0.002);
   EXPECT_LT(tilt_with, 0.0018);
   EXPECT_NEAR(with.refined_scale, 1.0, 0.002);
@@ -882,7 +868,7 @@ TEST(FloorPriorTest, BasePosesAreHeldOnTheFloor) {
 // not a floor is found, left out of both).
 TEST(FloorPriorTest, StaysOffWhenTheBaseIsNotOnTheFloor) {
   const FloorRun automatic =
-      RunFloorLoop(-0.5, 0.5, FloorPriorMode::kAuto, true, {}, /*bias_on_floor=*/false);
+      RunFloorLoop(-0.5, 0.5, FloorPriorMode::kAuto, {}, /*bias_on_floor=*/false);
   const FloorRun off = RunFloorLoop(-0.5, 0.5, FloorPriorMode::kOff);
   EXPECT_FALSE(automatic.summary.floor_prior_used);
   EXPECT_NE(automatic.summary.floor_prior_report.find("not on the floor"), std::string::npos)
@@ -956,7 +942,7 @@ TEST(FloorPriorTest, FindsTheLowestSupportedPlane) {
 TEST(FloorPriorTest, AStraySlabUnderTheFloorIsPassedOver) {
   std::vector<Eigen::Vector3d> stray;
   for (int i = 0; i < 12; ++i) stray.emplace_back(-1.5 + 0.25 * i, 2.3 + 0.05 * (i % 3), -0.15);
-  const FloorRun run = RunFloorLoop(0, 1.0, FloorPriorMode::kAuto, true, stray);
+  const FloorRun run = RunFloorLoop(0, 1.0, FloorPriorMode::kAuto, stray);
   EXPECT_TRUE(run.summary.floor_prior_used) << run.summary.floor_prior_report;
   EXPECT_NE(run.summary.floor_prior_report.find("taken for stray"), std::string::npos)
       << run.summary.floor_prior_report;

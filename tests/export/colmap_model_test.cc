@@ -210,6 +210,39 @@ TEST(ColmapModelTest, TracksAndImagePointsAgreeAndReprojectWithColmapConventions
   EXPECT_EQ(observations, image_points);
 }
 
+// An equidistant lens is written as COLMAP's OPENCV_FISHEYE with the observations in the stored
+// image's pixels: each 2D point of images.txt is where COLMAP's own OPENCV_FISHEYE projection
+// (written out here from COLMAP's src/colmap/sensor/models.h) puts the 3D point, to 1e-6 px, and
+// ERROR is below 1e-6 px.
+TEST(ColmapModelTest, EquidistantLensIsWrittenAsOpenCvFisheyeWithStoredPixels) {
+  ColmapModel model;
+  model.camera = TestCamera();
+  model.camera.model = DistortionModel::kEquidistant;
+  model.camera.distortion = {0.02, -0.01, 0.004, -0.0005, 0};
+  model.images.push_back({"images/0.png", Pose3(Eigen::Quaterniond::Identity(), Eigen::Vector3d::Zero())});
+  const Eigen::Vector3d positions[] = {{0.2, -0.1, 2}, {-3, 1.5, 1}, {2.5, 2, 0.8}};
+  for (const Eigen::Vector3d& position : positions) {
+    model.points.push_back({position, {{0, model.camera.ProjectUndistorted(position)}}});
+  }
+  const std::string dir = testing::MakeScratchDir("colmap_fisheye");
+  ASSERT_TRUE(WriteColmapModel(dir, model).ok());
+  EXPECT_EQ(Lines(ReadFile(dir + "/cameras.txt")).back(),
+            "1 OPENCV_FISHEYE 640 480 500 510 320 240 0.02 -0.01 0.004 -0.0005");
+  const ParsedModel parsed = Parse(dir);
+  const auto& d = model.camera.distortion;
+  for (const auto& [point_id, point] : parsed.points) {
+    EXPECT_LT(point.error, 1e-6) << "point " << point_id;
+    const Eigen::Vector3d p = point.xyz;  // the image's pose is the identity
+    const double r = std::hypot(p.x(), p.y()) / p.z(), theta = std::atan(r), t2 = theta * theta;
+    const double theta_d = theta * (1 + t2 * (d[0] + t2 * (d[1] + t2 * (d[2] + t2 * d[3]))));
+    const Eigen::Vector2d colmap(parsed.fx * p.x() / p.z() * theta_d / r + parsed.cx,
+                                 parsed.fy * p.y() / p.z() * theta_d / r + parsed.cy);
+    const auto& [image_id, index] = point.track.at(0);
+    EXPECT_LT((colmap - parsed.images.at(image_id).points2d[index].first).norm(), 1e-6)
+        << "point " << point_id;
+  }
+}
+
 TEST(ColmapModelTest, BadModelsAreRejectedWithoutFiles) {
   const std::string dir = testing::MakeScratchDir("colmap_bad");
   ColmapModel spaced = TinyModel();
@@ -223,7 +256,29 @@ TEST(ColmapModelTest, BadModelsAreRejectedWithoutFiles) {
   const Status point = WriteColmapModel(dir + "/not_finite", not_finite);
   EXPECT_FALSE(point.ok());
   EXPECT_NE(point.message().find("points3D.txt: point 2"), std::string::npos) << point.message();
+
+  ColmapModel repeated = TinyModel();
+  repeated.points[0].id = 2;  // point 1 has none: index + 1 = 2
+  const Status ids = WriteColmapModel(dir + "/repeated", repeated);
+  EXPECT_FALSE(ids.ok());
+  EXPECT_NE(ids.message().find("points3D.txt: point 1 repeats the POINT3D_ID 2"), std::string::npos)
+      << ids.message();
   EXPECT_TRUE(std::filesystem::is_empty(dir));
+}
+
+// Given ids name the points in points3D.txt and in images.txt's 2D points.
+TEST(ColmapModelTest, PointIdsNameThePointsEverywhere) {
+  const std::string dir = testing::MakeScratchDir("colmap_ids");
+  ColmapModel model = TinyModel();
+  for (size_t i = 0; i < model.points.size(); ++i) model.points[i].id = 100 + static_cast<long>(i) * 10;
+  ASSERT_TRUE(WriteColmapModel(dir, model).ok());
+  const std::string points = ReadFile(dir + "/points3D.txt");
+  const std::string images = ReadFile(dir + "/images.txt");
+  for (const std::string id : {"100", "110", "120"}) {
+    EXPECT_NE(points.find("\n" + id + " "), std::string::npos) << id;
+    EXPECT_NE(images.find(" " + id), std::string::npos) << id;
+  }
+  EXPECT_EQ(points.find("\n1 "), std::string::npos);
 }
 
 }  // namespace

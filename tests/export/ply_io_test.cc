@@ -54,6 +54,29 @@ TEST(PlyTest, WriteReadRoundTripIsExact) {
   EXPECT_EQ(back.edges, wireframe.edges);
 }
 
+// SPEC section 3 allows extra vertex properties after x y z: track_id, written and read back; a
+// track_ids of another size than the vertices is refused.
+TEST(PlyTest, TrackIdsAreAVertexPropertyAfterXyz) {
+  const std::string dir = testing::MakeScratchDir("ply_track_id");
+  ReconstructedWireframe wireframe;
+  wireframe.vertices = {{0, 0, 0}, {1, 0, 0}, {1, 2, 0}};
+  wireframe.edges = {{0, 1}, {1, 2}};
+  wireframe.track_ids = {7, -1, 0};
+  ASSERT_TRUE(WritePly(dir + "/wireframe.ply", wireframe).ok());
+  EXPECT_EQ(
+      ReadFile(dir + "/wireframe.ply"),
+      "ply\nformat ascii 1.0\nelement vertex 3\nproperty double x\nproperty double y\nproperty double z\n"
+      "property int track_id\nelement edge 2\nproperty int vertex1\nproperty int vertex2\nend_header\n"
+      "0 0 0 7\n1 0 0 -1\n1 2 0 0\n0 1\n1 2\n");
+  ReconstructedWireframe back;
+  ASSERT_TRUE(ReadPly(dir + "/wireframe.ply", &back).ok());
+  EXPECT_EQ(back.track_ids, wireframe.track_ids);
+  EXPECT_EQ(back.vertices, wireframe.vertices);
+  wireframe.track_ids.pop_back();
+  EXPECT_FALSE(WritePly(dir + "/short.ply", wireframe).ok());
+  EXPECT_FALSE(std::filesystem::exists(dir + "/short.ply"));
+}
+
 TEST(PlyTest, AnEmptyWireframeIsAValidFile) {
   const std::string path = testing::MakeScratchDir("ply_empty") + "/wireframe.ply";
   ASSERT_TRUE(WritePly(path, ReconstructedWireframe()).ok());

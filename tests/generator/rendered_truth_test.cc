@@ -473,5 +473,35 @@ TEST(RenderedTruthTest, RoomWithStrongTangentialDistortion) {
   }
 }
 
+// make_sequence --lens equidistant (issue 21): a 150-degree diagonal fisheye with non-zero
+// Kannala-Brandt coefficients, in a room. The stored image must show every truth edge where
+// cv::fisheye puts it, and the undistorted image (cv::fisheye's remap maps) where K does, to the
+// same tolerances as the radial-tangential lenses: a mistake in theta's polynomial moves edges by
+// pixels near the border. Measured: stored median 0.042 px, max 0.29 px, corners max 0.41 px;
+// undistorted median 0.059 px, max 0.32 px.
+TEST(RenderedTruthTest, RoomThroughAnEquidistantFisheye) {
+  GeneratorOptions options;
+  options.scene.type = SceneType::kRoom;
+  options.trajectory.type = TrajectoryType::kLoop;
+  options.trajectory.num_frames = 8;
+  options.camera.width = 320;
+  options.camera.height = 240;
+  options.camera.model = DistortionModel::kEquidistant;
+  options.camera.distortion = {0.03, -0.01, 0.004, -0.0006, 0};
+  options.camera.fx = options.camera.fy = options.camera.EquidistantFocalForDiagonal(150 * M_PI / 180);
+  options.seed = 5;
+  const Measured measured = Measure(options, "rendered_truth_fisheye");
+  Tolerances tolerances;
+  tolerances.shift = 0.06;
+  {
+    SCOPED_TRACE("stored image");
+    ExpectAgreement(measured.stored, 500, 20, tolerances);
+  }
+  {
+    SCOPED_TRACE("undistorted image");
+    ExpectAgreement(measured.undistorted, 500, 20, tolerances);
+  }
+}
+
 }  // namespace
 }  // namespace sfm

@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <string>
 
 #include "tests/test_cameras.h"
@@ -48,6 +49,28 @@ double PeakGradientShare(const cv::Mat& undistorted, double edge_x) {
     sum += peak;
   }
   return sum / rows / ideal;
+}
+
+// The full view of make_sequence --lens equidistant's 150-degree fisheye (640 x 480, f 305.6 px):
+// the canvas holds every stored pixel's undistorted position, the corners 75 degrees off axis at
+// f tan(75 deg) = 1140 px from the principal point, so about 1830 x 1370 px.
+TEST(ImageUndistorterTest, EquidistantFullViewHoldsTheWholeFisheyeView) {
+  Camera camera;
+  camera.width = 640;
+  camera.height = 480;
+  camera.fx = camera.fy = 305.6;
+  camera.cx = 319.5;
+  camera.cy = 239.5;
+  camera.model = DistortionModel::kEquidistant;
+  EXPECT_EQ(RadialFoldRadius(camera), std::numeric_limits<double>::infinity());
+  const ImageUndistorter undistorter(camera, UndistortInterpolation::kLinear, UndistortView::kFullView);
+  ASSERT_TRUE(undistorter.FullView());
+  const double corner = 305.6 * std::tan(std::hypot(320, 240) / 305.6);
+  EXPECT_NEAR(undistorter.CanvasSize().width, 2 * corner * 0.8, 10);
+  EXPECT_NEAR(undistorter.CanvasSize().height, 2 * corner * 0.6, 10);
+  // A lens whose theta_d(theta) turns back at 60 degrees folds at tan(60 deg).
+  camera.distortion = {-1 / (3 * std::pow(M_PI / 3, 2)), 0, 0, 0, 0};
+  EXPECT_NEAR(RadialFoldRadius(camera), std::tan(M_PI / 3), 1e-3);
 }
 
 TEST(ImageUndistorterTest, ParsesTheInterpolationNames) {

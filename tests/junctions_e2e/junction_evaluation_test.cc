@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <utility>
+
 #include "tests/test_segments.h"
 
 namespace sfm {
@@ -171,6 +173,28 @@ TEST(TrueJunctionsOfFrameTest, WithTheImageSizeEdgesCountOnlyInsideTheImage) {
   ASSERT_EQ(truth.vertices[0].long_edge_ends.size(), 2u);
   EXPECT_NEAR(truth.vertices[0].long_edge_ends[0].x(), 160, 1e-9);  // inside: unchanged
   EXPECT_NEAR(truth.vertices[0].long_edge_ends[1].y(), 129.5, 1e-9);
+}
+
+// benchmark_junctions --truth_in_stored_pixels: min_edge_px in the stored image. Vertex 0 at the
+// principal point of an equidistant lens (k = 0: stored radius f atan(r / f)) has edges 60 px
+// right and 40 px down in the undistorted image: with f = 20 px they are 25.0 and 22.1 stored px
+// (detectable); with f = 5 px, 7.4 and 7.2 stored px, under min_edge_px = 10 (not detectable).
+TEST(TrueJunctionsOfFrameTest, WithTheStoredCameraEdgesAreMeasuredInStoredPixels) {
+  const SmallFrame f = MakeSmallFrame();
+  Camera camera;
+  camera.width = 640;
+  camera.height = 480;
+  camera.cx = camera.cy = 100;
+  camera.model = DistortionModel::kEquidistant;
+  TrueJunctionOptions options;
+  options.stored_camera = &camera;
+  for (const auto& [focal, detectable] : {std::pair{20.0, true}, std::pair{5.0, false}}) {
+    camera.fx = camera.fy = focal;
+    const FrameTrueJunctions truth = TrueJunctionsOfFrame(f.wireframe, f.frame, options);
+    ASSERT_GE(truth.vertices.size(), 1u);
+    EXPECT_EQ(truth.vertices[0].vertex, 0);
+    EXPECT_EQ(truth.vertices[0].detectable, detectable) << "f = " << focal;
+  }
 }
 
 TEST(EdgeContrastsTest, MeanStepAcrossEachEdgeAndTheContrastReading) {

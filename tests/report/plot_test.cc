@@ -37,6 +37,17 @@ TEST(NiceTicksTest, DegenerateRangesGiveNoTicks) {
   EXPECT_TRUE(NiceTicks(0, INFINITY, 5).empty());
 }
 
+// The largest 1, 2 or 5 x 10^k within a quarter of the range.
+TEST(ScaleBarLengthTest, HandCases) {
+  EXPECT_DOUBLE_EQ(ScaleBarLength(12.0), 2.0);
+  EXPECT_DOUBLE_EQ(ScaleBarLength(20.0), 5.0);
+  EXPECT_DOUBLE_EQ(ScaleBarLength(4.0), 1.0);
+  EXPECT_DOUBLE_EQ(ScaleBarLength(0.9), 0.2);
+  EXPECT_DOUBLE_EQ(ScaleBarLength(60.0), 10.0);
+  EXPECT_EQ(ScaleBarLength(0.0), 0.0);
+  EXPECT_EQ(ScaleBarLength(std::nan("")), 0.0);
+}
+
 TEST(TickLabelTest, DecimalsFollowTheStep) {
   EXPECT_EQ(TickLabel(4, 2), "4");
   EXPECT_EQ(TickLabel(0.5, 0.5), "0.5");

@@ -269,6 +269,33 @@ TEST(TrajectoryErrorsTest, HeadingErrorIsTheYawOffsetAndPositionRmseIsTheAte) {
   EXPECT_GT(run.result.drift_odometry->ate_m, 0.001);
 }
 
+// Up from the base frame (world z for a level robot whatever the camera's tilt; -z in a world
+// turned upside down), or the cameras' -y where the rig is the identity. Tolerance 1e-12.
+TEST(UpDirectionTest, FromTheBaseFrameOrTheUprightCamera) {
+  // The generator's rig: camera looking along base x, tilted down 10 degrees, 1 m up.
+  const Eigen::Matrix3d camera_axes_in_base =
+      (Eigen::AngleAxisd(0.1745, Eigen::Vector3d::UnitY()).toRotationMatrix() *
+       (Eigen::Matrix3d() << 0, 0, 1, -1, 0, 0, 0, -1, 0).finished());
+  const Pose3 base_T_camera(Eigen::Quaterniond(camera_axes_in_base), Eigen::Vector3d(0.2, 0, 1));
+  std::vector<Pose3> world_T_camera;
+  for (int i = 0; i < 5; ++i) {
+    const Pose3 world_T_base(Eigen::Quaterniond(Eigen::AngleAxisd(0.3 * i, Eigen::Vector3d::UnitZ())),
+                             Eigen::Vector3d(i, 0.5 * i, 0));
+    world_T_camera.push_back(world_T_base * base_T_camera);
+  }
+  EXPECT_LT((UpDirection(world_T_camera, base_T_camera) - Eigen::Vector3d::UnitZ()).norm(), 1e-12);
+  const Pose3 flip(Eigen::Quaterniond(Eigen::AngleAxisd(M_PI, Eigen::Vector3d::UnitX())),
+                   Eigen::Vector3d::Zero());
+  std::vector<Pose3> flipped;
+  for (const Pose3& pose : world_T_camera) flipped.push_back(flip * pose);
+  EXPECT_LT((UpDirection(flipped, base_T_camera) + Eigen::Vector3d::UnitZ()).norm(), 1e-12);
+  // Camera poses given directly: an upright camera looking along world y has -y_camera = world z.
+  const Pose3 upright(Eigen::Quaterniond((Eigen::Matrix3d() << 1, 0, 0, 0, 0, 1, 0, -1, 0).finished()),
+                      Eigen::Vector3d(1, 2, 3));
+  EXPECT_LT((UpDirection({upright}, Pose3()) - Eigen::Vector3d::UnitZ()).norm(), 1e-12);
+  EXPECT_EQ(UpDirection({}, base_T_camera), Eigen::Vector3d::UnitZ());
+}
+
 TEST(VerticalAxisTest, FloorPlaneAndOtherPlanes) {
   std::vector<Pose3> floor, xz;
   for (int i = 0; i < 10; ++i) {

@@ -6,10 +6,12 @@
 #include <sys/stat.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <map>
 #include <opencv2/imgcodecs.hpp>
 #include <string>
@@ -17,8 +19,8 @@
 #include <vector>
 
 #include "geometry/tum_io.h"
-#include "util/number_text.h"
 #include "tests/test_data.h"
+#include "util/number_text.h"
 
 namespace sfm {
 namespace {
@@ -189,6 +191,57 @@ TEST_F(SequenceTest, HandWrittenYamlWithoutDirectiveReadsWithDefaultNoise) {
   EXPECT_EQ(calibration.odometry_noise.translation_sigma, OdometryNoise().translation_sigma);
 }
 
+// SPEC section 1 distortion_model: the written equidistant calibration reads back bit for bit;
+// radtan is written without the key (as before it existed).
+TEST_F(SequenceTest, EquidistantCalibrationRoundTripsWithItsModelKey) {
+  Calibration written = TestCalibration();
+  written.camera.model = DistortionModel::kEquidistant;
+  written.camera.distortion = {0.02, -0.01, 3e-3, -4e-4, 0};
+  ASSERT_TRUE(WriteCalibration(Path("sequence.yaml"), written).ok());
+  Calibration read;
+  const Status status = ReadCalibration(Path("sequence.yaml"), &read);
+  ASSERT_TRUE(status.ok()) << status.message();
+  EXPECT_EQ(read.camera.model, DistortionModel::kEquidistant);
+  EXPECT_EQ(read.camera.distortion, written.camera.distortion);
+  std::ifstream in(Path("sequence.yaml"));
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_THAT(text, HasSubstr("distortion_model: equidistant"));
+
+  ASSERT_TRUE(WriteCalibration(Path("sequence.yaml"), TestCalibration()).ok());
+  std::ifstream radtan(Path("sequence.yaml"));
+  const std::string radtan_text((std::istreambuf_iterator<char>(radtan)), std::istreambuf_iterator<char>());
+  EXPECT_THAT(radtan_text, Not(HasSubstr("distortion_model")));
+}
+
+TEST_F(SequenceTest, EquidistantModelReadsFourCoefficientsInEitherOrientation) {
+  for (const auto& [rows, cols] : {std::pair{1, 4}, std::pair{4, 1}}) {
+    auto keys = ValidYamlKeys();
+    keys["distortion_model"] = "equidistant";
+    keys["distortion_coefficients"] = OpenCvMatrix(rows, cols, "0.1, -0.02, 0.003, -0.0004");
+    WriteText(Path("sequence.yaml"), YamlText(keys));
+    Calibration calibration;
+    const Status status = ReadCalibration(Path("sequence.yaml"), &calibration);
+    ASSERT_TRUE(status.ok()) << status.message();
+    EXPECT_EQ(calibration.camera.model, DistortionModel::kEquidistant);
+    EXPECT_EQ(calibration.camera.distortion, (std::array<double, 5>{0.1, -0.02, 0.003, -0.0004, 0}));
+  }
+}
+
+// Kalibr's radtan (k1 k2 p1 p2): k3 = 0, with or without the explicit model key.
+TEST_F(SequenceTest, RadtanWithFourCoefficientsHasZeroK3) {
+  for (const bool explicit_model : {false, true}) {
+    auto keys = ValidYamlKeys();
+    if (explicit_model) keys["distortion_model"] = "radtan";
+    keys["distortion_coefficients"] = OpenCvMatrix(1, 4, "-0.28, 0.07, 2e-4, -1e-4");
+    WriteText(Path("sequence.yaml"), YamlText(keys));
+    Calibration calibration;
+    const Status status = ReadCalibration(Path("sequence.yaml"), &calibration);
+    ASSERT_TRUE(status.ok()) << status.message();
+    EXPECT_EQ(calibration.camera.model, DistortionModel::kRadTan);
+    EXPECT_EQ(calibration.camera.distortion, (std::array<double, 5>{-0.28, 0.07, 2e-4, -1e-4, 0}));
+  }
+}
+
 TEST_F(SequenceTest, LoadFrameImageGivesGreyOfCalibratedSizeFromColour) {
   ASSERT_TRUE(Read().ok());
   cv::Mat grey;
@@ -237,6 +290,30 @@ TEST_F(SequenceTest, CameraMatrixThatIsNotAMatrixFails) {
 TEST_F(SequenceTest, MatrixDataOfWrongLengthFails) {
   ExpectYamlValueError("distortion_coefficients", OpenCvMatrix(1, 5, "-0.1, 0.01"),
                        {"key 'distortion_coefficients' is not a valid !!opencv-matrix"});
+}
+
+TEST_F(SequenceTest, UnknownDistortionModelFails) {
+  ExpectYamlValueError(
+      "distortion_model", "rational_polynomial",
+      {"key 'distortion_model' is 'rational_polynomial', not a known model (radtan or equidistant)"});
+}
+
+TEST_F(SequenceTest, DistortionModelThatIsNotANameFails) {
+  ExpectYamlValueError("distortion_model", "3", {"key 'distortion_model' must be radtan or equidistant"});
+}
+
+TEST_F(SequenceTest, EquidistantWithFiveCoefficientsFails) {
+  auto keys = ValidYamlKeys();
+  keys["distortion_model"] = "equidistant";
+  ExpectYamlError(keys,
+                  {"key 'distortion_coefficients' must be 1x4 (k1 k2 k3 k4 of distortion_model equidistant), "
+                   "found 1x5"});
+}
+
+TEST_F(SequenceTest, RadtanWithThreeCoefficientsFails) {
+  ExpectYamlValueError("distortion_coefficients", OpenCvMatrix(1, 3, "-0.1, 0.01, 0"),
+                       {"key 'distortion_coefficients' must be 1x5 (k1 k2 p1 p2 k3) or 1x4 (k1 k2 p1 p2) for "
+                        "distortion_model radtan, found 1x3"});
 }
 
 TEST_F(SequenceTest, NonIntegerImageWidthFails) {
