@@ -551,6 +551,10 @@ TEST_F(RosbagRoundTrip, EquidistantCameraInfoIsWrittenAsSuch) {
   ASSERT_EQ(k.total(), 4u);
   const double expected[4] = {0.01, -0.02, 0.03, -0.04};
   for (int i = 0; i < 4; ++i) EXPECT_EQ(k.at<double>(i), expected[i]) << i;
+  Sequence imported;
+  ASSERT_TRUE(ReadSequence(output, &imported).ok());
+  EXPECT_EQ(imported.calibration.camera.model, DistortionModel::kEquidistant);
+  for (int i = 0; i < 4; ++i) EXPECT_EQ(imported.calibration.camera.distortion[i], expected[i]) << i;
 }
 
 // --every, the time window and the keyframe motion pick the frames they say.

@@ -142,8 +142,7 @@ std::optional<Pose3> StaticTransform(const std::vector<RosStampedPose>& transfor
 }
 
 // The camera of a CameraInfo message (SPEC: radtan from plumb_bob, equidistant as it is).
-Status CameraFromInfo(const RosCameraInfo& info, const std::string& where, Camera* camera, bool* equidistant,
-                      std::vector<double>* coefficients) {
+Status CameraFromInfo(const RosCameraInfo& info, const std::string& where, Camera* camera) {
   camera->width = static_cast<int>(info.width);
   camera->height = static_cast<int>(info.height);
   camera->fx = info.k[0];
@@ -163,8 +162,6 @@ Status CameraFromInfo(const RosCameraInfo& info, const std::string& where, Camer
   }
   const std::string& model = info.distortion_model;
   const bool all_zero = std::all_of(info.d.begin(), info.d.end(), [](double d) { return d == 0; });
-  *equidistant = false;
-  coefficients->clear();
   if (model == "plumb_bob" || (all_zero && model != "equidistant")) {
     if (!all_zero && info.d.size() != 4 && info.d.size() != 5) {
       return Status::Error(where + ": plumb_bob with " + std::to_string(info.d.size()) +
@@ -178,8 +175,8 @@ Status CameraFromInfo(const RosCameraInfo& info, const std::string& where, Camer
       return Status::Error(where + ": equidistant with " + std::to_string(info.d.size()) +
                            " coefficients (expected k1 k2 k3 k4)");
     }
-    *equidistant = true;
-    *coefficients = info.d;
+    camera->model = DistortionModel::kEquidistant;
+    for (size_t i = 0; i < 4; ++i) camera->distortion[i] = info.d[i];
     return Status::Ok();
   }
   if (model == "rational_polynomial") {
@@ -189,34 +186,6 @@ Status CameraFromInfo(const RosCameraInfo& info, const std::string& where, Camer
   }
   return Status::Error(where + ": unknown distortion model '" + model +
                        "' (expected plumb_bob or equidistant)");
-}
-
-// sequence.yaml for an equidistant lens (SPEC section 1: distortion_model, 1x4 k1..k4), which
-// Calibration's radtan-only writer does not express.
-Status WriteEquidistantCalibration(const std::string& path, const Calibration& calibration,
-                                   const std::vector<double>& k) {
-  const Camera& camera = calibration.camera;
-  std::string text;
-  try {
-    cv::FileStorage storage(".yaml", cv::FileStorage::WRITE | cv::FileStorage::MEMORY);
-    storage << "image_width" << camera.width << "image_height" << camera.height;
-    storage << "camera_matrix"
-            << cv::Mat(cv::Matx33d(camera.fx, 0, camera.cx, 0, camera.fy, camera.cy, 0, 0, 1));
-    storage << "distortion_model"
-            << "equidistant";
-    storage << "distortion_coefficients" << cv::Mat(cv::Matx<double, 1, 4>(k[0], k[1], k[2], k[3]));
-    cv::Mat T;
-    cv::eigen2cv(Eigen::Matrix4d(calibration.base_T_camera.Matrix4()), T);
-    storage << "T_base_camera" << T;
-    if (calibration.odometry_noise_given) {
-      storage << "odometry_translation_sigma" << calibration.odometry_noise.translation_sigma;
-      storage << "odometry_rotation_sigma" << calibration.odometry_noise.rotation_sigma;
-    }
-    text = storage.releaseAndGetString();
-  } catch (const cv::Exception& e) {
-    return Status::Error(path + ": cannot format calibration (" + e.err + ")");
-  }
-  return WriteFileAtomically(path, text);
 }
 
 // An Image message as an 8-bit OpenCV image (grey or BGR). mono16 is shifted right by `shift`
@@ -389,10 +358,7 @@ Status ImportRecording(Recording* recording, const BagImportOptions& options, co
   // The camera.
   const RosCameraInfo& info = *data[summary->camera_info_topic].camera_info;
   Camera camera;
-  bool equidistant = false;
-  std::vector<double> equidistant_k;
-  SFM_RETURN_IF_ERROR(CameraFromInfo(info, bag.path() + ": " + summary->camera_info_topic, &camera,
-                                     &equidistant, &equidistant_k));
+  SFM_RETURN_IF_ERROR(CameraFromInfo(info, bag.path() + ": " + summary->camera_info_topic, &camera));
 
   // The frames: the window, the odometry at each stamp, every N-th, then the keyframe motion.
   std::vector<ImageStamp> images = data[image_topic.name].images;
@@ -613,8 +579,7 @@ Status ImportRecording(Recording* recording, const BagImportOptions& options, co
     calibration.odometry_noise_given = true;
   }
   const std::string yaml = (root / "sequence.yaml").string();
-  SFM_RETURN_IF_ERROR(equidistant ? WriteEquidistantCalibration(yaml, calibration, equidistant_k)
-                                  : WriteCalibration(yaml, calibration));
+  SFM_RETURN_IF_ERROR(WriteCalibration(yaml, calibration));
   summary->frames = static_cast<int>(kept.size());
   std::string notes = "# How this sequence was imported (import_sequence; see docs/importers.md)\n";
   notes += "format: " + bag.format() + ", " + bag.path() + "\n";
@@ -630,8 +595,7 @@ Status ImportRecording(Recording* recording, const BagImportOptions& options, co
     notes += "images scaled from " + SizeText(camera.width, camera.height) + " to " +
              SizeText(size.width, size.height) + "\n";
   }
-  notes +=
-      "camera: " + summary->camera_info_topic + " (" + (equidistant ? "equidistant" : "plumb_bob") + ")\n";
+  notes += "camera: " + summary->camera_info_topic + " (" + DistortionModelName(camera.model) + ")\n";
   notes += "odometry: " + summary->odometry_topic + ", world_T_base interpolated at the image stamps\n";
   if (!truth.empty())
     notes += "ground truth: " + summary->groundtruth_topic + ", interpolated at the image stamps\n";
