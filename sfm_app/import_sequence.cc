@@ -95,11 +95,12 @@ DEFINE_string(
     "euroc: the robot's odometry file, world_T_base (TUM, or ASL CSV 'timestamp [ns],x,y,z,qw,qx,qy,qz'); "
     "required, since ASL folders hold none.");
 DEFINE_string(calibration, "",
-              "euroc: the camera calibration instead of cam0/sensor.yaml: a Kalibr camchain (cam0), a ROS "
-              "camera_info YAML, an EuRoC sensor.yaml or an OpenCV YAML as sequence.yaml.");
+              "euroc, bags: the camera calibration instead of cam0/sensor.yaml (bags: of the CameraInfo topic "
+              "and /tf_static): a Kalibr camchain (cam0), a ROS camera_info YAML, an EuRoC sensor.yaml or an "
+              "OpenCV YAML as sequence.yaml.");
 DEFINE_string(
     base_T_body, "",
-    "euroc: 'tx ty tz qx qy qz qw', the pose of the calibration's reference frame (Kalibr: the IMU; "
+    "euroc, bags: 'tx ty tz qx qy qz qw', the pose of the calibration's reference frame (Kalibr: the IMU; "
     "EuRoC: the body B; camera_info: the camera itself) in the robot base frame; empty: the identity.");
 DEFINE_string(tum_camera, "fr1", "tum: which Kinect's published calibration to use: fr1, fr2 or fr3.");
 DEFINE_int32(tum_stride, sfm::TumImportOptions().stride, "tum: keep every N-th image that has ground truth.");
@@ -157,6 +158,13 @@ sfm::Status ImportBag() {
   options.scale.scale = FLAGS_scale;
   options.scale.max_width = FLAGS_max_width;
   options.overwrite = FLAGS_overwrite;
+  if (!FLAGS_calibration.empty()) {
+    sfm::Pose3 base_T_body;
+    SFM_RETURN_IF_ERROR(sfm::ParsePoseText(FLAGS_base_T_body, "--base_T_body", &base_T_body));
+    sfm::Calibration calibration;
+    SFM_RETURN_IF_ERROR(sfm::ReadCalibrationFile(FLAGS_calibration, base_T_body, &calibration));
+    options.calibration = calibration;
+  }
   if (!FLAGS_odometry_noise.empty()) {
     sfm::OdometryNoise noise;
     char extra = 0;

@@ -333,6 +333,7 @@ struct BagContent {
   bool odometry_even_frames = false;  // odometry at the even frames' stamps only (interpolated between)
   int small_frame = -1;               // this frame's image is half size
   std::string image_topic = "/camera/image_raw";
+  bool camera_info = true;  // the CameraInfo topic and /tf_static
 };
 
 constexpr const char* kBaseFrame = "base_link";
@@ -346,9 +347,12 @@ std::vector<BagMessageSpec> SequenceMessages(const Sequence& sequence, const Bag
   const Pose3 base_T_link(Eigen::Quaterniond(Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitZ())),
                           Eigen::Vector3d(0.1, -0.05, 0.2));
   const Pose3 link_T_optical = base_T_link.Inverse() * sequence.calibration.base_T_camera;
-  messages.push_back({"/tf_static", kRosTfMessage, 0,
-                      testing::CdrTfMessage({{kBaseFrame, "camera_link"}, {"camera_link", "camera_optical"}},
-                                            {base_T_link, link_T_optical})});
+  if (content.camera_info) {
+    messages.push_back(
+        {"/tf_static", kRosTfMessage, 0,
+         testing::CdrTfMessage({{kBaseFrame, "camera_link"}, {"camera_link", "camera_optical"}},
+                               {base_T_link, link_T_optical})});
+  }
   for (size_t i = 0; i < sequence.frames.size(); ++i) {
     const Frame& frame = sequence.frames[i];
     const std::int64_t stamp = std::llround(frame.timestamp * 1e9);
@@ -383,10 +387,12 @@ std::vector<BagMessageSpec> SequenceMessages(const Sequence& sequence, const Bag
     std::vector<double> d(camera.distortion.begin(), camera.distortion.end());
     if (content.distortion_model == "rational_polynomial") d.resize(8, 0.01);
     if (content.distortion_model == "equidistant") d = {0.01, -0.02, 0.03, -0.04};
-    messages.push_back(
-        {"/camera/camera_info", kRosCameraInfo, received,
-         testing::CdrCameraInfo(stamp, "camera_optical", camera.width, camera.height,
-                                content.distortion_model, d, camera.fx, camera.fy, camera.cx, camera.cy)});
+    if (content.camera_info) {
+      messages.push_back(
+          {"/camera/camera_info", kRosCameraInfo, received,
+           testing::CdrCameraInfo(stamp, "camera_optical", camera.width, camera.height,
+                                  content.distortion_model, d, camera.fx, camera.fy, camera.cx, camera.cy)});
+    }
     const bool odometry = (content.odometry_frames < 0 || static_cast<int>(i) < content.odometry_frames) &&
                           (!content.odometry_even_frames || i % 2 == 0 || i + 1 == sequence.frames.size());
     if (odometry) {
@@ -555,6 +561,23 @@ TEST_F(RosbagRoundTrip, EquidistantCameraInfoIsWrittenAsSuch) {
   ASSERT_TRUE(ReadSequence(output, &imported).ok());
   EXPECT_EQ(imported.calibration.camera.model, DistortionModel::kEquidistant);
   for (int i = 0; i < 4; ++i) EXPECT_EQ(imported.calibration.camera.distortion[i], expected[i]) << i;
+}
+
+// A bag without CameraInfo and /tf_static: refused by name, imported with --calibration (here the
+// sequence's own sequence.yaml, OpenCV layout) giving the camera and T_base_camera.
+TEST_F(RosbagRoundTrip, CalibrationFileReplacesCameraInfo) {
+  BagContent content;
+  content.camera_info = false;
+  const std::string bag = WriteBag("no_camera_info", "mcap", content);
+  const std::string output = *scratch_ + "/no_camera_info_imported";
+  AppRun run = Import("--input " + bag + " --output " + output, fs::path(*scratch_));
+  EXPECT_EQ(run.exit_status, 1);
+  EXPECT_THAT(run.errors, HasSubstr(bag + ": no camera_info topic (sensor_msgs/msg/CameraInfo)"));
+  run = Import("--input " + bag + " --output " + output + " --groundtruth_topic /groundtruth --calibration " +
+                   sequence_->directory + "/sequence.yaml",
+               fs::path(*scratch_));
+  ASSERT_EQ(run.exit_status, 0) << run.errors;
+  ExpectSameSequence(*sequence_, output, false);
 }
 
 // --every, the time window and the keyframe motion pick the frames they say.

@@ -336,8 +336,10 @@ Status ImportRecording(Recording* recording, const BagImportOptions& options, co
         beside.push_back(static_cast<int>(i));
       }
     }
-    SFM_RETURN_IF_ERROR(ChooseTopic(bag, "camera_info", "camera_info_topic", options.camera_info_topic,
-                                    {kRosCameraInfo}, beside, &info_index));
+    if (!options.calibration) {
+      SFM_RETURN_IF_ERROR(ChooseTopic(bag, "camera_info", "camera_info_topic", options.camera_info_topic,
+                                      {kRosCameraInfo}, beside, &info_index));
+    }
   }
   if (!options.groundtruth_topic.empty()) {
     SFM_RETURN_IF_ERROR(ChooseTopic(bag, "ground-truth", "groundtruth_topic", options.groundtruth_topic,
@@ -350,15 +352,21 @@ Status ImportRecording(Recording* recording, const BagImportOptions& options, co
   }
   summary->image_topic = image_topic.name;
   summary->odometry_topic = bag.topics()[odometry_index].name;
-  summary->camera_info_topic = bag.topics()[info_index].name;
+  summary->camera_info_topic = info_index >= 0 ? bag.topics()[info_index].name : "--calibration";
   if (truth_index >= 0) summary->groundtruth_topic = bag.topics()[truth_index].name;
   const std::string image_where = bag.path() + ": " + image_topic.name;
   const std::string odometry_where = bag.path() + ": " + summary->odometry_topic;
 
   // The camera.
-  const RosCameraInfo& info = *data[summary->camera_info_topic].camera_info;
   Camera camera;
-  SFM_RETURN_IF_ERROR(CameraFromInfo(info, bag.path() + ": " + summary->camera_info_topic, &camera));
+  std::string camera_info_frame;
+  if (options.calibration) {
+    camera = options.calibration->camera;
+  } else {
+    const RosCameraInfo& info = *data[summary->camera_info_topic].camera_info;
+    SFM_RETURN_IF_ERROR(CameraFromInfo(info, bag.path() + ": " + summary->camera_info_topic, &camera));
+    camera_info_frame = info.header.frame_id;
+  }
 
   // The frames: the window, the odometry at each stamp, every N-th, then the keyframe motion.
   std::vector<ImageStamp> images = data[image_topic.name].images;
@@ -462,15 +470,17 @@ Status ImportRecording(Recording* recording, const BagImportOptions& options, co
   std::string base_frame = options.base_frame, camera_frame = options.camera_frame;
   if (base_frame.empty()) base_frame = odometry.front().child_frame_id;
   if (camera_frame.empty()) camera_frame = data[image_topic.name].image_frame;
-  if (camera_frame.empty()) camera_frame = info.header.frame_id;
+  if (camera_frame.empty()) camera_frame = camera_info_frame;
   Pose3 base_T_camera = Pose3::Identity();
   std::string transform_note =
       "T_base_camera: identity (base and camera frame '" + camera_frame + "' are one)";
-  if (base_frame.empty()) {
+  if (options.calibration) {
+    base_T_camera = options.calibration->base_T_camera;
+    transform_note = "T_base_camera: --calibration";
+  } else if (base_frame.empty()) {
     return Status::Error(odometry_where +
                          ": the odometry names no base frame (PoseStamped); give --base_frame");
-  }
-  if (base_frame != camera_frame) {
+  } else if (base_frame != camera_frame) {
     std::vector<RosStampedPose> transforms;
     if (bag.FindTopic("/tf_static") >= 0) {
       if (!data["/tf_static"].decode_error.empty()) return Status::Error(data["/tf_static"].decode_error);

@@ -31,6 +31,9 @@ struct BagImportOptions {
   double max_odometry_gap = 0.5;  // s: images further than this from an odometry sample are not interpolated
   ImageScaleOptions scale;
   std::optional<OdometryNoise> odometry_noise;  // written to sequence.yaml when given
+  // Given (import_sequence --calibration): the camera and T_base_camera, instead of the CameraInfo
+  // topic and /tf_static.
+  std::optional<Calibration> calibration;
   bool overwrite = false;
 
   Status Check() const;
