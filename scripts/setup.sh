@@ -5,7 +5,9 @@ set -euo pipefail
 
 SFM_PACKAGES=(build-essential cmake pkg-config libeigen3-dev libceres-dev libopencv-dev
   libopencv-contrib-dev libgflags-dev libgoogle-glog-dev libgtest-dev libgmock-dev libbenchmark-dev
-  libyaml-cpp-dev libtbb-dev)
+  libzstd-dev liblz4-dev zlib1g-dev libsqlite3-dev libyaml-cpp-dev libfastcdr-dev
+  librosbag-storage-dev libsensor-msgs-dev libnav-msgs-dev libgeometry-msgs-dev libtf2-msgs-dev
+  libtbb-dev)
 
 sfm_install_missing_packages() {
   local missing=()

@@ -3,6 +3,10 @@
 //
 //   build/bin/import_sequence --format vgg|strecha|tum --input <data set dir> --output <sequence dir>
 //   build/bin/import_sequence --format euroc --input <ASL folder> --odometry <file> --output <sequence dir>
+//   build/bin/import_sequence --format rosbag2 --input <bag folder, .mcap or .db3> --output <sequence dir>
+//   build/bin/import_sequence --format rosbag --input <ROS 1 .bag file> --output <sequence dir>
+//
+// EuRoC folders and bags give the robot's own odometry: nothing is simulated for them.
 //
 // docs/importers.md describes each format, the noise model and the figures measured on the data.
 #include <gflags/gflags.h>
@@ -10,11 +14,14 @@
 
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <string>
 
 #include "sequences/importers/calibration_files.h"
 #include "sequences/importers/euroc_importer.h"
 #include "sequences/importers/imported_sequence.h"
+#include "sequences/importers/rosbag/bag_importer.h"
+#include "sequences/importers/rosbag/rosbag1_recording.h"
 #include "sequences/importers/strecha_importer.h"
 #include "sequences/importers/tum_importer.h"
 #include "sequences/importers/vgg_importer.h"
@@ -26,10 +33,11 @@ const sfm::SequenceWriteOptions kDefaults;
 DEFINE_string(
     format, "",
     "Data set format: 'vgg' (Oxford VGG multi-view: <name>.NNN.pgm, <name>.NNN.P, <name>.p3d), "
-    "'strecha' (images/*.jpg, gt_dense_cameras/*.camera) or 'tum' (TUM RGB-D: rgb.txt, rgb/, "
-    "groundtruth.txt) or 'euroc' (EuRoC / ASL: cam0/data.csv, cam0/data/, cam0/sensor.yaml, with the robot's "
-    "--odometry). Required.");
-DEFINE_string(input, "", "Data set directory. Required.");
+    "'strecha' (images/*.jpg, gt_dense_cameras/*.camera), 'tum' (TUM RGB-D: rgb.txt, rgb/, "
+    "groundtruth.txt), 'euroc' (EuRoC / ASL: cam0/data.csv, cam0/data/, cam0/sensor.yaml, with the robot's "
+    "--odometry), 'rosbag2' (a ROS 2 bag: its folder with metadata.yaml, or one .mcap or .db3 file) or "
+    "'rosbag' (a ROS 1 .bag file). Required.");
+DEFINE_string(input, "", "Data set directory (rosbag2: the bag folder or storage file; rosbag: the .bag file). Required.");
 DEFINE_string(output, "",
               "Sequence directory to create (written to a temporary sibling and renamed into place). Required.");
 DEFINE_bool(overwrite, false, "Replace --output when it exists and is not empty.");
@@ -87,18 +95,92 @@ DEFINE_string(
     "euroc: the robot's odometry file, world_T_base (TUM, or ASL CSV 'timestamp [ns],x,y,z,qw,qx,qy,qz'); "
     "required, since ASL folders hold none.");
 DEFINE_string(calibration, "",
-              "euroc: the camera calibration instead of cam0/sensor.yaml: a Kalibr camchain (cam0), a ROS "
-              "camera_info YAML, an EuRoC sensor.yaml or an OpenCV YAML as sequence.yaml.");
+              "euroc, bags: the camera calibration instead of cam0/sensor.yaml (bags: of the CameraInfo topic "
+              "and /tf_static): a Kalibr camchain (cam0), a ROS camera_info YAML, an EuRoC sensor.yaml or an "
+              "OpenCV YAML as sequence.yaml.");
 DEFINE_string(
     base_T_body, "",
-    "euroc: 'tx ty tz qx qy qz qw', the pose of the calibration's reference frame (Kalibr: the IMU; "
+    "euroc, bags: 'tx ty tz qx qy qz qw', the pose of the calibration's reference frame (Kalibr: the IMU; "
     "EuRoC: the body B; camera_info: the camera itself) in the robot base frame; empty: the identity.");
 DEFINE_string(tum_camera, "fr1", "tum: which Kinect's published calibration to use: fr1, fr2 or fr3.");
 DEFINE_int32(tum_stride, sfm::TumImportOptions().stride, "tum: keep every N-th image that has ground truth.");
 DEFINE_double(tum_max_groundtruth_gap, sfm::TumImportOptions().max_groundtruth_gap,
               "tum: skip images between ground-truth poses more than this many seconds apart.");
+DEFINE_string(image_topic, "",
+              "bags: sensor_msgs/msg/Image or CompressedImage topic; empty: the bag's only one.");
+DEFINE_string(
+    odometry_topic, "",
+    "bags: nav_msgs/msg/Odometry (or geometry_msgs/msg/PoseStamped, TransformStamped) topic of the "
+    "robot base; empty: the bag's only one.");
+DEFINE_string(
+    camera_info_topic, "",
+    "bags: sensor_msgs/msg/CameraInfo topic; empty: the bag's only one, or the one beside the image "
+    "topic.");
+DEFINE_string(groundtruth_topic, "",
+              "bags: pose topic of the base's true poses (groundtruth.txt); empty: none.");
+DEFINE_string(base_frame, "",
+              "bags: robot base frame for T_base_camera; empty: the odometry's child_frame_id.");
+DEFINE_string(camera_frame, "", "bags: camera frame for T_base_camera; empty: the images' frame_id.");
+DEFINE_int32(every, 1, "bags: keep every N-th image.");
+DEFINE_double(min_motion, 0,
+              "bags: keyframes: keep an image only when the odometry moved at least this many metres (or "
+              "turned --min_rotation) since the last kept one; 0 and 0: keep all.");
+DEFINE_double(min_rotation, 0,
+              "bags: keyframes: the rotation, radians, that also keeps an image (see --min_motion).");
+DEFINE_double(start_time, 0, "bags: first image kept, seconds after the image topic's first stamp.");
+DEFINE_double(end_time, std::numeric_limits<double>::infinity(),
+              "bags: last image kept, seconds after the image topic's first stamp.");
+DEFINE_double(
+    max_odometry_gap, sfm::BagImportOptions().max_odometry_gap,
+    "bags: seconds; images further than this from odometry samples are skipped, and odometry that "
+    "starts or stops this much beyond the images is an error.");
+DEFINE_string(
+    odometry_noise, "",
+    "bags: 'translation_sigma,rotation_sigma' written to sequence.yaml (SPEC's odometry noise keys); "
+    "empty: left out, the pipeline's defaults.");
 
 namespace {
+
+sfm::Status ImportBag() {
+  sfm::BagImportOptions options;
+  options.image_topic = FLAGS_image_topic;
+  options.odometry_topic = FLAGS_odometry_topic;
+  options.camera_info_topic = FLAGS_camera_info_topic;
+  options.groundtruth_topic = FLAGS_groundtruth_topic;
+  options.base_frame = FLAGS_base_frame;
+  options.camera_frame = FLAGS_camera_frame;
+  options.every = FLAGS_every;
+  options.min_motion = FLAGS_min_motion;
+  options.min_rotation = FLAGS_min_rotation;
+  options.start_time = FLAGS_start_time;
+  options.end_time = FLAGS_end_time;
+  options.max_odometry_gap = FLAGS_max_odometry_gap;
+  options.scale.scale = FLAGS_scale;
+  options.scale.max_width = FLAGS_max_width;
+  options.overwrite = FLAGS_overwrite;
+  if (!FLAGS_calibration.empty()) {
+    sfm::Pose3 base_T_body;
+    SFM_RETURN_IF_ERROR(sfm::ParsePoseText(FLAGS_base_T_body, "--base_T_body", &base_T_body));
+    sfm::Calibration calibration;
+    SFM_RETURN_IF_ERROR(sfm::ReadCalibrationFile(FLAGS_calibration, base_T_body, &calibration));
+    options.calibration = calibration;
+  }
+  if (!FLAGS_odometry_noise.empty()) {
+    sfm::OdometryNoise noise;
+    char extra = 0;
+    if (std::sscanf(FLAGS_odometry_noise.c_str(), "%lf,%lf%c", &noise.translation_sigma,
+                    &noise.rotation_sigma, &extra) != 2 ||
+        !(noise.translation_sigma > 0) || !(noise.rotation_sigma > 0)) {
+      return sfm::Status::Error(
+          "--odometry_noise must be 'translation_sigma,rotation_sigma', two numbers > 0 (found '" +
+          FLAGS_odometry_noise + "')");
+    }
+    options.odometry_noise = noise;
+  }
+  sfm::BagImportSummary summary;
+  return FLAGS_format == "rosbag" ? sfm::ImportRosbag1(FLAGS_input, options, FLAGS_output, &summary)
+                                  : sfm::ImportRosbag2(FLAGS_input, options, FLAGS_output, &summary);
+}
 
 sfm::Status ReadDataSet(sfm::ImportedSequence* sequence) {
   if (FLAGS_format == "vgg") {
@@ -142,8 +224,10 @@ int ImportEuroc() {
 
 int main(int argc, char** argv) {
   gflags::SetUsageMessage(
-      "makes a SPEC sequence directory from a data set with ground-truth cameras.\n"
-      "  import_sequence --format vgg|strecha|tum --input <data set dir> --output <sequence dir> [flags]");
+      "makes a SPEC sequence directory from a data set with ground-truth cameras, an EuRoC folder or a ROS 2 or "
+      "ROS 1 bag.\n"
+      "  import_sequence --format vgg|strecha|tum|euroc|rosbag2|rosbag --input <data set dir or bag> --output "
+      "<sequence dir> [flags]");
   gflags::SetVersionString("0.1.0");
   gflags::ParseCommandLineFlags(&argc, &argv, true);
   FLAGS_logtostderr = true;
@@ -154,8 +238,8 @@ int main(int argc, char** argv) {
     return 2;
   }
   if (FLAGS_format != "vgg" && FLAGS_format != "strecha" && FLAGS_format != "tum" &&
-      FLAGS_format != "euroc") {
-    std::fprintf(stderr, "import_sequence: --format must be vgg, strecha, tum or euroc (found '%s')\n",
+      FLAGS_format != "euroc" && FLAGS_format != "rosbag2" && FLAGS_format != "rosbag") {
+    std::fprintf(stderr, "import_sequence: --format must be vgg, strecha, tum, euroc, rosbag2 or rosbag (found '%s')\n",
                  FLAGS_format.c_str());
     return 2;
   }
@@ -177,6 +261,14 @@ int main(int argc, char** argv) {
     return 2;
   }
   if (FLAGS_format == "euroc") return ImportEuroc();
+  if (FLAGS_format == "rosbag2" || FLAGS_format == "rosbag") {
+    const sfm::Status status = ImportBag();
+    if (!status.ok()) {
+      std::fprintf(stderr, "import_sequence: %s\n", status.message().c_str());
+      return 1;
+    }
+    return 0;
+  }
   sfm::SequenceWriteOptions options;
   options.scale.scale = FLAGS_scale;
   options.scale.max_width = FLAGS_max_width;

@@ -15,7 +15,7 @@
 
 #include "frontend/sequence/image_header.h"
 #include "sequences/importers/calibration_files.h"
-#include "sequences/importers/staging_directory.h"
+#include "sequences/importers/sequence_output.h"
 #include "util/atomic_file.h"
 #include "util/number_text.h"
 #include "util/regular_file.h"
@@ -186,17 +186,10 @@ Status ReadEurocSequence(const std::string& input_dir, const EurocImportOptions&
 }
 
 Status WriteRecordedSequence(const RecordedSequence& sequence, const std::string& output_dir, bool overwrite) {
-  const fs::path target = fs::path(output_dir).lexically_normal();
-  std::error_code error;
-  if (fs::exists(target, error)) {
-    if (!fs::is_directory(target, error)) return Status::Error(target.string() + ": exists and is not a directory");
-    if (!fs::is_empty(target, error) && !overwrite) {
-      return Status::Error(target.string() + ": exists and is not empty (--overwrite replaces it)");
-    }
-  }
-  const fs::path parent = target.has_parent_path() ? target.parent_path() : fs::path(".");
-  StagingDirectory staging(parent / ("." + target.filename().string() + ".importing." + std::to_string(::getpid())));
-  fs::remove_all(staging.path(), error);
+  const fs::path target = NormalisedTarget(output_dir);
+  fs::path temporary;
+  SFM_RETURN_IF_ERROR(PrepareOutputDirectory(target, overwrite, &temporary));
+  TemporaryDirectory staging(temporary);
   SFM_RETURN_IF_ERROR(EnsureWritableDirectory((staging.path() / "images").string()));
 
   const Camera& camera = sequence.calibration.camera;
@@ -233,22 +226,7 @@ Status WriteRecordedSequence(const RecordedSequence& sequence, const std::string
   if (every_groundtruth) SFM_RETURN_IF_ERROR(WriteTumTrajectory((root / "groundtruth.txt").string(), groundtruth));
   SFM_RETURN_IF_ERROR(WriteFileAtomically((root / "import_notes.txt").string(), NotesText(sequence)));
 
-  fs::path replaced;
-  if (fs::exists(target, error)) {
-    replaced = parent / ("." + target.filename().string() + ".replaced." + std::to_string(::getpid()));
-    fs::rename(target, replaced, error);
-    if (error) return Status::Error(target.string() + ": cannot be replaced (" + error.message() + ")");
-  }
-  fs::rename(staging.path(), target, error);
-  if (error) {
-    std::error_code ignored;
-    if (!replaced.empty()) fs::rename(replaced, target, ignored);
-    return Status::Error(target.string() + ": cannot rename the imported sequence into place (" + error.message() +
-                         ")");
-  }
-  staging.Release();
-  if (!replaced.empty()) fs::remove_all(replaced, error);
-  return Status::Ok();
+  return MoveIntoPlace(&staging, target);
 }
 
 }  // namespace sfm

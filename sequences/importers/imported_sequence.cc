@@ -19,7 +19,7 @@
 #include "util/atomic_file.h"
 #include "util/number_text.h"
 #include "sequences/importers/input_files.h"
-#include "sequences/importers/staging_directory.h"
+#include "sequences/importers/sequence_output.h"
 
 namespace sfm {
 namespace {
@@ -111,33 +111,6 @@ std::string WarpsText(const ImportedSequence& sequence, const Camera& scaled) {
   return text;
 }
 
-// Output path without a trailing separator, so that its parent and name are those of the directory.
-fs::path NormalisedTarget(const std::string& output_dir) {
-  fs::path target = fs::path(output_dir).lexically_normal();
-  if (!target.has_filename()) target = target.parent_path();
-  return target;
-}
-
-// Moves the finished temporary directory to `target`, replacing what is there when allowed.
-Status MoveIntoPlace(StagingDirectory* temporary, const fs::path& target) {
-  std::error_code error;
-  fs::path replaced;
-  if (fs::exists(target, error)) {
-    replaced = target.parent_path() / ("." + target.filename().string() + ".replaced." + std::to_string(::getpid()));
-    fs::rename(target, replaced, error);
-    if (error) return Status::Error(target.string() + ": cannot move the old directory aside (" + error.message() + ")");
-  }
-  fs::rename(temporary->path(), target, error);
-  if (error) {
-    std::error_code ignored;
-    if (!replaced.empty()) fs::rename(replaced, target, ignored);
-    return Status::Error(target.string() + ": cannot rename the imported sequence into place (" + error.message() + ")");
-  }
-  temporary->Release();
-  if (!replaced.empty()) fs::remove_all(replaced, error);
-  return Status::Ok();
-}
-
 }  // namespace
 
 Status SequenceWriteOptions::Check() const {
@@ -152,19 +125,9 @@ Status WriteImportedSequence(const ImportedSequence& sequence, const SequenceWri
     return Status::Error("import: " + std::to_string(sequence.frames.size()) + " frame(s), a sequence needs at least 2");
   }
   const fs::path target = NormalisedTarget(output_dir);
-  if (target.empty()) return Status::Error("import: the output directory is not named");
-  std::error_code error;
-  if (fs::exists(target, error)) {
-    if (!fs::is_directory(target, error)) return Status::Error(target.string() + ": exists and is not a directory");
-    if (!fs::is_empty(target, error) && !options.overwrite) {
-      return Status::Error(target.string() + ": exists and is not empty; choose another directory or overwrite it");
-    }
-  }
-  const fs::path parent = target.has_parent_path() ? target.parent_path() : fs::path(".");
-  SFM_RETURN_IF_ERROR(EnsureWritableDirectory(parent.string()));
-
-  StagingDirectory temporary(parent / ("." + target.filename().string() + ".importing." + std::to_string(::getpid())));
-  fs::remove_all(temporary.path(), error);
+  fs::path temporary_path;
+  SFM_RETURN_IF_ERROR(PrepareOutputDirectory(target, options.overwrite, &temporary_path));
+  TemporaryDirectory temporary(temporary_path);
   SFM_RETURN_IF_ERROR(EnsureWritableDirectory((temporary.path() / "images").string()));
 
   const cv::Size size = ScaledImageSize(sequence.camera.width, sequence.camera.height, options.scale);

@@ -88,28 +88,47 @@ Status ReadNumbers(const std::string& path, std::vector<double>* numbers) {
   return Status::Ok();
 }
 
-Status DecodeImage(const std::string& path, int flags, cv::Mat* image) {
-  std::error_code error;
-  if (!std::filesystem::is_regular_file(path, error)) return Status::Error(path + ": image file does not exist");
+namespace {
+
+// cv::imread or cv::imdecode by `decode`, with the codecs' diagnostics caught (see DecodeImage).
+template <typename Decode>
+Status DecodeCaptured(const std::string& where, const Decode& decode, cv::Mat* image) {
   StderrCapture capture;
   cv::Mat decoded;
   std::string exception;
   try {
-    decoded = cv::imread(path, flags);
+    decoded = decode();
   } catch (const cv::Exception& e) {
     exception = e.what();
   }
   const std::string diagnostics = OneLine(capture.Release() + exception);
   if (decoded.empty()) {
-    return Status::Error(path + ": cannot decode image" + (diagnostics.empty() ? "" : " (" + diagnostics + ")"));
+    return Status::Error(where + ": cannot decode image" +
+                         (diagnostics.empty() ? "" : " (" + diagnostics + ")"));
   }
   if (diagnostics.find("Premature end of JPEG file") != std::string::npos) {
-    return Status::Error(path + ": cannot decode image (truncated: " + diagnostics + ")");
+    return Status::Error(where + ": cannot decode image (truncated: " + diagnostics + ")");
   }
-  if (!diagnostics.empty()) LOG(WARNING) << path << ": " << diagnostics;
+  if (!diagnostics.empty()) LOG(WARNING) << where << ": " << diagnostics;
   *image = decoded;
   return Status::Ok();
 }
 
+}  // namespace
+
+Status DecodeImage(const std::string& path, int flags, cv::Mat* image) {
+  std::error_code error;
+  if (!std::filesystem::is_regular_file(path, error))
+    return Status::Error(path + ": image file does not exist");
+  return DecodeCaptured(
+      path, [&] { return cv::imread(path, flags); }, image);
+}
+
+Status DecodeImageBytes(const std::string& where, const std::vector<unsigned char>& bytes, int flags,
+                        cv::Mat* image) {
+  if (bytes.empty()) return Status::Error(where + ": cannot decode image (no data)");
+  return DecodeCaptured(
+      where, [&] { return cv::imdecode(bytes, flags); }, image);
+}
 
 }  // namespace sfm

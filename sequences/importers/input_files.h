@@ -21,5 +21,9 @@ Status ReadNumbers(const std::string& path, std::vector<double>* numbers);
 // file (it then still returns an image, grey below the cut); other codec warnings are logged.
 Status DecodeImage(const std::string& path, int flags, cv::Mat* image);
 
+// The same for an encoded image held in memory (cv::imdecode), e.g. a ROS CompressedImage
+// message; `where` names it in the messages.
+Status DecodeImageBytes(const std::string& where, const std::vector<unsigned char>& bytes, int flags,
+                        cv::Mat* image);
 
 }  // namespace sfm

@@ -97,7 +97,7 @@ TEST(ImportSequenceAppTest, BadInputExitsNonZeroWithOneLineAndNoOutput) {
 
   run = RunImport(scratch, "--format colmap --input " + strecha.string() + " --output " + out.string());
   EXPECT_EQ(run.exit_status, 2);
-  EXPECT_THAT(run.stderr_text, HasSubstr("--format must be vgg, strecha, tum or euroc"));
+  EXPECT_THAT(run.stderr_text, HasSubstr("--format must be vgg, strecha, tum, euroc, rosbag2 or rosbag"));
   run = RunImport(
       scratch, "--format vgg --vgg_refit=bundle --input " + strecha.string() + " --output " + out.string());
   EXPECT_EQ(run.exit_status, 2);
