@@ -143,9 +143,9 @@ TEST_P(EurocImporterTest, GeneratedSequenceRoundTripsThroughAnAslFolder) {
 INSTANTIATE_TEST_SUITE_P(Lens, EurocImporterTest,
                          ::testing::Values(DistortionModel::kRadTan, DistortionModel::kEquidistant));
 
-// Odometry that ends before the last image, and no odometry at all: one line naming the file.
-TEST(EurocImporterBadInputTest, OdometryThatStopsBeforeTheImagesFails) {
-  const fs::path scratch = testing::MakeScratchDir("euroc_bad_odometry");
+// A 3-frame 160x120 generated sequence written as an ASL folder to scratch/asl (the generated
+// sequence in scratch/generated).
+void WriteSmallAslFolder(const fs::path& scratch) {
   GeneratorOptions generator;
   generator.trajectory.num_frames = 3;
   generator.camera.width = 160;
@@ -156,6 +156,12 @@ TEST(EurocImporterBadInputTest, OdometryThatStopsBeforeTheImagesFails) {
   Sequence generated;
   ASSERT_TRUE(ReadSequence((scratch / "generated").string(), &generated).ok());
   WriteAslFolder(generated, scratch / "asl");
+}
+
+// Odometry that ends before the last image, and no odometry at all: one line naming the file.
+TEST(EurocImporterBadInputTest, OdometryThatStopsBeforeTheImagesFails) {
+  const fs::path scratch = testing::MakeScratchDir("euroc_bad_odometry");
+  ASSERT_NO_FATAL_FAILURE(WriteSmallAslFolder(scratch));
   const std::string odometry = (scratch / "short.txt").string();
   std::ofstream(odometry) << "0 0 0 0 0 0 0 1\n0.1 0.1 0 0 0 0 0 1\n";
   EurocImportOptions options;
@@ -175,16 +181,7 @@ TEST(EurocImporterBadInputTest, OdometryThatStopsBeforeTheImagesFails) {
 // early, it exits 1 with one line and leaves no output directory.
 TEST(EurocImporterBadInputTest, ImportSequenceProgramImportsOrFailsWithOneLineAndNoOutput) {
   const fs::path scratch = testing::MakeScratchDir("euroc_app");
-  GeneratorOptions generator;
-  generator.trajectory.num_frames = 3;
-  generator.camera.width = 160;
-  generator.camera.height = 120;
-  generator.camera.fx = generator.camera.fy = 110;
-  generator.write_truth = false;
-  ASSERT_TRUE(GenerateSequence(generator, (scratch / "generated").string(), /*overwrite=*/true).ok());
-  Sequence generated;
-  ASSERT_TRUE(ReadSequence((scratch / "generated").string(), &generated).ok());
-  WriteAslFolder(generated, scratch / "asl");
+  ASSERT_NO_FATAL_FAILURE(WriteSmallAslFolder(scratch));
   std::ofstream(scratch / "camchain.yaml")
       << "cam0:\n  T_cam_imu:\n  - [1, 0, 0, 0.1]\n  - [0, 1, 0, 0]\n  - [0, 0, 1, 0]\n  - [0, 0, 0, 1]\n"
          "  camera_model: pinhole\n  distortion_coeffs: [0, 0, 0, 0]\n  distortion_model: equidistant\n"
