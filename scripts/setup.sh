@@ -9,37 +9,35 @@ SFM_PACKAGES=(build-essential cmake pkg-config libeigen3-dev libceres-dev libope
   librosbag-storage-dev libsensor-msgs-dev libnav-msgs-dev libgeometry-msgs-dev libtf2-msgs-dev
   libtbb-dev)
 
+# apt-get install of the packages given, as root; otherwise the command to run is printed and the
+# function returns 1.
+sfm_apt_install() {
+  if [ "$(id -u)" -eq 0 ]; then
+    echo "setup: installing $*" >&2
+    apt-get update -q >&2
+    DEBIAN_FRONTEND=noninteractive apt-get install -y -q --no-install-recommends "$@" >&2
+  else
+    echo "setup: missing packages; run as root: apt-get install -y $*" >&2
+    return 1
+  fi
+}
+
 sfm_install_missing_packages() {
   local missing=()
   for package in "${SFM_PACKAGES[@]}"; do
     dpkg-query -W -f='${Status}' "$package" 2>/dev/null | grep -q "install ok installed" || missing+=("$package")
   done
   [ ${#missing[@]} -eq 0 ] && return 0
-  if [ "$(id -u)" -eq 0 ]; then
-    echo "setup: installing ${missing[*]}" >&2
-    apt-get update -q >&2
-    DEBIAN_FRONTEND=noninteractive apt-get install -y -q --no-install-recommends "${missing[@]}" >&2
-  else
-    echo "setup: missing packages; run as root: apt-get install -y ${missing[*]}" >&2
-    exit 1
-  fi
+  sfm_apt_install "${missing[@]}" || exit 1
 }
 
 # A package that only a benchmark or a test needs (never one of the product's above, e.g. colmap for
 # scripts/benchmark_real.sh, chromium for tests/report/report_browser_test.sh): installed when
-# `command` is not on PATH, as root; otherwise the command to run is printed and the function
-# returns 1.
+# `command` is not on PATH (sfm_apt_install).
 sfm_install_benchmark_package() {
   local package=$1 command=$2
   command -v "$command" >/dev/null && return 0
-  if [ "$(id -u)" -eq 0 ]; then
-    echo "setup: installing $package (a benchmark or test dependency)" >&2
-    apt-get update -q >&2
-    DEBIAN_FRONTEND=noninteractive apt-get install -y -q --no-install-recommends "$package" >&2
-  else
-    echo "setup: $command not found; run as root: apt-get install -y $package" >&2
-    return 1
-  fi
+  sfm_apt_install "$package"
 }
 
 sfm_configure_and_build() {
