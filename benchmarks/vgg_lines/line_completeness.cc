@@ -4,17 +4,9 @@
 #include <cmath>
 #include <limits>
 
+#include "sfm_app/wireframe_evaluation.h"
+
 namespace sfm {
-namespace {
-
-double DistanceToSegment(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
-  const Eigen::Vector3d ab = b - a;
-  const double length2 = ab.squaredNorm();
-  const double t = length2 > 0 ? std::clamp((p - a).dot(ab) / length2, 0.0, 1.0) : 0.0;
-  return (p - (a + t * ab)).norm();
-}
-
-}  // namespace
 
 LineCompleteness MeasureLineCompleteness(const std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>>& true_lines,
                                          const std::vector<Eigen::Vector3d>& vertices,
