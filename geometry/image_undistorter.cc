@@ -117,6 +117,89 @@ bool SeenByStoredImage(const Camera& camera, const Eigen::Vector2d& p, double ma
          d.y() <= camera.height - 1 - margin;
 }
 
+Eigen::Vector3d PerspectiveSubView::Ray(const Eigen::Vector2d& pixel) const {
+  return (view_R_camera.transpose() * Eigen::Vector3d((pixel.x() - cx) / fx, (pixel.y() - cy) / fy, 1))
+      .normalized();
+}
+
+Eigen::Vector2d PerspectiveSubView::ToUndistorted(const Eigen::Vector2d& pixel) const {
+  return (undistorted_H_view * pixel.homogeneous()).hnormalized();
+}
+
+std::vector<PerspectiveSubView> EquidistantSubViews(const Camera& camera, int margin) {
+  if (camera.model != DistortionModel::kEquidistant) return {};
+  // The rays the stored image sees: every 2 px inside, every pixel along the border.
+  std::vector<cv::Point2d> pixels;
+  for (int y = 0; y < camera.height; y += 2) {
+    for (int x = 0; x < camera.width; x += 2) pixels.emplace_back(x, y);
+  }
+  for (int x = 0; x < camera.width; ++x) pixels.emplace_back(x, 0), pixels.emplace_back(x, camera.height - 1);
+  for (int y = 0; y < camera.height; ++y) pixels.emplace_back(0, y), pixels.emplace_back(camera.width - 1, y);
+  std::vector<cv::Point2d> normalised;
+  const cv::Matx33d camera_matrix(camera.fx, 0, camera.cx, 0, camera.fy, camera.cy, 0, 0, 1);
+  cv::fisheye::undistortPoints(pixels, normalised, camera_matrix, camera.DistortionCoefficients());
+  std::vector<Eigen::Vector3d> rays;
+  rays.reserve(normalised.size());
+  double half_yaw = 0, half_pitch = 0;
+  for (const cv::Point2d& n : normalised) {
+    const Eigen::Vector3d ray = Eigen::Vector3d(n.x, n.y, 1).normalized();
+    rays.push_back(ray);
+    half_yaw = std::max(half_yaw, std::abs(std::atan2(ray.x(), ray.z())));
+    half_pitch = std::max(half_pitch, std::abs(std::atan2(ray.y(), std::hypot(ray.x(), ray.z()))));
+  }
+  // An odd number of axes per direction, one on the optical axis, spaced so that the outermost
+  // cells end at the field of view's edge.
+  const double cell = kSubViewCellDeg * M_PI / 180;
+  auto axis_angles = [&](double half) {
+    const int m = std::max(0, static_cast<int>(std::ceil((half - 0.5 * cell) / cell)));
+    const double step = m > 0 ? half / (m + 0.5) : 0;
+    std::vector<double> angles;
+    for (int i = -m; i <= m; ++i) angles.push_back(i * step);
+    return angles;
+  };
+  std::vector<PerspectiveSubView> views;
+  for (const double pitch : axis_angles(half_pitch)) {
+    for (const double yaw : axis_angles(half_yaw)) {
+      PerspectiveSubView view;
+      view.axis = Eigen::Vector3d(std::sin(yaw) * std::cos(pitch), std::sin(pitch), std::cos(yaw) * std::cos(pitch));
+      // x stays horizontal (perpendicular to the camera's y axis), y completes a right-handed frame.
+      const Eigen::Vector3d x = Eigen::Vector3d::UnitY().cross(view.axis).normalized();
+      view.view_R_camera.row(0) = x.transpose();
+      view.view_R_camera.row(1) = view.axis.cross(x).transpose();
+      view.view_R_camera.row(2) = view.axis.transpose();
+      view.fx = camera.fx;
+      view.fy = camera.fy;
+      views.push_back(view);
+    }
+  }
+  // Each sub-view's cell: the rays closest to its axis; its image is their bounding box plus margin.
+  std::vector<Eigen::AlignedBox2d> boxes(views.size());
+  for (const Eigen::Vector3d& ray : rays) {
+    size_t best = 0;
+    for (size_t k = 1; k < views.size(); ++k) {
+      if (views[k].axis.dot(ray) > views[best].axis.dot(ray)) best = k;
+    }
+    const Eigen::Vector3d v = views[best].view_R_camera * ray;
+    boxes[best].extend(Eigen::Vector2d(views[best].fx * v.x() / v.z(), views[best].fy * v.y() / v.z()));
+  }
+  std::vector<PerspectiveSubView> kept;
+  const Eigen::Matrix3d K = camera.K();
+  for (size_t k = 0; k < views.size(); ++k) {
+    if (boxes[k].isEmpty()) continue;
+    PerspectiveSubView view = views[k];
+    const Eigen::Vector2d lo = boxes[k].min(), hi = boxes[k].max();
+    view.cx = std::ceil(-lo.x()) + margin;
+    view.cy = std::ceil(-lo.y()) + margin;
+    view.size = cv::Size(static_cast<int>(std::ceil(hi.x() + view.cx)) + margin + 1,
+                         static_cast<int>(std::ceil(hi.y() + view.cy)) + margin + 1);
+    Eigen::Matrix3d view_K;
+    view_K << view.fx, 0, view.cx, 0, view.fy, view.cy, 0, 0, 1;
+    view.undistorted_H_view = K * view.view_R_camera.transpose() * view_K.inverse();
+    kept.push_back(view);
+  }
+  return kept;
+}
+
 ImageUndistorter::ImageUndistorter(const Camera& camera, UndistortInterpolation interpolation,
                                    UndistortView view)
     : camera_(camera),
@@ -147,6 +230,20 @@ ImageUndistorter::ImageUndistorter(const Camera& camera, UndistortInterpolation 
     // border of the seen region for the detector to find (nor for a crossing edge's chain to
     // turn into).
     border_mode_ = cv::BORDER_REPLICATE;
+    // 3 px of the margin are the detector's reach (as the canvas's pad); the rest lets a junction
+    // at the edge of a sub-view's cell keep arms long enough to be found there.
+    sub_views_ = EquidistantSubViews(camera, 32);
+    for (const PerspectiveSubView& sub : sub_views_) {
+      cv::Matx33d rotation, view_matrix(sub.fx, 0, sub.cx, 0, sub.fy, sub.cy, 0, 0, 1);
+      for (int r = 0; r < 3; ++r) {
+        for (int c = 0; c < 3; ++c) rotation(r, c) = sub.view_R_camera(r, c);
+      }
+      sub_map_x_.emplace_back();
+      sub_map_y_.emplace_back();
+      // cv::fisheye's R maps the camera's rays into the rectified (here: the sub-view's) frame.
+      cv::fisheye::initUndistortRectifyMap(camera_matrix, coefficients, rotation, view_matrix, sub.size,
+                                           CV_32FC1, sub_map_x_.back(), sub_map_y_.back());
+    }
   }
   // Float maps: the fixed-point CV_16SC2 maps quantise to 1/32 px.
   if (camera.model == DistortionModel::kEquidistant) {
@@ -156,6 +253,41 @@ ImageUndistorter::ImageUndistorter(const Camera& camera, UndistortInterpolation 
     cv::initUndistortRectifyMap(camera_matrix, coefficients, cv::noArray(), canvas_matrix, canvas_size_,
                                 CV_32FC1, map_x_, map_y_);
   }
+}
+
+int ImageUndistorter::SubViewOf(const Eigen::Vector3d& ray) const {
+  int best = 0;
+  for (int k = 1; k < static_cast<int>(sub_views_.size()); ++k) {
+    if (sub_views_[k].axis.dot(ray) > sub_views_[best].axis.dot(ray)) best = k;
+  }
+  return best;
+}
+
+bool ImageUndistorter::SubViewSees(int k, const Eigen::Vector2d& pixel, double margin) const {
+  const cv::Mat& map_x = sub_map_x_.at(k);
+  const cv::Mat& map_y = sub_map_y_.at(k);
+  if (!(pixel.x() >= 0 && pixel.y() >= 0 && pixel.x() <= map_x.cols - 1 && pixel.y() <= map_x.rows - 1)) {
+    return false;
+  }
+  // The remap tables bilinearly: they are smooth, so this is the stored pixel to far below 0.01 px.
+  const int x0 = std::min(static_cast<int>(pixel.x()), map_x.cols - 2);
+  const int y0 = std::min(static_cast<int>(pixel.y()), map_x.rows - 2);
+  const double ax = pixel.x() - x0, ay = pixel.y() - y0;
+  auto at = [&](const cv::Mat& map) {
+    const float* row0 = map.ptr<float>(y0);
+    const float* row1 = map.ptr<float>(y0 + 1);
+    return (1 - ay) * ((1 - ax) * row0[x0] + ax * row0[x0 + 1]) + ay * ((1 - ax) * row1[x0] + ax * row1[x0 + 1]);
+  };
+  const double x = at(map_x), y = at(map_y);
+  return x >= margin && y >= margin && x <= camera_.width - 1 - margin && y <= camera_.height - 1 - margin;
+}
+
+cv::Mat ImageUndistorter::ApplySubView(int k, const cv::Mat& image) const {
+  CHECK_EQ(image.cols, camera_.width);
+  CHECK_EQ(image.rows, camera_.height);
+  cv::Mat view;
+  cv::remap(image, view, sub_map_x_.at(k), sub_map_y_.at(k), interpolation_, cv::BORDER_REPLICATE);
+  return view;
 }
 
 cv::Mat ImageUndistorter::Apply(const cv::Mat& image) const {

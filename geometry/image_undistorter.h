@@ -4,8 +4,10 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <opencv2/core.hpp>
 #include <string>
+#include <vector>
 
 #include "geometry/camera.h"
 
@@ -50,6 +52,31 @@ enum class UndistortView {
 // 1.3 ms per 640 x 480 frame more (docs/decisions.md).
 constexpr UndistortView kDetectionView = UndistortView::kFullView;
 
+// A pinhole view of part of a wide lens's field of view: the camera rotated by view_R_camera, with
+// its own intrinsics. Straight 3D lines are straight in it, as in K's image, and its focal length
+// is the lens's own angular resolution, so edges are sampled as finely as the sensor sampled them.
+struct PerspectiveSubView {
+  Eigen::Matrix3d view_R_camera = Eigen::Matrix3d::Identity();
+  double fx = 0, fy = 0, cx = 0, cy = 0;  // pixels of the sub-view
+  cv::Size size;
+  Eigen::Vector3d axis = Eigen::Vector3d::UnitZ();  // its optical axis in the camera frame
+  // K camera_R_view K_view^-1: sub-view pixels to K's undistorted pixels.
+  Eigen::Matrix3d undistorted_H_view = Eigen::Matrix3d::Identity();
+
+  // Pixel of the sub-view -> unit ray in the camera frame.
+  Eigen::Vector3d Ray(const Eigen::Vector2d& pixel) const;
+  // Pixel of the sub-view -> pixel of K's undistorted image: a homography (undistorted_H_view), so
+  // a segment maps to a segment. The ray must be in front of the camera (z > 0).
+  Eigen::Vector2d ToUndistorted(const Eigen::Vector2d& pixel) const;
+};
+
+// The sub-views an equidistant lens is detected on (ImageUndistorter with kFullView): a grid of
+// pinhole views whose axes are at most about kSubViewCellDeg apart in yaw and pitch, each with the
+// lens's focal length and just large enough for the rays closest to its axis (its cell, sampled
+// every 2 stored pixels) plus `margin` px. Empty when the camera is not equidistant.
+constexpr double kSubViewCellDeg = 50;
+std::vector<PerspectiveSubView> EquidistantSubViews(const Camera& camera, int margin);
+
 class ImageUndistorter {
  public:
   explicit ImageUndistorter(const Camera& camera,
@@ -70,6 +97,21 @@ class ImageUndistorter {
   bool FullView() const { return full_view_; }
   const Camera& camera() const { return camera_; }
 
+  // kFullView on an equidistant lens: the perspective sub-views detection runs on instead of one
+  // canvas (on the canvas, a 150 degree lens's periphery is stretched up to 1/cos^2(75 deg) = 15
+  // times along the radius, so the detector's pixel thresholds meant a fraction of a stored pixel
+  // there). Empty otherwise.
+  const std::vector<PerspectiveSubView>& SubViews() const { return sub_views_; }
+  // The index of the sub-view whose axis is closest to `ray` (camera frame): the one whose
+  // junctions are kept there.
+  int SubViewOf(const Eigen::Vector3d& ray) const;
+  // Sub-view k of the stored image (the constructor's interpolation; beyond the stored image its
+  // nearest border pixel, as on the canvas).
+  cv::Mat ApplySubView(int k, const cv::Mat& image) const;
+  // True when pixel `pixel` of sub-view k is seen by the stored image at least `margin` px inside
+  // its border (SeenByStoredImage's test, through the sub-view's remap tables).
+  bool SubViewSees(int k, const Eigen::Vector2d& pixel, double margin) const;
+
  private:
   Camera camera_;
   int interpolation_;      // cv::INTER_*
@@ -78,6 +120,8 @@ class ImageUndistorter {
   Eigen::Vector2d offset_ = Eigen::Vector2d::Zero();
   cv::Size canvas_size_;
   cv::Mat map_x_, map_y_;  // empty when there is no distortion
+  std::vector<PerspectiveSubView> sub_views_;
+  std::vector<cv::Mat> sub_map_x_, sub_map_y_;
 };
 
 // The full-view canvas of `camera`: (left, top) margins and size, with `pad` px beyond the

@@ -2,7 +2,7 @@
 
 #include <opencv2/core.hpp>
 
-#include "frontend/segments/undistorted_segments.h"
+#include "frontend/junctions/undistorted_junctions.h"
 #include "util/parallel.h"
 
 namespace sfm {
@@ -19,8 +19,7 @@ Status DetectSequenceJunctions(const Sequence& sequence, const ImageUndistorter&
     cv::Mat image;
     statuses[i] = LoadFrameImage(sequence, i, &image);
     if (statuses[i].ok()) {
-      const LineSegments segments = DetectUndistortedSegments(undistorter, image, segment_options);
-      (*junctions)[i] = DetectJunctions(segments, junction_options);
+      (*junctions)[i] = DetectUndistortedJunctions(undistorter, image, segment_options, junction_options);
       (*graphs)[i] = BuildTopologyGraph((*junctions)[i]);
     }
     progress->Tick("junction detection", "frame", n);

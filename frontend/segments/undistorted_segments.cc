@@ -7,13 +7,19 @@ namespace sfm {
 
 void ClipSegmentsToStoredView(const Camera& camera, double margin, double min_length,
                               LineSegments* segments) {
+  ClipSegmentsToRegion([&](const Eigen::Vector2d& p) { return SeenByStoredImage(camera, p, margin); },
+                       min_length, segments);
+}
+
+void ClipSegmentsToRegion(const std::function<bool(const Eigen::Vector2d&)>& in_region, double min_length,
+                          LineSegments* segments) {
   LineSegments kept;
   kept.reserve(segments->size());
   for (const LineSegment& segment : *segments) {
     const double length = segment.Length();
     const int steps = std::max(1, static_cast<int>(std::ceil(length / 0.5)));
     auto at = [&](double s) -> Eigen::Vector2d { return segment.p0 + s * (segment.p1 - segment.p0); };
-    auto seen = [&](double s) { return SeenByStoredImage(camera, at(s), margin); };
+    auto seen = [&](double s) { return in_region(at(s)); };
     // Longest run of seen samples, in sample indices [best_first, best_last].
     int best_first = -1, best_last = -2, first = -1;
     bool all_seen = true;

@@ -2,6 +2,7 @@
 // (same size, or the full-view canvas of ImageUndistorter; docs/segments.md).
 #pragma once
 
+#include <functional>
 #include <opencv2/core.hpp>
 
 #include "geometry/camera.h"
@@ -25,5 +26,8 @@ LineSegments DetectUndistortedSegments(const ImageUndistorter& undistorter, cons
 // scaled by the share kept). A segment wholly inside is left bit for bit as it was. This is what
 // DropBorderSegments does at an image border, for the curved border of the seen region.
 void ClipSegmentsToStoredView(const Camera& camera, double margin, double min_length, LineSegments* segments);
+// The same cut for any region given by `seen` (a pixel of the segments' frame -> inside or not).
+void ClipSegmentsToRegion(const std::function<bool(const Eigen::Vector2d&)>& seen, double min_length,
+                          LineSegments* segments);
 
 }  // namespace sfm
