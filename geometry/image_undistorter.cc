@@ -167,8 +167,8 @@ std::vector<PerspectiveSubView> EquidistantSubViews(const Camera& camera, int ma
       view.view_R_camera.row(0) = x.transpose();
       view.view_R_camera.row(1) = view.axis.cross(x).transpose();
       view.view_R_camera.row(2) = view.axis.transpose();
-      view.fx = camera.fx;
-      view.fy = camera.fy;
+      view.fx = kSubViewZoom * camera.fx;
+      view.fy = kSubViewZoom * camera.fy;
       views.push_back(view);
     }
   }

@@ -75,6 +75,7 @@ struct PerspectiveSubView {
 // lens's focal length and just large enough for the rays closest to its axis (its cell, sampled
 // every 2 stored pixels) plus `margin` px. Empty when the camera is not equidistant.
 constexpr double kSubViewCellDeg = 50;
+constexpr double kSubViewZoom = 1.5;
 std::vector<PerspectiveSubView> EquidistantSubViews(const Camera& camera, int margin);
 
 class ImageUndistorter {
