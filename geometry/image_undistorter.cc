@@ -161,7 +161,8 @@ std::vector<PerspectiveSubView> EquidistantSubViews(const Camera& camera, int ma
   for (const double pitch : axis_angles(half_pitch)) {
     for (const double yaw : axis_angles(half_yaw)) {
       PerspectiveSubView view;
-      view.axis = Eigen::Vector3d(std::sin(yaw) * std::cos(pitch), std::sin(pitch), std::cos(yaw) * std::cos(pitch));
+      view.axis =
+          Eigen::Vector3d(std::sin(yaw) * std::cos(pitch), std::sin(pitch), std::cos(yaw) * std::cos(pitch));
       // x stays horizontal (perpendicular to the camera's y axis), y completes a right-handed frame.
       const Eigen::Vector3d x = Eigen::Vector3d::UnitY().cross(view.axis).normalized();
       view.view_R_camera.row(0) = x.transpose();
@@ -276,7 +277,8 @@ bool ImageUndistorter::SubViewSees(int k, const Eigen::Vector2d& pixel, double m
   auto at = [&](const cv::Mat& map) {
     const float* row0 = map.ptr<float>(y0);
     const float* row1 = map.ptr<float>(y0 + 1);
-    return (1 - ay) * ((1 - ax) * row0[x0] + ax * row0[x0 + 1]) + ay * ((1 - ax) * row1[x0] + ax * row1[x0 + 1]);
+    return (1 - ay) * ((1 - ax) * row0[x0] + ax * row0[x0 + 1]) +
+           ay * ((1 - ax) * row1[x0] + ax * row1[x0 + 1]);
   };
   const double x = at(map_x), y = at(map_y);
   return x >= margin && y >= margin && x <= camera_.width - 1 - margin && y <= camera_.height - 1 - margin;

@@ -26,7 +26,7 @@
 #include "frontend/junctions/junction_detector.h"
 #include "frontend/junctions/junctions_json.h"
 #include "frontend/segments/segment_detector.h"
-#include "frontend/segments/undistorted_segments.h"
+#include "frontend/junctions/undistorted_junctions.h"
 #include "frontend/sequence/sequence.h"
 #include "util/atomic_file.h"
 #include "pipeline/overlay/junction_overlay.h"
@@ -94,8 +94,9 @@ int main(int argc, char** argv) {
   if (!std::filesystem::is_regular_file(FLAGS_image, error)) return Fail(1, FLAGS_image + ": no such file");
   cv::Mat grey = cv::imread(FLAGS_image, cv::IMREAD_GRAYSCALE);
   if (grey.empty()) return Fail(1, FLAGS_image + ": cannot decode as an image");
-  // With --camera and --undistort_full_view, detection runs on the full-view canvas and the
-  // junctions come back in K's pixels (possibly outside the image; the overlay clips them).
+  // With --camera and --undistort_full_view, detection runs on the full-view canvas (an
+  // equidistant lens: its perspective sub-views) and the junctions come back in K's pixels
+  // (possibly outside the image; the overlay clips them).
   std::unique_ptr<sfm::ImageUndistorter> undistorter;
   cv::Mat stored;
   if (!FLAGS_camera.empty()) {
@@ -121,10 +122,14 @@ int main(int argc, char** argv) {
   }
 
   // Detection.
-  const sfm::LineSegments segments =
-      undistorter ? sfm::DetectUndistortedSegments(*undistorter, stored, segment_options)
-                  : sfm::DetectLineSegments(grey, segment_options);
-  const sfm::Junctions junctions = sfm::DetectJunctions(segments, junction_options);
+  sfm::LineSegments segments;
+  sfm::Junctions junctions;
+  if (undistorter) {
+    junctions = sfm::DetectUndistortedJunctions(*undistorter, stored, segment_options, junction_options, &segments);
+  } else {
+    segments = sfm::DetectLineSegments(grey, segment_options);
+    junctions = sfm::DetectJunctions(segments, junction_options);
+  }
 
   // Output.
   if (!FLAGS_json.empty()) {

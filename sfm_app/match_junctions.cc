@@ -33,7 +33,7 @@
 #include "frontend/matching/junction_matcher.h"
 #include "frontend/matching/matches_csv.h"
 #include "frontend/segments/segment_detector.h"
-#include "frontend/segments/undistorted_segments.h"
+#include "frontend/junctions/undistorted_junctions.h"
 #include "frontend/sequence/sequence.h"
 #include "util/atomic_file.h"
 #include "pipeline/overlay/match_overlay.h"
@@ -167,12 +167,10 @@ int main(int argc, char** argv) {
   // Detection on the view --undistort_full_view asks for (junctions in K's pixels either way); the
   // match picture shows the undistorted images of the stored size.
   const sfm::ImageUndistorter detector_view(calibration.camera, interpolation, sfm::UndistortViewFromFlags());
-  const sfm::LineSegments segments_a =
-      sfm::DetectUndistortedSegments(detector_view, image_a, segment_options);
-  const sfm::LineSegments segments_b =
-      sfm::DetectUndistortedSegments(detector_view, image_b, segment_options);
-  const sfm::Junctions junctions_a = sfm::DetectJunctions(segments_a, junction_options);
-  const sfm::Junctions junctions_b = sfm::DetectJunctions(segments_b, junction_options);
+  const sfm::Junctions junctions_a =
+      sfm::DetectUndistortedJunctions(detector_view, image_a, segment_options, junction_options);
+  const sfm::Junctions junctions_b =
+      sfm::DetectUndistortedJunctions(detector_view, image_b, segment_options, junction_options);
   const sfm::TopologyGraph graph_a = sfm::BuildTopologyGraph(junctions_a);
   const sfm::TopologyGraph graph_b = sfm::BuildTopologyGraph(junctions_b);
   const auto matched = std::chrono::steady_clock::now();

@@ -724,8 +724,8 @@ Status MeasureSequence(const JunctionBenchmarkOptions& bench, const std::string&
         s.junction_ms += fastest;
       } else {
         // Sub-views: segments and junctions are found together, view by view; all in the segment time.
-        junctions = DetectUndistortedJunctions(detection_undistorter, image, methods[m].options, junction_options,
-                                               &segments);
+        junctions = DetectUndistortedJunctions(detection_undistorter, image, methods[m].options,
+                                               junction_options, &segments);
         s.segment_ms += Ms(start);
       }
       s.segments += static_cast<int>(segments.size());

@@ -49,7 +49,8 @@ bool OneImageLine(const SegmentRays& a, const SegmentRays& b, double tolerance, 
 
 Junctions DetectUndistortedJunctions(const ImageUndistorter& undistorter, const cv::Mat& stored_image,
                                      const SegmentDetectorOptions& segment_options,
-                                     const JunctionDetectorOptions& junction_options, LineSegments* segments) {
+                                     const JunctionDetectorOptions& junction_options,
+                                     LineSegments* segments) {
   if (undistorter.SubViews().empty()) {
     LineSegments found = DetectUndistortedSegments(undistorter, stored_image, segment_options);
     Junctions junctions = DetectJunctions(found, junction_options);
@@ -65,7 +66,7 @@ Junctions DetectUndistortedJunctions(const ImageUndistorter& undistorter, const 
     const PerspectiveSubView& view = undistorter.SubViews()[k];
     LineSegments found = DetectLineSegments(undistorter.ApplySubView(k, stored_image), segment_options);
     ClipSegmentsToRegion([&](const Eigen::Vector2d& p) { return undistorter.SubViewSees(k, p, margin); },
-        segment_options.min_length, &found);
+                         segment_options.min_length, &found);
     const int first_segment = static_cast<int>(all_segments.size());
     for (Junction& junction : DetectJunctions(found, junction_options)) {
       if (undistorter.SubViewOf(view.Ray(junction.location)) != k) continue;
