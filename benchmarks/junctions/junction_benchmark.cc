@@ -206,8 +206,21 @@ int RingOf(const Camera& camera, const Eigen::Vector2d& p) {
   return k;
 }
 
+// Rings of angle from the optical axis (degrees) for the recall by angle: lenses of different focal
+// length and model compared where they look (47 degrees: the 150 degree fisheye's canvas stretch 2.2).
+constexpr int kNumAngleRings = 5;
+constexpr double kAngleRingEdges[kNumAngleRings + 1] = {0, 15, 30, 40, 47, 90};
+int AngleRingOf(const Camera& camera, const Eigen::Vector2d& p) {
+  const double degrees =
+      std::atan(std::hypot((p.x() - camera.cx) / camera.fx, (p.y() - camera.cy) / camera.fy)) * 180 / M_PI;
+  int k = 0;
+  while (k + 1 < kNumAngleRings && degrees >= kAngleRingEdges[k + 1]) ++k;
+  return k;
+}
+
 struct GeneratedStats {
   std::array<int, kNumRings> ring_detectable{}, ring_found{};
+  std::array<int, kNumAngleRings> angle_detectable{}, angle_found{};
   std::array<std::array<int, kNumMissKinds>, kNumRings> ring_misses{};  // by WhyMissed
   std::array<double, kNumRings> ring_stretch{};  // the undistortion's radial stretch at the ring's middle
   std::array<int, kNumVariants> variant_count{}, variant_found{};
@@ -235,6 +248,10 @@ struct GeneratedStats {
       ring_detectable[k] += o.ring_detectable[k];
       ring_found[k] += o.ring_found[k];
       for (int j = 0; j < kNumMissKinds; ++j) ring_misses[k][j] += o.ring_misses[k][j];
+    }
+    for (int k = 0; k < kNumAngleRings; ++k) {
+      angle_detectable[k] += o.angle_detectable[k];
+      angle_found[k] += o.angle_found[k];
     }
     for (int k = 0; k < kNumMissKinds; ++k) misses[k] += o.misses[k];
     for (int k = 0; k < kNumCrowdedKinds; ++k) crowded[k] += o.crowded[k];
@@ -746,6 +763,9 @@ Status MeasureSequence(const JunctionBenchmarkOptions& bench, const std::string&
         const int ring = RingOf(camera, detectable[i]);
         ++s.ring_detectable[ring];
         if (detectable_found[i]) ++s.ring_found[ring];
+        const int angle_ring = AngleRingOf(camera, detectable[i]);
+        ++s.angle_detectable[angle_ring];
+        if (detectable_found[i]) ++s.angle_found[angle_ring];
       }
       // The literal wording: a detected junction within the radius, shared or not.
       for (const Eigen::Vector2d& p : detectable) {
@@ -1090,6 +1110,14 @@ Status JunctionBenchmarkReport(const JunctionBenchmarkOptions& bench,
   rings << "\n|---|---|";
   for (int k = 0; k < kNumRings; ++k) rings << "---|";
   rings << "\n";
+  std::ostringstream angles;
+  angles << "\nBy angle from the optical axis (found / count, recall):\n\n| sequence | segments |";
+  for (int k = 0; k < kNumAngleRings; ++k) {
+    angles << " " << kAngleRingEdges[k] << "-" << kAngleRingEdges[k + 1] << " deg |";
+  }
+  angles << "\n|---|---|";
+  for (int k = 0; k < kNumAngleRings; ++k) angles << "---|";
+  angles << "\n";
   for (const auto& [name, directory, clean] : sequences) {
     std::fprintf(stderr, "benchmark_junctions: measuring %s\n", directory.c_str());
     std::vector<GeneratedStats> stats;
@@ -1108,6 +1136,12 @@ Status JunctionBenchmarkReport(const JunctionBenchmarkOptions& bench,
               << s.ring_misses[k][kNotJoined] << ", stretch " << Fixed(s.ring_stretch[k], 2) << " |";
       }
       rings << "\n";
+      angles << "| " << name << " | " << methods[m].name << " |";
+      for (int k = 0; k < kNumAngleRings; ++k) {
+        angles << " " << s.angle_found[k] << " / " << s.angle_detectable[k] << " ("
+               << Percent(s.angle_found[k], s.angle_detectable[k]) << ") |";
+      }
+      angles << "\n";
     }
     for (size_t m = 0; m < methods.size(); ++m) {
       const GeneratedStats& s = stats[m];
@@ -1133,7 +1167,7 @@ Status JunctionBenchmarkReport(const JunctionBenchmarkOptions& bench,
            << " + " << Fixed(s.junction_ms / s.frames, 2) << " |\n";
   }
 
-  report << rings.str();
+  report << rings.str() << angles.str();
   report << "\n### Other readings of \"detectable\", all generated frames\n\n"
          << "| vertices | segments | count | found | recall | median error (px) |\n|---|---|---|---|---|---|\n";
   for (size_t m = 0; m < methods.size(); ++m) {
