@@ -383,7 +383,7 @@ TEST_F(BackendEndToEnd, FloorPriorCorrectsTheOdometryScaleOnlyWithTheBaseOnTheFl
 // A fisheye robot (issue 21): make_sequence --scene room --trajectory loop --seed 1 --lens
 // equidistant, 20 frames (a 150-degree diagonal equidistant lens, f = 305.6 px at 640 x 480).
 // Figure protected: the refined ATE at most 0.2 of the odometry's (measured 0.108; 60 frames:
-// 0.062 against the pinhole's 0.093), every junction and landmark finite, and the COLMAP camera an
+// 0.058 against the pinhole's 0.093), every junction and landmark finite, and the COLMAP camera an
 // OPENCV_FISHEYE.
 TEST_F(BackendEndToEnd, EquidistantLensRoomReachesTheAteRatioBound) {
   GeneratorOptions generator;
