@@ -125,7 +125,8 @@ int main(int argc, char** argv) {
   sfm::LineSegments segments;
   sfm::Junctions junctions;
   if (undistorter) {
-    junctions = sfm::DetectUndistortedJunctions(*undistorter, stored, segment_options, junction_options, &segments);
+    junctions =
+        sfm::DetectUndistortedJunctions(*undistorter, stored, segment_options, junction_options, &segments);
   } else {
     segments = sfm::DetectLineSegments(grey, segment_options);
     junctions = sfm::DetectJunctions(segments, junction_options);

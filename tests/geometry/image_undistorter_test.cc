@@ -102,15 +102,15 @@ TEST(ImageUndistorterTest, EquidistantSubViewsCoverTheFisheyeViewAndMapToK) {
   for (int y = 3; y < camera.height - 3; y += 7) {
     for (int x = 3; x < camera.width - 3; x += 7) {
       const Eigen::Vector2d undistorted = camera.UndistortPixel(Eigen::Vector2d(x, y));
-      const Eigen::Vector3d ray =
-          Eigen::Vector3d((undistorted.x() - camera.cx) / camera.fx, (undistorted.y() - camera.cy) / camera.fy, 1)
-              .normalized();
+      const Eigen::Vector3d ray = Eigen::Vector3d((undistorted.x() - camera.cx) / camera.fx,
+                                                  (undistorted.y() - camera.cy) / camera.fy, 1)
+                                      .normalized();
       const int k = undistorter.SubViewOf(ray);
       const PerspectiveSubView& view = undistorter.SubViews()[k];
       const Eigen::Vector3d v = view.view_R_camera * ray;
       const Eigen::Vector2d p(view.fx * v.x() / v.z() + view.cx, view.fy * v.y() / v.z() + view.cy);
-      closest_border = std::min({closest_border, p.x(), p.y(), view.size.width - 1 - p.x(),
-                                 view.size.height - 1 - p.y()});
+      closest_border =
+          std::min({closest_border, p.x(), p.y(), view.size.width - 1 - p.x(), view.size.height - 1 - p.y()});
       worst_map = std::max(worst_map, (view.ToUndistorted(p) - undistorted).norm());
       EXPECT_TRUE(undistorter.SubViewSees(k, p, 2.0)) << x << " " << y;
       const int px = static_cast<int>(std::lround(p.x())), py = static_cast<int>(std::lround(p.y()));
@@ -126,7 +126,8 @@ TEST(ImageUndistorterTest, EquidistantSubViewsCoverTheFisheyeViewAndMapToK) {
   EXPECT_LE(worst_grey, 1.5);
   camera.model = DistortionModel::kRadTan;
   camera.distortion = {-0.2, 0.05, 0, 0, 0};
-  EXPECT_TRUE(ImageUndistorter(camera, UndistortInterpolation::kLinear, UndistortView::kFullView).SubViews().empty());
+  EXPECT_TRUE(
+      ImageUndistorter(camera, UndistortInterpolation::kLinear, UndistortView::kFullView).SubViews().empty());
 }
 
 TEST(ImageUndistorterTest, ParsesTheInterpolationNames) {
