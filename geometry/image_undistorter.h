@@ -53,8 +53,9 @@ enum class UndistortView {
 constexpr UndistortView kDetectionView = UndistortView::kFullView;
 
 // A pinhole view of part of a wide lens's field of view: the camera rotated by view_R_camera, with
-// its own intrinsics. Straight 3D lines are straight in it, as in K's image, and its focal length
-// is the lens's own angular resolution, so edges are sampled as finely as the sensor sampled them.
+// its own intrinsics. Straight 3D lines are straight in it, as in K's image, and near its axis one
+// sub-view pixel is a fixed share of a stored pixel (kSubViewZoom), where K's canvas stretches the
+// periphery of a wide lens many times.
 struct PerspectiveSubView {
   Eigen::Matrix3d view_R_camera = Eigen::Matrix3d::Identity();
   double fx = 0, fy = 0, cx = 0, cy = 0;  // pixels of the sub-view
@@ -71,10 +72,15 @@ struct PerspectiveSubView {
 };
 
 // The sub-views an equidistant lens is detected on (ImageUndistorter with kFullView): a grid of
-// pinhole views whose axes are at most about kSubViewCellDeg apart in yaw and pitch, each with the
-// lens's focal length and just large enough for the rays closest to its axis (its cell, sampled
-// every 2 stored pixels) plus `margin` px. Empty when the camera is not equidistant.
+// pinhole views whose axes are at most about kSubViewCellDeg apart in yaw and pitch (a 150 degree
+// lens: 3 x 3), each with kSubViewZoom times the lens's focal length and just large enough for the
+// rays closest to its axis (its cell, sampled every 2 stored pixels) plus `margin` px. Empty when
+// the camera is not equidistant.
 constexpr double kSubViewCellDeg = 50;
+// The sub-views' focal length over the lens's (its angular resolution on the axis). At 1.0 the
+// junction locations are a stored pixel coarse: fisheye rooms' recall within 3 undistorted px fell
+// below the canvas's (85.7 % against 88.2 %); at 1.5 it is 89.5 %, and 92.1 % in stored pixels
+// (1.0: 89.4 %). The pinhole of the same rooms has 1.47 times the fisheye's focal length.
 constexpr double kSubViewZoom = 1.5;
 std::vector<PerspectiveSubView> EquidistantSubViews(const Camera& camera, int margin);
 
