@@ -1,0 +1,169 @@
+#include "backend/triangulation/line_point_agreement.h"
+
+#include <glog/logging.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <set>
+#include <utility>
+
+namespace sfm {
+namespace {
+
+// The (line, point) pairs whose junctions use one detected line segment in some frame: the point's
+// junction is on the line's image segment there (its far end, or a junction along it).
+std::set<std::pair<int, int>> Candidates(const std::vector<Junctions>& junctions, const Landmarks& landmarks) {
+  const int num_frames = static_cast<int>(junctions.size());
+  // Per frame: detected segment -> the drawn points whose junctions use it.
+  std::vector<std::map<int, std::vector<std::pair<int, int>>>> users(num_frames);  // (junction, point)
+  for (size_t p = 0; p < landmarks.points.size(); ++p) {
+    for (const PointObservation& observation : landmarks.points[p].observations) {
+      CHECK(observation.frame >= 0 && observation.frame < num_frames) << "frame " << observation.frame;
+      const Junctions& frame = junctions[observation.frame];
+      CHECK(observation.junction >= 0 && observation.junction < static_cast<int>(frame.size()));
+      for (const JunctionSegment& segment : frame[observation.junction].segments) {
+        if (segment.line_segment >= 0)
+          users[observation.frame][segment.line_segment].emplace_back(observation.junction, static_cast<int>(p));
+      }
+    }
+  }
+  std::set<std::pair<int, int>> candidates;
+  for (size_t l = 0; l < landmarks.lines.size(); ++l) {
+    const LineLandmark& line = landmarks.lines[l];
+    for (const LineObservation& observation : line.observations) {
+      CHECK(observation.frame >= 0 && observation.frame < num_frames) << "frame " << observation.frame;
+      const Junctions& frame = junctions[observation.frame];
+      CHECK(observation.junction >= 0 && observation.junction < static_cast<int>(frame.size()));
+      const Junction& junction = frame[observation.junction];
+      CHECK(observation.segment >= 0 && observation.segment < junction.NumSegments());
+      const int detected = junction.segments[observation.segment].line_segment;
+      if (detected < 0) continue;
+      const auto it = users[observation.frame].find(detected);
+      if (it == users[observation.frame].end()) continue;
+      for (const auto& [other_junction, point] : it->second) {
+        if (other_junction == observation.junction || point == line.point_landmark) continue;
+        candidates.emplace(static_cast<int>(l), point);
+      }
+    }
+  }
+  return candidates;
+}
+
+}  // namespace
+
+void AgreeLinesAndPoints(const Eigen::Matrix3d& K, const std::vector<Pose3>& world_T_camera,
+                         const std::vector<Junctions>& junctions, const LinePointAgreementOptions& options,
+                         Landmarks* landmarks, LinePointAgreementReport* report) {
+  CHECK_EQ(world_T_camera.size(), junctions.size());
+  CHECK(options.level > 0 && options.level < 1);
+  LinePointAgreementReport local;
+  std::vector<PointLandmark>& points = landmarks->points;
+  std::vector<LineLandmark>& lines = landmarks->lines;
+  const std::set<std::pair<int, int>> candidates = Candidates(junctions, *landmarks);
+  local.candidates = static_cast<int>(candidates.size());
+  const double across_bound2 = ChiSquareQuantile(options.level, 2);  // in units of the variance
+  // z sqrt(2) sigma: an observed far end-point's and a junction location's noise along the segment.
+  const double end_slack_px = std::sqrt(2 * ChiSquareQuantile(options.level, 1)) * options.pixel_sigma_px;
+
+  // The points' sigmas, computed once (worst direction, with the poses' drift).
+  std::vector<double> point_sigma(points.size(), -1);
+  auto sigma_of_point = [&](int p) {
+    if (point_sigma[p] < 0) {
+      std::vector<Pose3> cameras;
+      std::vector<int> frames;
+      for (const PointObservation& observation : points[p].observations) {
+        cameras.push_back(world_T_camera[observation.frame]);
+        frames.push_back(observation.frame);
+      }
+      point_sigma[p] = PointPositionSigma(K, cameras, frames, points[p].position, options.pixel_sigma_px,
+                                          options.drift);
+    }
+    return point_sigma[p];
+  };
+  auto views_of = [&](const LineLandmark& line) {
+    std::vector<LineSegmentView> views;
+    for (const LineObservation& observation : line.observations)
+      views.push_back({world_T_camera[observation.frame], observation.p0, observation.p1, observation.frame});
+    return views;
+  };
+
+  struct Far {
+    int point = -1;
+    double s = std::numeric_limits<double>::infinity();
+  };
+  struct Fusion {
+    int line = -1;
+    double ratio = std::numeric_limits<double>::infinity();  // d^2 / (sigma_P^2 + sigma_L^2)
+    Eigen::Vector3d target = Eigen::Vector3d::Zero();
+  };
+  std::vector<Far> far(lines.size());
+  std::vector<Fusion> fusion(points.size());
+  std::vector<std::vector<std::pair<double, int>>> interior(lines.size());  // (s, point)
+  for (const auto& [l, p] : candidates) {
+    const LineLandmark& line = lines[l];
+    if (p == line.end1_point) continue;
+    const Eigen::Vector3d start = line.point_landmark >= 0 ? points[line.point_landmark].position : line.end0;
+    const Eigen::Vector3d along = line.end1 - start;
+    const double length = along.norm();
+    if (!(length > 0)) continue;
+    const Eigen::Vector3d u = along / length;
+    const Eigen::Vector3d& x = points[p].position;
+    const double s = (x - start).dot(u);
+    const Eigen::Vector3d foot = start + s * u;
+    const double d2 = (x - foot).squaredNorm();
+    const double sigma_p = sigma_of_point(p);
+    if (!std::isfinite(sigma_p) || s <= 0) continue;
+    const std::vector<LineSegmentView> views = views_of(line);
+    const double sigma_l = LinePositionSigma(K, views, foot, u, options.pixel_sigma_px, options.drift, true);
+    if (!std::isfinite(sigma_l)) continue;
+    const double variance = sigma_p * sigma_p + sigma_l * sigma_l;
+    if (d2 > across_bound2 * variance) continue;
+    // Where P's projections fall along the observed segments, relative to their far end-points.
+    std::vector<double> beyond_px;
+    for (const LineObservation& observation : line.observations) {
+      const Eigen::Vector3d in_camera = world_T_camera[observation.frame].Inverse() * x;
+      const Eigen::Vector2d d = observation.p1 - observation.p0;
+      if (!(in_camera.z() > 0 && d.norm() > 0)) continue;
+      beyond_px.push_back(d.normalized().dot((K * in_camera).hnormalized() - observation.p1));
+    }
+    if (beyond_px.empty()) continue;
+    std::nth_element(beyond_px.begin(), beyond_px.begin() + beyond_px.size() / 2, beyond_px.end());
+    const double beyond = beyond_px[beyond_px.size() / 2];
+    if (beyond >= -end_slack_px) {
+      if (line.end1_point < 0 && beyond <= options.max_gap_px + end_slack_px && s < far[l].s) far[l] = {p, s};
+      continue;
+    }
+    const double margin = std::sqrt(variance);
+    if (s < margin || s > length - margin) continue;
+    interior[l].emplace_back(s, p);
+    const double ratio = d2 / variance;
+    if (ratio < fusion[p].ratio) {
+      // The inverse-variance mean of the point and the line across the line (isotropic worst sigmas).
+      fusion[p] = {static_cast<int>(l), ratio, x + (sigma_p * sigma_p / variance) * (foot - x)};
+    }
+  }
+  for (size_t p = 0; p < points.size(); ++p) {
+    if (fusion[p].line < 0) continue;
+    points[p].position = fusion[p].target;
+    ++local.points_on_lines;
+  }
+  for (size_t l = 0; l < lines.size(); ++l) {
+    LineLandmark& line = lines[l];
+    if (far[l].point >= 0) {
+      line.end1_point = far[l].point;
+      ++local.ends_at_points;
+    }
+    std::sort(interior[l].begin(), interior[l].end());
+    for (const auto& [s, p] : interior[l]) {
+      if (p == line.end1_point) continue;
+      line.interior_points.push_back(p);
+      ++local.splits;
+    }
+    if (line.end1_point >= 0) line.end1 = points[line.end1_point].position;
+  }
+  if (report != nullptr) *report = local;
+}
+
+}  // namespace sfm
