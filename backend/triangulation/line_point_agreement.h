@@ -20,9 +20,10 @@ struct LinePointAgreementOptions {
   // WireframeSelectionReport::pixel_sigma_px) and the poses' error (WireframePoseDrift).
   double pixel_sigma_px = kJunctionLocationErrorPx;
   PoseDrift drift;
-  // A point agrees with a line when its distance from the line is within the chi-square quantile at
-  // this level (2 degrees of freedom: the two directions across the line) of the sum of the point's
-  // and the line's variances there. In (0, 1): the wireframe selection's consistency_level.
+  // A point agrees with a line when its offset d across the line passes the chi-square test at this
+  // level with 2 degrees of freedom: d^T (C_P + C_L)^-1 d, C_P the point's covariance
+  // (PointPositionCovariance) and C_L the line's there (LinePositionCovariance), both across the
+  // line. In (0, 1): the wireframe selection's consistency_level.
   double level = 0.999;
   // A point is the line's far end when, in the median of the line's views, its projection lies
   // along the observed segment from z sqrt(2) sigma before the observed far end-point to this many
@@ -46,11 +47,10 @@ struct LinePointAgreementReport {
 // junction point or end0, E end1), P's foot at s along it, d across it:
 // - far end: when L's end1 is not yet a point, P agrees across and its projections lie at the
 //   observed far ends (max_gap_px): end1 = P, end1_point set (the nearest such P along L);
-// - interior: when s is between the ends (each at least the combined sigma away) and P agrees
-//   across: P is appended to L's interior_points (the edge is split there) and fused with L: moved
-//   towards its foot by sigma_P^2 / (sigma_P^2 + sigma_L^2) of the way (the inverse-variance mean
-//   across the line; sigma_P PointPositionSigma, sigma_L LinePositionSigma, worst directions). A
-//   point on several lines is moved towards the one it agrees with best.
+// - interior: when s is between the ends (each at least sqrt(trace(C_P + C_L)) away) and P agrees
+//   across: P is appended to L's interior_points (the edge is split there) and fused with L, moved
+//   to the inverse-variance mean across the line, x + C_P (C_P + C_L)^-1 d (along the line it
+//   keeps its own position). A point on several lines is fused with the one it agrees with best.
 // Lines' end1 at points (also those FarEndsAtPoints set) follow the moved points.
 void AgreeLinesAndPoints(const Eigen::Matrix3d& K, const std::vector<Pose3>& world_T_camera,
                          const std::vector<Junctions>& junctions, const LinePointAgreementOptions& options,
