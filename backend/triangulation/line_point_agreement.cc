@@ -67,20 +67,23 @@ void AgreeLinesAndPoints(const Eigen::Matrix3d& K, const std::vector<Pose3>& wor
   // z sqrt(2) sigma: an observed far end-point's and a junction location's noise along the segment.
   const double end_slack_px = std::sqrt(2 * ChiSquareQuantile(options.level, 1)) * options.pixel_sigma_px;
 
-  // The points' sigmas, computed once (worst direction, with the poses' drift).
-  std::vector<double> point_sigma(points.size(), -1);
-  auto sigma_of_point = [&](int p) {
-    if (point_sigma[p] < 0) {
+  // The points' covariances, computed once (with the poses' drift); false: undetermined.
+  std::vector<int> point_state(points.size(), 0);  // 0 not computed, 1 determined, -1 not
+  std::vector<Eigen::Matrix3d> point_covariance(points.size());
+  auto covariance_of_point = [&](int p) {
+    if (point_state[p] == 0) {
       std::vector<Pose3> cameras;
       std::vector<int> frames;
       for (const PointObservation& observation : points[p].observations) {
         cameras.push_back(world_T_camera[observation.frame]);
         frames.push_back(observation.frame);
       }
-      point_sigma[p] = PointPositionSigma(K, cameras, frames, points[p].position, options.pixel_sigma_px,
-                                          options.drift);
+      point_state[p] = PointPositionCovariance(K, cameras, frames, points[p].position, options.pixel_sigma_px,
+                                               options.drift, &point_covariance[p])
+                           ? 1
+                           : -1;
     }
-    return point_sigma[p];
+    return point_state[p] > 0;
   };
   auto views_of = [&](const LineLandmark& line) {
     std::vector<LineSegmentView> views;
@@ -95,7 +98,7 @@ void AgreeLinesAndPoints(const Eigen::Matrix3d& K, const std::vector<Pose3>& wor
   };
   struct Fusion {
     int line = -1;
-    double ratio = std::numeric_limits<double>::infinity();  // d^2 / (sigma_P^2 + sigma_L^2)
+    double ratio = std::numeric_limits<double>::infinity();  // d^T (C_P + C_L)^-1 d across the line
     Eigen::Vector3d target = Eigen::Vector3d::Zero();
   };
   std::vector<Far> far(lines.size());
@@ -112,21 +115,25 @@ void AgreeLinesAndPoints(const Eigen::Matrix3d& K, const std::vector<Pose3>& wor
     const Eigen::Vector3d& x = points[p].position;
     const double s = (x - start).dot(u);
     const Eigen::Vector3d foot = start + s * u;
-    const double d2 = (x - foot).squaredNorm();
-    const double sigma_p = sigma_of_point(p);
-    if (!std::isfinite(sigma_p) || s <= 0) continue;
-    const std::vector<LineSegmentView> views = views_of(line);
-    const double sigma_l = LinePositionSigma(K, views, foot, u, options.pixel_sigma_px, options.drift, true);
-    if (!std::isfinite(sigma_l)) continue;
-    const double variance = sigma_p * sigma_p + sigma_l * sigma_l;
-    if (d2 > across_bound2 * variance) continue;
+    if (s <= 0 || !covariance_of_point(p)) continue;
+    Eigen::Matrix2d line_covariance;
+    Eigen::Matrix<double, 3, 2> plane;  // orthonormal basis across the line
+    if (!LinePositionCovariance(K, views_of(line), foot, u, options.pixel_sigma_px, options.drift, true,
+                                &line_covariance, &plane))
+      continue;
+    // The point's and the line's errors across the line, independent: d ~ N(0, C_P + C_L).
+    const Eigen::Matrix2d point_across = plane.transpose() * point_covariance[p] * plane;
+    const Eigen::Matrix2d combined = point_across + line_covariance;
+    const Eigen::Vector2d d = plane.transpose() * (foot - x);
+    const double ratio = d.dot(combined.ldlt().solve(d));
+    if (!(ratio <= across_bound2)) continue;
     // Where P's projections fall along the observed segments, relative to their far end-points.
     std::vector<double> beyond_px;
     for (const LineObservation& observation : line.observations) {
       const Eigen::Vector3d in_camera = world_T_camera[observation.frame].Inverse() * x;
-      const Eigen::Vector2d d = observation.p1 - observation.p0;
-      if (!(in_camera.z() > 0 && d.norm() > 0)) continue;
-      beyond_px.push_back(d.normalized().dot((K * in_camera).hnormalized() - observation.p1));
+      const Eigen::Vector2d segment = observation.p1 - observation.p0;
+      if (!(in_camera.z() > 0 && segment.norm() > 0)) continue;
+      beyond_px.push_back(segment.normalized().dot((K * in_camera).hnormalized() - observation.p1));
     }
     if (beyond_px.empty()) continue;
     std::nth_element(beyond_px.begin(), beyond_px.begin() + beyond_px.size() / 2, beyond_px.end());
@@ -135,13 +142,14 @@ void AgreeLinesAndPoints(const Eigen::Matrix3d& K, const std::vector<Pose3>& wor
       if (line.end1_point < 0 && beyond <= options.max_gap_px + end_slack_px && s < far[l].s) far[l] = {p, s};
       continue;
     }
-    const double margin = std::sqrt(variance);
+    // Strictly inside: at least the combined sigma from either end.
+    const double margin = std::sqrt(combined.trace());
     if (s < margin || s > length - margin) continue;
     interior[l].emplace_back(s, p);
-    const double ratio = d2 / variance;
     if (ratio < fusion[p].ratio) {
-      // The inverse-variance mean of the point and the line across the line (isotropic worst sigmas).
-      fusion[p] = {static_cast<int>(l), ratio, x + (sigma_p * sigma_p / variance) * (foot - x)};
+      // The inverse-variance mean of the point and the line across the line (the point's along the
+      // line unchanged): x + C_P (C_P + C_L)^-1 d.
+      fusion[p] = {static_cast<int>(l), ratio, x + plane * (point_across * combined.ldlt().solve(d))};
     }
   }
   for (size_t p = 0; p < points.size(); ++p) {
