@@ -12,8 +12,9 @@
 namespace sfm {
 namespace {
 
-// The (line, point) pairs whose junctions use one detected line segment in some frame: the point's
-// junction is on the line's image segment there (its far end, or a junction along it).
+// The (line, point) pairs whose junctions use one detected line segment in every frame that observes
+// both (the topology edges' rule, TopologyEdgeOptions::min_support 1): the point's junction is on the
+// line's image segment there (its far end, or a junction along it).
 std::set<std::pair<int, int>> Candidates(const std::vector<Junctions>& junctions, const Landmarks& landmarks) {
   const int num_frames = static_cast<int>(junctions.size());
   // Per frame: detected segment -> the drawn points whose junctions use it.
@@ -29,7 +30,7 @@ std::set<std::pair<int, int>> Candidates(const std::vector<Junctions>& junctions
       }
     }
   }
-  std::set<std::pair<int, int>> candidates;
+  std::map<std::pair<int, int>, std::set<int>> joined;  // (line, point) -> the frames showing it
   for (size_t l = 0; l < landmarks.lines.size(); ++l) {
     const LineLandmark& line = landmarks.lines[l];
     for (const LineObservation& observation : line.observations) {
@@ -44,11 +45,29 @@ std::set<std::pair<int, int>> Candidates(const std::vector<Junctions>& junctions
       if (it == users[observation.frame].end()) continue;
       for (const auto& [other_junction, point] : it->second) {
         if (other_junction == observation.junction || point == line.point_landmark) continue;
-        candidates.emplace(static_cast<int>(l), point);
+        joined[{static_cast<int>(l), point}].insert(observation.frame);
       }
     }
   }
+  std::set<std::pair<int, int>> candidates;
+  for (const auto& [pair, frames] : joined) {
+    size_t both = 0;
+    for (const PointObservation& observation : landmarks.points[pair.second].observations) {
+      const std::vector<LineObservation>& seen = landmarks.lines[pair.first].observations;
+      both += std::any_of(seen.begin(), seen.end(),
+                          [&](const LineObservation& line) { return line.frame == observation.frame; });
+    }
+    if (frames.size() >= both) candidates.insert(pair);
+  }
   return candidates;
+}
+
+// A landmark's a-posteriori variance factor, chi2 / dof when above 1 (Foerstner & Wrobel 2016, ch. 4,
+// as the wireframe selection's OwnSigmaFactor squared): a landmark whose residuals exceed the pixel
+// noise is less certain than its first-order covariance says. 1 without a degree of freedom.
+double OwnVarianceFactor(double chi_square, int dof) {
+  if (dof < 1 || !std::isfinite(chi_square)) return 1.0;
+  return std::max(1.0, chi_square / dof);
 }
 
 }  // namespace
@@ -82,6 +101,12 @@ void AgreeLinesAndPoints(const Eigen::Matrix3d& K, const std::vector<Pose3>& wor
                                                options.drift, &point_covariance[p])
                            ? 1
                            : -1;
+      std::vector<Eigen::Vector2d> pixels;
+      for (const PointObservation& observation : points[p].observations) pixels.push_back(observation.pixel);
+      int dof = 0;
+      const double chi_square =
+          PointChiSquare(K, cameras, pixels, points[p].position, options.pixel_sigma_px, &dof);
+      point_covariance[p] *= OwnVarianceFactor(chi_square, dof);
     }
     return point_state[p] > 0;
   };
@@ -92,14 +117,15 @@ void AgreeLinesAndPoints(const Eigen::Matrix3d& K, const std::vector<Pose3>& wor
     return views;
   };
 
-  struct Far {
-    int point = -1;
-    double s = std::numeric_limits<double>::infinity();
-  };
   struct Fusion {
     int line = -1;
     double ratio = std::numeric_limits<double>::infinity();  // d^T (C_P + C_L)^-1 d across the line
     Eigen::Vector3d target = Eigen::Vector3d::Zero();
+  };
+  struct Far {
+    int point = -1;
+    double s = std::numeric_limits<double>::infinity();
+    Fusion fusion;
   };
   std::vector<Far> far(lines.size());
   std::vector<Fusion> fusion(points.size());
@@ -118,15 +144,22 @@ void AgreeLinesAndPoints(const Eigen::Matrix3d& K, const std::vector<Pose3>& wor
     if (s <= 0 || !covariance_of_point(p)) continue;
     Eigen::Matrix2d line_covariance;
     Eigen::Matrix<double, 3, 2> plane;  // orthonormal basis across the line
-    if (!LinePositionCovariance(K, views_of(line), foot, u, options.pixel_sigma_px, options.drift, true,
+    const std::vector<LineSegmentView> views = views_of(line);
+    if (!LinePositionCovariance(K, views, foot, u, options.pixel_sigma_px, options.drift, true,
                                 &line_covariance, &plane))
       continue;
+    int line_dof = 0;
+    line_covariance *= OwnVarianceFactor(
+        LineChiSquare(K, views, line.point, line.direction, options.pixel_sigma_px, &line_dof), line_dof);
     // The point's and the line's errors across the line, independent: d ~ N(0, C_P + C_L).
     const Eigen::Matrix2d point_across = plane.transpose() * point_covariance[p] * plane;
     const Eigen::Matrix2d combined = point_across + line_covariance;
     const Eigen::Vector2d d = plane.transpose() * (foot - x);
     const double ratio = d.dot(combined.ldlt().solve(d));
     if (!(ratio <= across_bound2)) continue;
+    // The inverse-variance mean of the point and the line across the line (the point's position along
+    // the line unchanged): x + C_P (C_P + C_L)^-1 d.
+    auto fused = [&]() -> Eigen::Vector3d { return x + plane * (point_across * combined.ldlt().solve(d)); };
     // Where P's projections fall along the observed segments, relative to their far end-points.
     std::vector<double> beyond_px;
     for (const LineObservation& observation : line.observations) {
@@ -138,19 +171,24 @@ void AgreeLinesAndPoints(const Eigen::Matrix3d& K, const std::vector<Pose3>& wor
     if (beyond_px.empty()) continue;
     std::nth_element(beyond_px.begin(), beyond_px.begin() + beyond_px.size() / 2, beyond_px.end());
     const double beyond = beyond_px[beyond_px.size() / 2];
-    if (beyond >= -end_slack_px) {
-      if (line.end1_point < 0 && beyond <= options.max_gap_px + end_slack_px && s < far[l].s) far[l] = {p, s};
-      continue;
-    }
     // Strictly inside: at least the combined sigma from either end.
     const double margin = std::sqrt(combined.trace());
+    if (beyond >= -end_slack_px) {
+      // A far end does not shorten the line by more than the margin: a point well inside its 3D extent
+      // is a junction along it, whatever the images' far ends say.
+      if (line.end1_point < 0 && beyond <= options.max_gap_px + end_slack_px && s >= length - margin &&
+          s < far[l].s)
+        far[l] = {p, s, {static_cast<int>(l), ratio, fused()}};
+      continue;
+    }
     if (s < margin || s > length - margin) continue;
     interior[l].emplace_back(s, p);
-    if (ratio < fusion[p].ratio) {
-      // The inverse-variance mean of the point and the line across the line (the point's along the
-      // line unchanged): x + C_P (C_P + C_L)^-1 d.
-      fusion[p] = {static_cast<int>(l), ratio, x + plane * (point_across * combined.ldlt().solve(d))};
-    }
+    if (ratio < fusion[p].ratio) fusion[p] = {static_cast<int>(l), ratio, fused()};
+  }
+  // A far end is fused with its line as a point along it is: the line, measured in every view up to
+  // the observed far ends, fixes the position across it better than a point seen from few views.
+  for (const Far& end : far) {
+    if (end.point >= 0 && end.fusion.ratio < fusion[end.point].ratio) fusion[end.point] = end.fusion;
   }
   for (size_t p = 0; p < points.size(); ++p) {
     if (fusion[p].line < 0) continue;
