@@ -84,7 +84,8 @@ void AgreeLinesAndPoints(const Eigen::Matrix3d& K, const std::vector<Pose3>& wor
   local.candidates = static_cast<int>(candidates.size());
   const double across_bound2 = ChiSquareQuantile(options.level, 2);  // in units of the variance
   // z sqrt(2) sigma: an observed far end-point's and a junction location's noise along the segment.
-  const double end_slack_px = std::sqrt(2 * ChiSquareQuantile(options.level, 1)) * options.pixel_sigma_px;
+  const double along_bound2 = ChiSquareQuantile(options.level, 1);
+  const double end_slack_px = std::sqrt(2 * along_bound2) * options.pixel_sigma_px;
 
   // The points' covariances, computed once (with the poses' drift); false: undetermined.
   std::vector<int> point_state(points.size(), 0);  // 0 not computed, 1 determined, -1 not
@@ -171,16 +172,19 @@ void AgreeLinesAndPoints(const Eigen::Matrix3d& K, const std::vector<Pose3>& wor
     if (beyond_px.empty()) continue;
     std::nth_element(beyond_px.begin(), beyond_px.begin() + beyond_px.size() / 2, beyond_px.end());
     const double beyond = beyond_px[beyond_px.size() / 2];
-    // Strictly inside: at least the combined sigma from either end.
-    const double margin = std::sqrt(combined.trace());
     if (beyond >= -end_slack_px) {
-      // A far end does not shorten the line by more than the margin: a point well inside its 3D extent
-      // is a junction along it, whatever the images' far ends say.
-      if (line.end1_point < 0 && beyond <= options.max_gap_px + end_slack_px && s >= length - margin &&
-          s < far[l].s)
+      // A far end does not shorten the line by more than its end's uncertainty along it
+      // (LineEndAlongSigma): a point well inside the line's 3D extent is placed wrong along its rays
+      // (the images end the segment at its junction), or is a junction along the line.
+      const double end_sigma = LineEndAlongSigma(K, views, line.end1, u, options.pixel_sigma_px,
+                                                 std::sqrt(line_covariance.trace()));
+      if (line.end1_point < 0 && beyond <= options.max_gap_px + end_slack_px &&
+          s >= length - std::sqrt(along_bound2) * end_sigma && s < far[l].s)
         far[l] = {p, s, {static_cast<int>(l), ratio, fused()}};
       continue;
     }
+    // Strictly inside: at least the combined sigma from either end.
+    const double margin = std::sqrt(combined.trace());
     if (s < margin || s > length - margin) continue;
     interior[l].emplace_back(s, p);
     if (ratio < fusion[p].ratio) fusion[p] = {static_cast<int>(l), ratio, fused()};
