@@ -4,14 +4,14 @@
     /usr/bin/python3 scripts/render_wireframe.py <output dir> <sequence dir> <picture.png>
         [--width 1100] [--height 480] [--azimuth 70] [--elevation 35] [--fov 30]
 
-Reads <output dir>/wireframe.ply with open3d.io.read_line_set (edges blue, points no edge uses red) and
-<output dir>/trajectory_refined.txt (the camera path, orange), and draws them in perspective from
-above and behind the start, the floor down. Up is gravity from the robot's base frame as in
+Reads <output dir>/wireframe.ply with open3d.io.read_line_set (edges blue, points no edge uses
+red) and <output dir>/trajectory_refined.txt (the camera path, orange), and draws them in
+perspective from above one side, the floor down. Up is gravity from the robot's base frame as in
 report.html (docs/report.md, UpDirection): base z from <sequence dir>/sequence.yaml's
 T_base_camera, or the cameras' -y when that is the identity (data sets that give camera poses).
-The view looks along the map's longer horizontal axis (of the vertices' 2nd to 98th percentile),
-turned by --azimuth degrees about the vertical and tilted down by --elevation degrees, and is
-framed on that bulk of the map and every camera.
+The view looks along the map's longer horizontal axis (of the vertices' 2nd to 98th percentile and
+the cameras), turned by --azimuth degrees about the vertical towards the cameras' side and tilted
+down by --elevation degrees, and is framed on that bulk of the map and every camera.
 
 Debian's Open3D 0.16 has no headless EGL renderer (OffscreenRenderer fails: "EGL Headless is not
 supported"), so the legacy Visualizer draws into an invisible window; without a display the script
