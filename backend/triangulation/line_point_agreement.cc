@@ -15,7 +15,8 @@ namespace {
 // The (line, point) pairs whose junctions use one detected line segment in every frame that observes
 // both (the topology edges' rule, TopologyEdgeOptions::min_support 1): the point's junction is on the
 // line's image segment there (its far end, or a junction along it).
-std::set<std::pair<int, int>> Candidates(const std::vector<Junctions>& junctions, const Landmarks& landmarks) {
+std::set<std::pair<int, int>> Candidates(const std::vector<Junctions>& junctions,
+                                         const Landmarks& landmarks) {
   const int num_frames = static_cast<int>(junctions.size());
   // Per frame: detected segment -> the drawn points whose junctions use it.
   std::vector<std::map<int, std::vector<std::pair<int, int>>>> users(num_frames);  // (junction, point)
@@ -26,7 +27,8 @@ std::set<std::pair<int, int>> Candidates(const std::vector<Junctions>& junctions
       CHECK(observation.junction >= 0 && observation.junction < static_cast<int>(frame.size()));
       for (const JunctionSegment& segment : frame[observation.junction].segments) {
         if (segment.line_segment >= 0)
-          users[observation.frame][segment.line_segment].emplace_back(observation.junction, static_cast<int>(p));
+          users[observation.frame][segment.line_segment].emplace_back(observation.junction,
+                                                                      static_cast<int>(p));
       }
     }
   }

@@ -34,10 +34,10 @@ struct LinePointAgreementOptions {
 };
 
 struct LinePointAgreementReport {
-  int candidates = 0;        // (line, point) pairs whose junctions share a detected segment in a frame
-  int ends_at_points = 0;    // lines whose far end became a drawn point here
-  int points_on_lines = 0;   // points fused with a line (each counted once)
-  int splits = 0;            // (line, point) pairs where a line's edge is split at a point
+  int candidates = 0;       // (line, point) pairs whose junctions share a detected segment in a frame
+  int ends_at_points = 0;   // lines whose far end became a drawn point here
+  int points_on_lines = 0;  // points fused with a line (each counted once)
+  int splits = 0;           // (line, point) pairs where a line's edge is split at a point
 };
 
 // Changes `landmarks` (the drawn ones: SelectWireframeLandmarks, then AddTopologyEdges) in place.

@@ -31,11 +31,11 @@ Scene MakeScene() {
   Scene scene;
   const Eigen::Matrix3d K = TestK();
   const std::vector<Eigen::Vector3d> positions = {
-      {4, -1, 0.5},     // A: the line's junction point
-      {4, 1, 0.503},    // B: the far end, 3 mm above the line
-      {4, 0, 0.504},    // M: on the line, 4 mm above it
-      {4, 0.5, 0.6},    // N: 10 cm above the line
-      {4, 1.6, 0.5},    // F: on the line's extension, 0.6 m beyond B
+      {4, -1, 0.5},   // A: the line's junction point
+      {4, 1, 0.503},  // B: the far end, 3 mm above the line
+      {4, 0, 0.504},  // M: on the line, 4 mm above it
+      {4, 0.5, 0.6},  // N: 10 cm above the line
+      {4, 1.6, 0.5},  // F: on the line's extension, 0.6 m beyond B
   };
   const Eigen::Vector3d observed_end(4, 0.97, 0.5);
   for (size_t p = 0; p < positions.size(); ++p) {
