@@ -9,6 +9,7 @@
 #include <opencv2/core.hpp>
 #include <sstream>
 #include <string>
+#include <unordered_map>
 #include <utility>
 #include <vector>
 
@@ -569,6 +570,16 @@ void SelectWireframe(const Sequence& sequence, const PipelineOptions& options, P
   agreement.level = wireframe.consistency_level;
   LinePointAgreementReport& agreed = result->line_point_agreement;
   AgreeLinesAndPoints(K, poses, result->junctions, agreement, &result->wireframe_landmarks, &agreed);
+  // The fused positions are the map's too, so that the COLMAP model's points and wireframe.ply's
+  // vertices of one track stay one position.
+  std::unordered_map<int, Eigen::Vector3d> fused;
+  for (const PointLandmark& point : result->wireframe_landmarks.points) {
+    if (point.track_id >= 0) fused[point.track_id] = point.position;
+  }
+  for (PointLandmark& point : result->landmarks.points) {
+    const auto it = fused.find(point.track_id);
+    if (it != fused.end()) point.position = it->second;
+  }
   LOG(INFO) << "wireframe: lines and points agree: " << agreed.ends_at_points << " more far ends at points, "
             << agreed.points_on_lines << " points fused with a line they lie on, " << agreed.splits
             << " line edges split at them (" << agreed.candidates << " candidates)";
