@@ -9,6 +9,7 @@
 #include <opencv2/core.hpp>
 #include <sstream>
 #include <string>
+#include <unordered_map>
 #include <utility>
 #include <vector>
 
@@ -538,6 +539,9 @@ void WeighTheEvidence(const Sequence& sequence, const PipelineOptions& options, 
   for (const std::string& warning : evidence.warnings) LOG(WARNING) << warning;
 }
 
+void AddEdgesBetweenPoints(const PipelineOptions& options, const std::vector<Pose3>& poses,
+                           const WireframeSelectionReport& report, PipelineResult* result);
+
 // The landmarks the wireframe draws (docs/tracks_and_triangulation.md, "Wireframe vertices"):
 // judged on the final poses; bundle adjustment and the COLMAP model keep every landmark.
 void SelectWireframe(const Sequence& sequence, const PipelineOptions& options, PipelineResult* result) {
@@ -559,7 +563,32 @@ void SelectWireframe(const Sequence& sequence, const PipelineOptions& options, P
             << report.lines_uncertain_end0 + report.lines_uncertain_end1 << " undetermined, "
             << report.lines_unbounded << " unbounded; " << report.lines_far_end_at_point
             << " far ends at drawn points";
-  if (!options.topology_edges) return;
+  if (options.topology_edges) AddEdgesBetweenPoints(options, poses, report, result);
+  LinePointAgreementOptions agreement;
+  agreement.pixel_sigma_px = report.pixel_sigma_px > 0 ? report.pixel_sigma_px : wireframe.pixel_sigma_px;
+  agreement.drift = drift;
+  agreement.level = wireframe.consistency_level;
+  LinePointAgreementReport& agreed = result->line_point_agreement;
+  AgreeLinesAndPoints(K, poses, result->junctions, agreement, &result->wireframe_landmarks, &agreed);
+  // The fused positions are the map's too, so that the COLMAP model's points and wireframe.ply's
+  // vertices of one track stay one position.
+  std::unordered_map<int, Eigen::Vector3d> fused;
+  for (const PointLandmark& point : result->wireframe_landmarks.points) {
+    if (point.track_id >= 0) fused[point.track_id] = point.position;
+  }
+  for (PointLandmark& point : result->landmarks.points) {
+    const auto it = fused.find(point.track_id);
+    if (it != fused.end()) point.position = it->second;
+  }
+  LOG(INFO) << "wireframe: lines and points agree: " << agreed.ends_at_points << " more far ends at points, "
+            << agreed.points_on_lines << " points fused with a line they lie on, " << agreed.splits
+            << " line edges split at them (" << agreed.candidates << " candidates)";
+}
+
+// AddTopologyEdges with the pipeline's settings.
+void AddEdgesBetweenPoints(const PipelineOptions& options, const std::vector<Pose3>& poses,
+                           const WireframeSelectionReport& report, PipelineResult* result) {
+  const WireframeOptions& wireframe = options.triangulation.wireframe;
   TopologyEdgeOptions topology = options.topology_edge_options;
   topology.pixel_sigma_px = report.pixel_sigma_px > 0 ? report.pixel_sigma_px : wireframe.pixel_sigma_px;
   topology.max_gap_px = -std::log(options.junctions.min_probability) / options.junctions.endpoint_model.mu;

@@ -34,8 +34,9 @@ std::vector<StampedPose> Stamped(const Sequence& sequence, const std::vector<Pos
 }
 
 // Junction points are vertices; each 3D line segment is an edge from its junction point (where it
-// has one, so edges meet at junctions) or its own first end, to its far end; each edge between two
-// points that the images show joined (Landmarks::point_edges) is an edge between their vertices.
+// has one, so edges meet at junctions) or its own first end, through the points lying on it, to its
+// far end (its far end's point where it has one); each edge between two points that the images show
+// joined (Landmarks::point_edges) is an edge between their vertices.
 ReconstructedWireframe WireframeOf(const Landmarks& landmarks) {
   ReconstructedWireframe wireframe;
   for (const PointLandmark& point : landmarks.points) {
@@ -49,9 +50,16 @@ ReconstructedWireframe WireframeOf(const Landmarks& landmarks) {
       wireframe.vertices.push_back(line.end0);
       wireframe.track_ids.push_back(-1);
     }
-    const int last = static_cast<int>(wireframe.vertices.size());
-    wireframe.vertices.push_back(line.end1);
-    wireframe.track_ids.push_back(-1);
+    int last = line.end1_point;
+    if (last < 0) {
+      last = static_cast<int>(wireframe.vertices.size());
+      wireframe.vertices.push_back(line.end1);
+      wireframe.track_ids.push_back(-1);
+    }
+    for (const int point : line.interior_points) {
+      wireframe.edges.emplace_back(first, point);
+      first = point;
+    }
     wireframe.edges.emplace_back(first, last);
   }
   for (const auto& [a, b] : landmarks.point_edges) wireframe.edges.emplace_back(a, b);

@@ -12,6 +12,7 @@
 #include "backend/initialization/visual_constraints.h"
 #include "backend/metrics/drift.h"
 #include "backend/triangulation/landmarks.h"
+#include "backend/triangulation/line_point_agreement.h"
 #include "backend/triangulation/topology_edges.h"
 #include "backend/triangulation/wireframe_selection.h"
 #include "frontend/junctions/junction.h"
@@ -85,6 +86,7 @@ struct PipelineResult {
   Landmarks wireframe_landmarks;
   WireframeSelectionReport wireframe_selection;
   TopologyEdgeReport topology_edges;      // the edges between drawn points (AddTopologyEdges)
+  LinePointAgreementReport line_point_agreement;  // lines and points made to agree (AgreeLinesAndPoints)
   int unobservable_lines = 0;             // segment tracks dropped as parallel to the motion
   std::vector<Pose3> world_T_camera_odometry;
   std::vector<Pose3> world_T_camera_initial;               // the pose graph's (InitializationSummary)

@@ -6,6 +6,9 @@ set -euo pipefail
 source "$(dirname "$0")/setup.sh"
 # Headless Chromium loads report.html in report_browser_test (skipped without it).
 sfm_install_benchmark_package chromium chromium || true
+# Open3D and a virtual X server: render_wireframe_test (scripts/render_wireframe.py; skipped without).
+/usr/bin/python3 -c "import open3d" 2>/dev/null || sfm_apt_install python3-open3d || true
+sfm_install_benchmark_package xvfb xvfb-run || true
 build_dir=build
 cmake_args=()
 if [ "${1:-}" = "--sanitize" ]; then

@@ -127,6 +127,16 @@ double PointPositionSigma(const Eigen::Matrix3d& K, const std::vector<Pose3>& wo
   CHECK_EQ(world_T_camera.size(), frames.size());
   const double pixel_only = PointPositionSigma(K, world_T_camera, point, sigma_px);
   if (!std::isfinite(pixel_only) || !HasDrift(drift)) return pixel_only;
+  Eigen::Matrix3d covariance;
+  PointPositionCovariance(K, world_T_camera, frames, point, sigma_px, drift, &covariance);
+  return WorstSigma<3>(covariance);
+}
+
+bool PointPositionCovariance(const Eigen::Matrix3d& K, const std::vector<Pose3>& world_T_camera,
+                             const std::vector<int>& frames, const Eigen::Vector3d& point, double sigma_px,
+                             const PoseDrift& drift, Eigen::Matrix3d* covariance_out) {
+  CHECK_EQ(world_T_camera.size(), frames.size());
+  if (!std::isfinite(PointPositionSigma(K, world_T_camera, point, sigma_px))) return false;
   const size_t n = world_T_camera.size();
   Eigen::Matrix3d information = Eigen::Matrix3d::Zero();
   std::vector<Eigen::Matrix<double, 2, 3>> J(n);
@@ -141,8 +151,9 @@ double PointPositionSigma(const Eigen::Matrix3d& K, const std::vector<Pose3>& wo
   const Eigen::Matrix3d inverse = information.inverse();
   std::vector<Eigen::Matrix<double, 3, 6>> gain(n);
   for (size_t i = 0; i < n; ++i) gain[i] = inverse * J[i].transpose() * B[i];
-  const Eigen::Matrix3d covariance = sigma_px * sigma_px * inverse + PoseTerm<3>(drift, frames, gain);
-  return WorstSigma<3>(covariance);
+  *covariance_out = sigma_px * sigma_px * inverse;
+  if (HasDrift(drift)) *covariance_out += PoseTerm<3>(drift, frames, gain);
+  return true;
 }
 
 namespace {
@@ -166,11 +177,14 @@ Eigen::Matrix3d PlaneNormalNoise(const Eigen::Matrix3d& K, const LineSegmentView
   return sigma_px * sigma_px * (dn0 * dn0.transpose() + dn1 * dn1.transpose());
 }
 
-}  // namespace
-
-double LinePositionSigma(const Eigen::Matrix3d& K, const std::vector<LineSegmentView>& views,
-                         const Eigen::Vector3d& x, const Eigen::Vector3d& direction, double sigma_px,
-                         const PoseDrift& drift, bool subtract_plane_noise) {
+// LinePositionSigma's computation: false when the views do not fix both directions across the line
+// (+infinity), else the pixel-noise sigma (worst direction) and, with `covariance`, the 2 x 2
+// covariance across the line, with the poses' drift, in the basis `plane` (3 x 2, orthonormal,
+// normal to the line).
+bool LineAcross(const Eigen::Matrix3d& K, const std::vector<LineSegmentView>& views, const Eigen::Vector3d& x,
+                const Eigen::Vector3d& direction, double sigma_px, const PoseDrift& drift,
+                bool subtract_plane_noise, double* pixel_sigma, Eigen::Matrix2d* covariance,
+                Eigen::Matrix<double, 3, 2>* plane_out) {
   Eigen::Matrix3d information = Eigen::Matrix3d::Zero();
   // Per view: g_i / var_i (the weighted gain's direction) and m_i^T B_i (the pose's shift of the
   // image line across itself at x's projection).
@@ -179,7 +193,7 @@ double LinePositionSigma(const Eigen::Matrix3d& K, const std::vector<LineSegment
   for (const LineSegmentView& view : views) {
     const Pose3 camera_T_world = view.world_T_camera.Inverse();
     const Eigen::Vector3d p = camera_T_world * x;
-    if (!(p.z() > 0)) return kInfinity;
+    if (!(p.z() > 0)) return false;
     const Eigen::Vector2d pixel = (K * p).hnormalized();
     const Eigen::Vector2d along = view.p1 - view.p0;
     CHECK_GT(along.squaredNorm(), 0) << "a line view needs p0 != p1";
@@ -200,9 +214,13 @@ double LinePositionSigma(const Eigen::Matrix3d& K, const std::vector<LineSegment
   plane << a, b;
   const Eigen::Matrix2d across = plane.transpose() * information * plane;
   const double smallest = Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(across).eigenvalues().minCoeff();
-  if (!(smallest > 1e-12 * across.trace())) return kInfinity;
-  if (!HasDrift(drift)) return sigma_px / std::sqrt(smallest);
+  if (!(smallest > 1e-12 * across.trace())) return false;
+  *pixel_sigma = sigma_px / std::sqrt(smallest);
+  if (plane_out != nullptr) *plane_out = plane;
+  if (covariance == nullptr) return true;
   const Eigen::Matrix2d inverse = across.inverse();
+  *covariance = sigma_px * sigma_px * inverse;
+  if (!HasDrift(drift)) return true;
   // x's shift across the line from view i's pose error d_i (rotation, centre):
   // inverse P^T (g_i / var_i) (m_i^T B_i) d_i.
   std::vector<Eigen::Matrix<double, 2, 6>> gain;
@@ -211,8 +229,30 @@ double LinePositionSigma(const Eigen::Matrix3d& K, const std::vector<LineSegment
   }
   std::vector<int> frames;
   for (const LineSegmentView& view : views) frames.push_back(view.frame);
-  const Eigen::Matrix2d covariance = sigma_px * sigma_px * inverse + PoseTerm<2>(drift, frames, gain);
-  return WorstSigma<2>(covariance);
+  *covariance += PoseTerm<2>(drift, frames, gain);
+  return true;
+}
+
+}  // namespace
+
+double LinePositionSigma(const Eigen::Matrix3d& K, const std::vector<LineSegmentView>& views,
+                         const Eigen::Vector3d& x, const Eigen::Vector3d& direction, double sigma_px,
+                         const PoseDrift& drift, bool subtract_plane_noise) {
+  double pixel_sigma = kInfinity;
+  Eigen::Matrix2d covariance;
+  if (!LineAcross(K, views, x, direction, sigma_px, drift, subtract_plane_noise, &pixel_sigma,
+                  HasDrift(drift) ? &covariance : nullptr, nullptr))
+    return kInfinity;
+  return HasDrift(drift) ? WorstSigma<2>(covariance) : pixel_sigma;
+}
+
+bool LinePositionCovariance(const Eigen::Matrix3d& K, const std::vector<LineSegmentView>& views,
+                            const Eigen::Vector3d& x, const Eigen::Vector3d& direction, double sigma_px,
+                            const PoseDrift& drift, bool subtract_plane_noise, Eigen::Matrix2d* covariance,
+                            Eigen::Matrix<double, 3, 2>* plane) {
+  double pixel_sigma = kInfinity;
+  return LineAcross(K, views, x, direction, sigma_px, drift, subtract_plane_noise, &pixel_sigma, covariance,
+                    plane);
 }
 
 double LineEndAlongSigma(const Eigen::Matrix3d& K, const std::vector<LineSegmentView>& views,

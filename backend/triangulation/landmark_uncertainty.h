@@ -59,6 +59,12 @@ double PointPositionSigma(const Eigen::Matrix3d& K, const std::vector<Pose3>& wo
                           const std::vector<int>& frames, const Eigen::Vector3d& point, double sigma_px,
                           const PoseDrift& drift);
 
+// The covariance (metres^2, world frame) whose worst direction's square root the PointPositionSigma
+// above is. False where that is +infinity (*covariance untouched).
+bool PointPositionCovariance(const Eigen::Matrix3d& K, const std::vector<Pose3>& world_T_camera,
+                             const std::vector<int>& frames, const Eigen::Vector3d& point, double sigma_px,
+                             const PoseDrift& drift, Eigen::Matrix3d* covariance);
+
 // Standard deviation, metres, across the line (the worst of the two directions normal to
 // `direction`) of the 3D line's position at its point `x`. Each view's image line is fixed by its
 // two end-points, each off by sigma_px across the line independently; where x projects at the
@@ -85,6 +91,14 @@ double LinePositionSigma(const Eigen::Matrix3d& K, const std::vector<LineSegment
 // itself, at x's projection, by m_i^T B_i d_i; that reaches x through the same weighted least
 // squares as the pixel noise (weights 1 / var_i), and the views' poses are correlated by `drift`
 // (views[i].frame).
+
+// The 2 x 2 covariance (metres^2) across the line whose worst direction's square root
+// LinePositionSigma is, in the orthonormal basis `plane` (3 x 2, world frame, normal to
+// `direction`). False where LinePositionSigma is +infinity.
+bool LinePositionCovariance(const Eigen::Matrix3d& K, const std::vector<LineSegmentView>& views,
+                            const Eigen::Vector3d& x, const Eigen::Vector3d& direction, double sigma_px,
+                            const PoseDrift& drift, bool subtract_plane_noise, Eigen::Matrix2d* covariance,
+                            Eigen::Matrix<double, 3, 2>* plane);
 
 // Standard deviation, metres, *along* the line of a line end found by back-projection: the point x
 // of the 3D line (direction u) where the views' measured pixels (a junction location or a far

@@ -41,6 +41,11 @@ struct LineLandmark {
   Eigen::Vector3d end0 = Eigen::Vector3d::Zero();
   Eigen::Vector3d end1 = Eigen::Vector3d::Zero();
   int point_landmark = -1;                    // index of the PointLandmark at end0, or -1
+  // Set on the drawn landmarks only (FarEndsAtPoints, AgreeLinesAndPoints): the PointLandmark at
+  // end1, or -1; and the points lying on the segment, ordered from end0 to end1 (its edge is split
+  // at them).
+  int end1_point = -1;
+  std::vector<int> interior_points;
   std::vector<LineObservation> observations;  // at most one per frame
 };
 

@@ -240,6 +240,7 @@ void FarEndsAtPoints(const Eigen::Matrix3d& K, const std::vector<Pose3>& world_T
     }
     if (best < 0) continue;
     line.end1 = selected->points[best].position;
+    line.end1_point = best;
     ++counts->lines_far_end_at_point;
   }
 }
