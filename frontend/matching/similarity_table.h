@@ -6,8 +6,6 @@
 
 #include <functional>
 #include <memory>
-#include <new>
-#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -19,38 +17,55 @@ class SimilarityTable {
  public:
   using Evaluator = std::function<PairSimilarity(int index_a, int index_b)>;
 
-  // values_ is left uninitialised (only known_ is cleared): a pass reads a small share of the
-  // P x Q pairs, and constructing every entry cost more than the entries it evaluates.
+  // Only known_ is cleared: a pass reads a small share of the P x Q pairs. The arrays come from a
+  // per-thread pool of released tables: on real images (P, Q ~ 1500) a table is tens of
+  // megabytes, and a fresh one per pass cost a page fault at the first touch of each page, more
+  // than the entries it evaluated.
   SimilarityTable(int num_a, int num_b, Evaluator evaluate)
-      : num_a_(num_a),
-        num_b_(num_b),
-        evaluate_(std::move(evaluate)),
-        values_(std::allocator<PairSimilarity>().allocate(static_cast<size_t>(num_a) * num_b)),
-        known_(static_cast<size_t>(num_a) * num_b, 0) {}
-  ~SimilarityTable() { std::allocator<PairSimilarity>().deallocate(values_, known_.size()); }
+      : num_a_(num_a), num_b_(num_b), evaluate_(std::move(evaluate)), buffers_(TakeBuffers()) {
+    const size_t size = static_cast<size_t>(num_a) * num_b;
+    if (buffers_->values.size() < size) buffers_->values.resize(size);
+    buffers_->known.assign(size, 0);
+  }
+  ~SimilarityTable() { FreeBuffers().push_back(std::move(buffers_)); }
   SimilarityTable(const SimilarityTable&) = delete;
   SimilarityTable& operator=(const SimilarityTable&) = delete;
 
   const PairSimilarity& Get(int index_a, int index_b) {
     DCHECK(index_a >= 0 && index_a < num_a_ && index_b >= 0 && index_b < num_b_);
     const size_t k = static_cast<size_t>(index_a) * num_b_ + index_b;
-    if (!known_[k]) {
-      new (&values_[k]) PairSimilarity(evaluate_(index_a, index_b));
-      known_[k] = 1;
+    if (!buffers_->known[k]) {
+      buffers_->values[k] = evaluate_(index_a, index_b);
+      buffers_->known[k] = 1;
     }
-    return values_[k];
+    return buffers_->values[k];
   }
 
   int num_a() const { return num_a_; }
   int num_b() const { return num_b_; }
 
  private:
+  struct Buffers {
+    std::vector<PairSimilarity> values;  // entry k is valid once known[k] is set
+    std::vector<char> known;
+  };
+  // The released tables' arrays of this thread (tables may nest, so a list).
+  static std::vector<std::unique_ptr<Buffers>>& FreeBuffers() {
+    thread_local std::vector<std::unique_ptr<Buffers>> free_buffers;
+    return free_buffers;
+  }
+  static std::unique_ptr<Buffers> TakeBuffers() {
+    std::vector<std::unique_ptr<Buffers>>& free_buffers = FreeBuffers();
+    if (free_buffers.empty()) return std::make_unique<Buffers>();
+    std::unique_ptr<Buffers> buffers = std::move(free_buffers.back());
+    free_buffers.pop_back();
+    return buffers;
+  }
+
   int num_a_;
   int num_b_;
   Evaluator evaluate_;
-  static_assert(std::is_trivially_destructible_v<PairSimilarity>, "values_ entries are never destroyed");
-  PairSimilarity* values_;  // entry k is constructed once known_[k] is set
-  std::vector<char> known_;
+  std::unique_ptr<Buffers> buffers_;
 };
 
 }  // namespace sfm
