@@ -144,24 +144,15 @@ constexpr int kLoopInlierFactor = 2;
 // (MeasureOdometryNoise).
 constexpr double kRematchNoiseFactor = 1.5;
 
-// Paper sections 3-4 on the pairs of OdometryPairGeometries, with their geometry.
-// `diagnostics` receives each pair's refinement, in the order of `pairs`.
-void MatchFramePairs(const std::vector<std::pair<int, int>>& pairs,
-                     const std::vector<PairGeometry>& geometries, const PipelineOptions& options,
-                     Progress* progress, PipelineResult* result, std::vector<MatchingDiagnostics>* diagnostics) {
-  result->pairs = MatchSequencePairs(pairs, geometries, result->junctions, result->graphs, options.Matching(),
-                                     progress, diagnostics);
-}
-
-// The odometry's rotation noise measured against the relative rotations the matches fit
+// The odometry's rotation noise measured against the relative rotations the verified poses fit
 // (docs/initialization.md, "Odometry noise from the data"). When the images say the odometry
-// turns more erratically than declared, its gates were too narrow for the true matches: the pairs
-// are matched again with the measured noise. The pose graph and the bundle adjustment weigh the
-// odometry by the measured noise in every case.
-Status MeasureOdometryNoise(const Sequence& sequence, const PipelineOptions& options,
-                            const std::vector<std::pair<int, int>>& pairs, Progress* progress,
-                            std::vector<PairGeometry>* geometries, std::vector<MatchingDiagnostics>* diagnostics,
-                            PipelineResult* result) {
+// turns more erratically than declared, its gates were too narrow for the true matches: *rematch
+// says the pairs are to be matched again with the measured noise. The pose graph and the bundle
+// adjustment weigh the odometry by the measured noise in every case.
+void MeasureOdometryNoise(const Sequence& sequence, const PipelineOptions& options,
+                          const std::vector<std::pair<int, int>>& pairs,
+                          const std::vector<MatchingDiagnostics>& diagnostics, bool* rematch, PipelineResult* result) {
+  *rematch = false;
   InitializationSummary& summary = result->initialization;
   summary.ran = true;
   summary.declared = sequence.calibration.odometry_noise;
@@ -169,11 +160,11 @@ Status MeasureOdometryNoise(const Sequence& sequence, const PipelineOptions& opt
   const Pose3& base_T_camera = sequence.calibration.base_T_camera;
   const std::vector<Pose3> odometry = OdometryBasePoses(sequence);
   summary.rotation = EstimateOdometryRotationNoise(
-      odometry, base_T_camera, VisualRotationSamples(pairs, *diagnostics, options.Matching().refine_min_inliers));
+      odometry, base_T_camera, VisualRotationSamples(pairs, diagnostics, options.Matching().refine_min_inliers));
   if (!summary.rotation.valid) {
     LOG(INFO) << "odometry noise: too few image pairs with a relative pose (" << summary.rotation.steps
               << ") to measure it; the declared noise is used";
-    return Status::Ok();
+    return;
   }
   const double measured = summary.rotation.EffectiveSigma();
   LOG(INFO) << "odometry rotation noise from " << summary.rotation.steps << " image pairs: " << measured
@@ -185,13 +176,31 @@ Status MeasureOdometryNoise(const Sequence& sequence, const PipelineOptions& opt
                  << " rad per frame, but the images measure " << measured << "; the measured value is used";
   }
   summary.used.rotation_sigma = measured;
-  if (!(measured > kRematchNoiseFactor * summary.declared.rotation_sigma)) return Status::Ok();
-  summary.rematched = true;
+  summary.rematched = measured > kRematchNoiseFactor * summary.declared.rotation_sigma;
+  *rematch = summary.rematched;
+}
+
+// Paper sections 3-4 on the pairs of OdometryPairGeometries, with their geometry, in two steps:
+// every pair's first pass and verified pose, then (MeasureOdometryNoise) every pair's guided pass,
+// or, when the verified poses say the odometry's gates were too narrow, the whole matching again
+// with wider ones. `diagnostics` receives each pair's refinement, in the order of `pairs`.
+Status MatchFramePairs(const Sequence& sequence, const PipelineOptions& options,
+                       const std::vector<std::pair<int, int>>& pairs, std::vector<PairGeometry>* geometries,
+                       Progress* progress, std::vector<MatchingDiagnostics>* diagnostics, PipelineResult* result) {
+  VerifySequencePairs(pairs, *geometries, result->junctions, result->graphs, options.Matching(), progress,
+                      &result->pairs, diagnostics);
+  bool rematch = false;
+  MeasureOdometryNoise(sequence, options, pairs, *diagnostics, &rematch, result);
+  if (!rematch) {
+    GuidedSequencePairs(result->junctions, result->graphs, options.Matching(), progress, &result->pairs, diagnostics);
+    return Status::Ok();
+  }
   LOG(INFO) << "matching again with the measured odometry noise";
   std::vector<std::pair<int, int>> same_pairs;
-  SFM_RETURN_IF_ERROR(
-      OdometryPairGeometries(sequence, options.sequence_dir, summary.used, &same_pairs, geometries));
-  MatchFramePairs(pairs, *geometries, options, progress, result, diagnostics);
+  SFM_RETURN_IF_ERROR(OdometryPairGeometries(sequence, options.sequence_dir, result->initialization.used,
+                                             &same_pairs, geometries));
+  result->pairs = MatchSequencePairs(pairs, *geometries, result->junctions, result->graphs, options.Matching(),
+                                     progress, diagnostics);
   return Status::Ok();
 }
 
@@ -654,9 +663,7 @@ Status RunPipeline(const PipelineOptions& options, PipelineResult* result_out) {
   stage_start = Clock::now();
   stages.Start("matching");
   std::vector<MatchingDiagnostics> diagnostics;
-  MatchFramePairs(pairs, pair_geometries, options, &progress, &result, &diagnostics);
-  SFM_RETURN_IF_ERROR(
-      MeasureOdometryNoise(sequence, options, pairs, &progress, &pair_geometries, &diagnostics, &result));
+  SFM_RETURN_IF_ERROR(MatchFramePairs(sequence, options, pairs, &pair_geometries, &progress, &diagnostics, &result));
   result.times.matching = SecondsSince(stage_start);
   stage_start = Clock::now();
   stages.Start("initial trajectory");

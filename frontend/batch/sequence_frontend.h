@@ -37,4 +37,15 @@ std::vector<FramePairMatches> MatchSequencePairs(const std::vector<std::pair<int
                                                  const MatchingOptions& options, Progress* progress,
                                                  std::vector<MatchingDiagnostics>* diagnostics);
 
+// The same in MatchJunctions' two steps (VerifiedFirstPass, GuidedPass), every pair in parallel
+// in each: VerifySequencePairs gives each pair's first-pass matches (in `matches`) and refinement
+// (in diagnostics); GuidedSequencePairs continues them into MatchSequencePairs' result.
+void VerifySequencePairs(const std::vector<std::pair<int, int>>& pairs, const std::vector<PairGeometry>& geometries,
+                         const std::vector<Junctions>& junctions, const std::vector<TopologyGraph>& graphs,
+                         const MatchingOptions& options, Progress* progress, std::vector<FramePairMatches>* matches,
+                         std::vector<MatchingDiagnostics>* diagnostics);
+void GuidedSequencePairs(const std::vector<Junctions>& junctions, const std::vector<TopologyGraph>& graphs,
+                         const MatchingOptions& options, Progress* progress, std::vector<FramePairMatches>* matches,
+                         std::vector<MatchingDiagnostics>* diagnostics);
+
 }  // namespace sfm

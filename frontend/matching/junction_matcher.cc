@@ -220,15 +220,15 @@ std::vector<JunctionMatch> MatchJunctions(const Junctions& a, const TopologyGrap
   return Match(a, graph_a, b, graph_b, JunctionSimilarity(a, b, F, options), options);
 }
 
-std::vector<JunctionMatch> MatchJunctions(const Junctions& a, const TopologyGraph& graph_a, const Junctions& b,
-                                         const TopologyGraph& graph_b, const PairGeometry& geometry,
-                                         const MatchingOptions& options, MatchingDiagnostics* diagnostics) {
+std::vector<JunctionMatch> VerifiedFirstPass(const Junctions& a, const TopologyGraph& graph_a, const Junctions& b,
+                                             const TopologyGraph& graph_b, const PairGeometry& geometry,
+                                             const MatchingOptions& options, MatchingDiagnostics* diagnostics) {
   const Status status = options.Check();
   CHECK(status.ok()) << status.message();
   CHECK(geometry.K.allFinite() && geometry.covariance.allFinite() && geometry.camera2_T_camera1.translation.allFinite())
       << "PairGeometry not finite";
-  MatchingDiagnostics local;
-  MatchingDiagnostics& report = diagnostics ? *diagnostics : local;
+  CHECK(diagnostics != nullptr);
+  MatchingDiagnostics& report = *diagnostics;
   report = MatchingDiagnostics();
   std::vector<JunctionMatch> first = Match(a, graph_a, b, graph_b, JunctionSimilarity(a, b, geometry, options), options);
   report.first_pass_matches = static_cast<int>(first.size());
@@ -243,7 +243,22 @@ std::vector<JunctionMatch> MatchJunctions(const Junctions& a, const TopologyGrap
     x2.push_back(b[match.index_b].location);
   }
   report.refinement = RefinePairGeometry(geometry, x1, x2, RefinementSettings(options));
-  if (!report.refinement.Refined()) return first;
+  return first;
+}
+
+std::vector<JunctionMatch> GuidedPass(const Junctions& a, const TopologyGraph& graph_a, const Junctions& b,
+                                      const TopologyGraph& graph_b, std::vector<JunctionMatch> first,
+                                      const MatchingOptions& options, MatchingDiagnostics* diagnostics) {
+  CHECK(diagnostics != nullptr);
+  MatchingDiagnostics& report = *diagnostics;
+  if (!options.refine_geometry || !report.refinement.Refined()) return first;
+  std::vector<Eigen::Vector2d> x1, x2;
+  x1.reserve(first.size());
+  x2.reserve(first.size());
+  for (const JunctionMatch& match : first) {
+    x1.push_back(a[match.index_a].location);
+    x2.push_back(b[match.index_b].location);
+  }
 
   // The guided pass: every pair again, in the band of the refined pose. A first-pass match off the
   // refined epipolar geometry is no longer a candidate; a pair the wide band lost to a wrong
@@ -298,6 +313,15 @@ std::vector<JunctionMatch> MatchJunctions(const Junctions& a, const TopologyGrap
   std::stable_sort(matches.begin(), matches.end(),
                    [](const JunctionMatch& x, const JunctionMatch& y) { return x.index_a < y.index_a; });
   return matches;
+}
+
+std::vector<JunctionMatch> MatchJunctions(const Junctions& a, const TopologyGraph& graph_a, const Junctions& b,
+                                         const TopologyGraph& graph_b, const PairGeometry& geometry,
+                                         const MatchingOptions& options, MatchingDiagnostics* diagnostics) {
+  MatchingDiagnostics local;
+  MatchingDiagnostics* report = diagnostics ? diagnostics : &local;
+  return GuidedPass(a, graph_a, b, graph_b, VerifiedFirstPass(a, graph_a, b, graph_b, geometry, options, report),
+                    options, report);
 }
 
 PairRefinementSettings RefinementSettings(const MatchingOptions& options) {

@@ -45,6 +45,18 @@ std::vector<JunctionMatch> MatchJunctions(const Junctions& a, const TopologyGrap
                                          const TopologyGraph& graph_b, const PairGeometry& geometry,
                                          const MatchingOptions& options, MatchingDiagnostics* diagnostics = nullptr);
 
+// MatchJunctions in its two steps, so that a caller can look at every pair's verified pose before
+// the guided passes run (the pipeline measures the odometry's noise from them and matches again
+// with wider gates when it is larger than declared): VerifiedFirstPass returns the first pass's
+// matches and fills diagnostics' first_pass_matches and refinement; GuidedPass takes those matches
+// and diagnostics and returns MatchJunctions' result. diagnostics must not be null.
+std::vector<JunctionMatch> VerifiedFirstPass(const Junctions& a, const TopologyGraph& graph_a, const Junctions& b,
+                                             const TopologyGraph& graph_b, const PairGeometry& geometry,
+                                             const MatchingOptions& options, MatchingDiagnostics* diagnostics);
+std::vector<JunctionMatch> GuidedPass(const Junctions& a, const TopologyGraph& graph_a, const Junctions& b,
+                                      const TopologyGraph& graph_b, std::vector<JunctionMatch> first,
+                                      const MatchingOptions& options, MatchingDiagnostics* diagnostics);
+
 // The settings of the refinement MatchJunctions runs (RefinePairGeometry), from options.
 PairRefinementSettings RefinementSettings(const MatchingOptions& options);
 
