@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdint>
 
 #include "backend/bundle_adjustment/floor_prior_cost.h"
 #include "backend/bundle_adjustment/line_reprojection_cost.h"
@@ -247,11 +248,16 @@ void JointProblem::AddResidual(ceres::CostFunction* cost, ceres::LossFunction* l
   problem_->AddResidualBlock(new PoseBlockCost(cost, pose_starts), loss, outer_blocks);
 }
 
+// By address within the poses' vector: a search over the poses would make building a problem
+// cost observations x frames.
 bool JointProblem::IsPoseRotation(const double* block) const {
-  for (const PoseParameters& pose : parameters_->poses) {
-    if (block == pose.rotation.data()) return true;
-  }
-  return false;
+  const std::vector<PoseParameters>& poses = parameters_->poses;
+  if (poses.empty()) return false;
+  const auto address = reinterpret_cast<std::uintptr_t>(block);
+  const auto first = reinterpret_cast<std::uintptr_t>(poses.front().rotation.data());
+  if (address < first) return false;
+  const std::uintptr_t offset = address - first;
+  return offset % sizeof(PoseParameters) == 0 && offset / sizeof(PoseParameters) < poses.size();
 }
 
 // The group of Ceres's inner iterations: the landmarks (the points and lines of the problem, one
