@@ -176,7 +176,6 @@ JointProblem::JointProblem(const AdjustmentSetup& setup, const FloorPriorState& 
       AddResidual(LineReprojectionCost::Create(setup.camera, observation.p0, observation.p1), loss_.get(),
                   {pose.rotation.data(), pose.translation.data(), line_parameters});
     }
-    cells.Add(line.observations);
     ordering_->AddElementToGroup(line_parameters, 0);
   }
 
@@ -228,6 +227,9 @@ JointProblem::JointProblem(const AdjustmentSetup& setup, const FloorPriorState& 
   } else {
     problem.SetParameterBlockConstant(bias);
   }
+  // Counted over every line, in the solves without them too: the map decides the adjustment's
+  // solver, so the coarse solve's points alone (fewer cells) do not take the factorisation.
+  for (const LineLandmark& line : landmarks.lines) cells.Add(line.observations);
   reduced_cells_ = cells.count();
   // The odometry prior of every step (docs/bundle_adjustment.md, "Odometry prior").
   const std::vector<Pose3>& odometry = setup.odometry;
