@@ -297,10 +297,11 @@ Status BundleAdjustment::Solve(double loss_scale_px, bool with_lines, double fun
   // Where a solve's time goes (docs/bundle_adjustment.md, "Solver").
   VLOG(1) << "bundle adjustment solve: loss " << loss_scale_px << " px, " << (with_lines ? "lines, " : "")
           << (apart_lines.empty() ? "" : std::to_string(apart_lines.size()) + " two-view lines apart, ")
-          << (parameters_.hold_scale ? "scale held, " : "") << "tolerance " << function_tolerance << ": "
-          << iterations << " iterations, cost " << ceres_summary.initial_cost << " -> "
-          << ceres_summary.final_cost << "; " << ceres_summary.total_time_in_seconds << " s (preprocessor "
-          << ceres_summary.preprocessor_time_in_seconds << ", residuals "
+          << (parameters_.hold_scale ? "scale held, " : "")
+          << ceres::LinearSolverTypeToString(ceres_summary.linear_solver_type_used) << ", tolerance "
+          << function_tolerance << ": " << iterations << " iterations, cost " << ceres_summary.initial_cost
+          << " -> " << ceres_summary.final_cost << "; " << ceres_summary.total_time_in_seconds
+          << " s (preprocessor " << ceres_summary.preprocessor_time_in_seconds << ", residuals "
           << ceres_summary.residual_evaluation_time_in_seconds << ", jacobians "
           << ceres_summary.jacobian_evaluation_time_in_seconds << ", linear solver "
           << ceres_summary.linear_solver_time_in_seconds << ", inner iterations "

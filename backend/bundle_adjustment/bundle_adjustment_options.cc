@@ -21,6 +21,9 @@ Status BundleAdjustmentOptions::Check() const {
   if (!(outlier_threshold_px > 0)) return error("outlier_threshold_px must be > 0 px");
   if (outlier_rounds < 0) return error("outlier_rounds must be >= 0");
   if (dense_schur_max_frames < 0) return error("dense_schur_max_frames must be >= 0");
+  if (!(iterative_schur_min_cells_per_frame > 0)) {
+    return error("iterative_schur_min_cells_per_frame must be > 0");
+  }
   if (!(odometry_min_distance_m > 0 && std::isfinite(odometry_min_distance_m))) {
     return error("odometry_min_distance_m must be > 0 m");
   }

@@ -21,9 +21,12 @@ enum class RobustLoss { kHuber, kCauchy };
 enum class FloorPriorMode { kOff, kAuto, kOn };
 
 enum class BundleAdjustmentLinearSolver {
-  kAuto,         // DENSE_SCHUR up to dense_schur_max_frames frames, SPARSE_SCHUR above
-  kDenseSchur,   // ceres::DENSE_SCHUR
-  kSparseSchur,  // ceres::SPARSE_SCHUR (SuiteSparse or Eigen sparse, whichever Ceres has)
+  // DENSE_SCHUR up to dense_schur_max_frames frames; above, SPARSE_SCHUR, or ITERATIVE_SCHUR when
+  // the reduced system has more than iterative_schur_min_cells_per_frame cells per frame
+  kAuto,
+  kDenseSchur,      // ceres::DENSE_SCHUR
+  kSparseSchur,     // ceres::SPARSE_SCHUR (SuiteSparse or Eigen sparse, whichever Ceres has)
+  kIterativeSchur,  // ceres::ITERATIVE_SCHUR, SCHUR_JACOBI preconditioner
 };
 
 struct BundleAdjustmentOptions {
@@ -44,6 +47,9 @@ struct BundleAdjustmentOptions {
   int outlier_rounds = 1;             // remove-outliers-and-solve-again rounds after the joint solve
   BundleAdjustmentLinearSolver linear_solver = BundleAdjustmentLinearSolver::kAuto;
   int dense_schur_max_frames = 100;  // frames, kAuto's switch to SPARSE_SCHUR
+  // kAuto's switch to ITERATIVE_SCHUR: the reduced (pose) system's cells, the frame pairs i <= j
+  // that share a landmark, per frame (docs/bundle_adjustment.md, "Solver").
+  double iterative_schur_min_cells_per_frame = 120;
   // m, floor on the distance travelled between two frames when the odometry prior's translation
   // sigmas are set from the distance (a robot turning in place still slips); a step shorter than
   // this is weighted the same in every direction (its measured direction is mostly slip).

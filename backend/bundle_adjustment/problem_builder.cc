@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdint>
 
 #include "backend/bundle_adjustment/floor_prior_cost.h"
 #include "backend/bundle_adjustment/line_reprojection_cost.h"
@@ -46,18 +47,55 @@ ceres::Solver::Options SolverOptions(const BundleAdjustmentOptions& options, cer
   return solver_options;
 }
 
-ceres::LinearSolverType JointLinearSolver(const BundleAdjustmentOptions& options, size_t frames) {
+// kAuto: a dense reduced system while it is small; above, the sparse one unless revisits fill it.
+// A landmark seen in k frames adds up to k(k+1)/2 cells of 6x6 to the reduced system. Along a
+// corridor each frame shares landmarks with a band of frames as deep as the view (70-80 cells per
+// frame at 240-960 frames): cells and factor grow with the frames. On laps of a room the frames
+// keep seeing the same landmarks: cells per frame grow with the laps (41, 80, 155 at 240, 480, 960
+// frames; a third of all frame pairs) and the factor with their cube, while the iterative solver's
+// products stay linear in the observations (room loop, 960 frames: CPU 89 -> 67 s, peak RSS 586 ->
+// 304 MB). The factorisation wins below that (corridor 240 frames iterative: 3x the CPU).
+ceres::LinearSolverType JointLinearSolver(const BundleAdjustmentOptions& options, size_t frames,
+                                          size_t cells) {
   switch (options.linear_solver) {
     case BundleAdjustmentLinearSolver::kDenseSchur:
       return ceres::DENSE_SCHUR;
     case BundleAdjustmentLinearSolver::kSparseSchur:
       return ceres::SPARSE_SCHUR;
+    case BundleAdjustmentLinearSolver::kIterativeSchur:
+      return ceres::ITERATIVE_SCHUR;
     case BundleAdjustmentLinearSolver::kAuto:
       break;
   }
-  return static_cast<int>(frames) <= options.dense_schur_max_frames ? ceres::DENSE_SCHUR
-                                                                    : ceres::SPARSE_SCHUR;
+  if (static_cast<int>(frames) <= options.dense_schur_max_frames) return ceres::DENSE_SCHUR;
+  return static_cast<double>(cells) > options.iterative_schur_min_cells_per_frame * frames
+             ? ceres::ITERATIVE_SCHUR
+             : ceres::SPARSE_SCHUR;
 }
+
+// The cells of the reduced system's upper triangle: the frame pairs (i <= j) that see one landmark.
+class ReducedCells {
+ public:
+  explicit ReducedCells(size_t frames) : frames_(frames), seen_(frames * frames, false) {}
+  template <typename Observations>
+  void Add(const Observations& observations) {
+    for (const auto& a : observations) {
+      for (const auto& b : observations) {
+        const size_t i = std::min(a.frame, b.frame), j = std::max(a.frame, b.frame);
+        if (!seen_[i * frames_ + j]) {
+          seen_[i * frames_ + j] = true;
+          ++count_;
+        }
+      }
+    }
+  }
+  size_t count() const { return count_; }
+
+ private:
+  size_t frames_;
+  std::vector<bool> seen_;
+  size_t count_ = 0;
+};
 
 // The lines of a joint solve (`joint`, indices in order) and those solved apart after it: a line
 // with exactly two views has 4 residuals (the two end-point distances per view) for its 4 degrees
@@ -111,6 +149,7 @@ JointProblem::JointProblem(const AdjustmentSetup& setup, const FloorPriorState& 
   if (with_lines) SplitLines(landmarks, floor, &joint_lines_, &apart_lines_);
   std::vector<int> joint_slot(landmarks.lines.size(), -1);
   for (size_t k = 0; k < joint_lines_.size(); ++k) joint_slot[joint_lines_[k]] = static_cast<int>(k);
+  ReducedCells cells(poses.size());
   point_count_ = landmarks.points.size();
   const size_t line_count = joint_lines_.size();
   landmark_values_.resize(3 * point_count_ + 6 * line_count);
@@ -123,6 +162,7 @@ JointProblem::JointProblem(const AdjustmentSetup& setup, const FloorPriorState& 
       AddResidual(PointReprojectionCost::Create(setup.camera, observation.pixel), loss_.get(),
                   {pose.rotation.data(), pose.translation.data(), position});
     }
+    cells.Add(point.observations);
     ordering_->AddElementToGroup(position, 0);
   }
   for (size_t i = 0; i < line_count; ++i) {
@@ -187,6 +227,10 @@ JointProblem::JointProblem(const AdjustmentSetup& setup, const FloorPriorState& 
   } else {
     problem.SetParameterBlockConstant(bias);
   }
+  // Counted over every line, in the solves without them too: the map decides the adjustment's
+  // solver, so the coarse solve's points alone (fewer cells) do not take the factorisation.
+  for (const LineLandmark& line : landmarks.lines) cells.Add(line.observations);
+  reduced_cells_ = cells.count();
   // The odometry prior of every step (docs/bundle_adjustment.md, "Odometry prior").
   const std::vector<Pose3>& odometry = setup.odometry;
   const double rotation_sigma = setup.noise.rotation_sigma;
@@ -201,9 +245,11 @@ JointProblem::JointProblem(const AdjustmentSetup& setup, const FloorPriorState& 
 
 void JointProblem::Solve(double function_tolerance, ceres::Solver::Summary* summary,
                          ceres::IterationCallback* callback) {
-  ceres::Solver::Options solver_options =
-      SolverOptions(setup_.options, JointLinearSolver(setup_.options, parameters_->poses.size()));
+  ceres::Solver::Options solver_options = SolverOptions(
+      setup_.options, JointLinearSolver(setup_.options, parameters_->poses.size(), reduced_cells_));
   solver_options.linear_solver_ordering = ordering_;
+  // ITERATIVE_SCHUR's preconditioner: the reduced system's diagonal cells (the other solvers ignore it).
+  solver_options.preconditioner_type = ceres::SCHUR_JACOBI;
   solver_options.function_tolerance = function_tolerance;
   // With lines, the steps crawl (for tens of iterations on the room loop, each lowering the cost
   // by about 2e-6 relative, 0.4 of the predicted decrease: the landmarks' nonlinearity); Ceres's
@@ -247,11 +293,16 @@ void JointProblem::AddResidual(ceres::CostFunction* cost, ceres::LossFunction* l
   problem_->AddResidualBlock(new PoseBlockCost(cost, pose_starts), loss, outer_blocks);
 }
 
+// By address within the poses' vector: a search over the poses would make building a problem
+// cost observations x frames.
 bool JointProblem::IsPoseRotation(const double* block) const {
-  for (const PoseParameters& pose : parameters_->poses) {
-    if (block == pose.rotation.data()) return true;
-  }
-  return false;
+  const std::vector<PoseParameters>& poses = parameters_->poses;
+  if (poses.empty()) return false;
+  const auto address = reinterpret_cast<std::uintptr_t>(block);
+  const auto first = reinterpret_cast<std::uintptr_t>(poses.front().rotation.data());
+  if (address < first) return false;
+  const std::uintptr_t offset = address - first;
+  return offset % sizeof(PoseParameters) == 0 && offset / sizeof(PoseParameters) < poses.size();
 }
 
 // The group of Ceres's inner iterations: the landmarks (the points and lines of the problem, one

@@ -52,6 +52,7 @@ class JointProblem {
   const bool with_lines_;
   std::vector<int> joint_lines_, apart_lines_;
   size_t point_count_ = 0;
+  size_t reduced_cells_ = 0;  // of the reduced system's upper triangle, for the linear solver's choice
   // Every landmark's parameters in one buffer, points then lines, in their order: Ceres orders
   // the blocks of an ordering group by address (a std::set<double*>), and that order is the
   // Schur eliminator's summation order. In a buffer it is the landmarks' order, not the heap's,
