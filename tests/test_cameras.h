@@ -19,4 +19,16 @@ inline Camera BenchmarkLens() {
   return camera;
 }
 
+// make_sequence --lens equidistant's 150-degree fisheye: 640 x 480, f 305.6 px, k = 0.
+inline Camera GeneratorFisheye() {
+  Camera camera;
+  camera.width = 640;
+  camera.height = 480;
+  camera.fx = camera.fy = 305.6;
+  camera.cx = 319.5;
+  camera.cy = 239.5;
+  camera.model = DistortionModel::kEquidistant;
+  return camera;
+}
+
 }  // namespace sfm::testing

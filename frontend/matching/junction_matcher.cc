@@ -209,6 +209,19 @@ std::vector<JunctionMatch> MatchPartial(const Junctions& a, const TopologyGraph&
   return partial;
 }
 
+// The locations of the matched junctions, x1[k] in a and x2[k] in b for matches[k].
+void MatchLocations(const Junctions& a, const Junctions& b, const std::vector<JunctionMatch>& matches,
+                    std::vector<Eigen::Vector2d>* x1, std::vector<Eigen::Vector2d>* x2) {
+  x1->clear();
+  x2->clear();
+  x1->reserve(matches.size());
+  x2->reserve(matches.size());
+  for (const JunctionMatch& match : matches) {
+    x1->push_back(a[match.index_a].location);
+    x2->push_back(b[match.index_b].location);
+  }
+}
+
 }  // namespace
 
 std::vector<JunctionMatch> MatchJunctions(const Junctions& a, const TopologyGraph& graph_a, const Junctions& b,
@@ -236,12 +249,7 @@ std::vector<JunctionMatch> VerifiedFirstPass(const Junctions& a, const TopologyG
 
   // Verification: the pose the first pass's matches support, with the odometry as the prior.
   std::vector<Eigen::Vector2d> x1, x2;
-  x1.reserve(first.size());
-  x2.reserve(first.size());
-  for (const JunctionMatch& match : first) {
-    x1.push_back(a[match.index_a].location);
-    x2.push_back(b[match.index_b].location);
-  }
+  MatchLocations(a, b, first, &x1, &x2);
   report.refinement = RefinePairGeometry(geometry, x1, x2, RefinementSettings(options));
   return first;
 }
@@ -253,12 +261,7 @@ std::vector<JunctionMatch> GuidedPass(const Junctions& a, const TopologyGraph& g
   MatchingDiagnostics& report = *diagnostics;
   if (!options.refine_geometry || !report.refinement.Refined()) return first;
   std::vector<Eigen::Vector2d> x1, x2;
-  x1.reserve(first.size());
-  x2.reserve(first.size());
-  for (const JunctionMatch& match : first) {
-    x1.push_back(a[match.index_a].location);
-    x2.push_back(b[match.index_b].location);
-  }
+  MatchLocations(a, b, first, &x1, &x2);
 
   // The guided pass: every pair again, in the band of the refined pose. A first-pass match off the
   // refined epipolar geometry is no longer a candidate; a pair the wide band lost to a wrong

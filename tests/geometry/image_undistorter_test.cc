@@ -55,13 +55,7 @@ double PeakGradientShare(const cv::Mat& undistorted, double edge_x) {
 // the canvas holds every stored pixel's undistorted position, the corners 75 degrees off axis at
 // f tan(75 deg) = 1140 px from the principal point, so about 1830 x 1370 px.
 TEST(ImageUndistorterTest, EquidistantFullViewHoldsTheWholeFisheyeView) {
-  Camera camera;
-  camera.width = 640;
-  camera.height = 480;
-  camera.fx = camera.fy = 305.6;
-  camera.cx = 319.5;
-  camera.cy = 239.5;
-  camera.model = DistortionModel::kEquidistant;
+  Camera camera = testing::GeneratorFisheye();
   EXPECT_EQ(RadialFoldRadius(camera), std::numeric_limits<double>::infinity());
   const ImageUndistorter undistorter(camera, UndistortInterpolation::kLinear, UndistortView::kFullView);
   ASSERT_TRUE(undistorter.FullView());
@@ -81,13 +75,7 @@ TEST(ImageUndistorterTest, EquidistantFullViewHoldsTheWholeFisheyeView) {
 // truncated: within 1.5 grey levels; measured 0.99. A sub-view rotated the wrong way is tens off).
 // A radtan lens has no sub-views.
 TEST(ImageUndistorterTest, EquidistantSubViewsCoverTheFisheyeViewAndMapToK) {
-  Camera camera;
-  camera.width = 640;
-  camera.height = 480;
-  camera.fx = camera.fy = 305.6;
-  camera.cx = 319.5;
-  camera.cy = 239.5;
-  camera.model = DistortionModel::kEquidistant;
+  Camera camera = testing::GeneratorFisheye();
   const ImageUndistorter undistorter(camera, UndistortInterpolation::kLinear, UndistortView::kFullView);
   ASSERT_EQ(undistorter.SubViews().size(), 9u);
   cv::Mat stored(camera.height, camera.width, CV_8U);
