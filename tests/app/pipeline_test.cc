@@ -21,6 +21,16 @@ namespace sfm {
 namespace {
 
 namespace fs = std::filesystem;
+
+// The generator's room loop, seed 7, of num_frames frames: the sequences these tests run on.
+GeneratorOptions RoomLoop(int num_frames) {
+  GeneratorOptions generator;
+  generator.scene.type = SceneType::kRoom;
+  generator.trajectory.type = TrajectoryType::kLoop;
+  generator.trajectory.num_frames = num_frames;
+  generator.seed = 7;
+  return generator;
+}
 using ::testing::HasSubstr;
 using ::testing::StartsWith;
 
@@ -32,11 +42,7 @@ class PipelineOnGeneratedRoom : public ::testing::Test {
     const fs::path scratch = testing::MakeScratchDir("pipeline_room");
     sequence_dir_ = (scratch / "sequence").string();
     output_dir_ = (scratch / "output").string();
-    GeneratorOptions generator;
-    generator.scene.type = SceneType::kRoom;
-    generator.trajectory.type = TrajectoryType::kLoop;
-    generator.trajectory.num_frames = 30;
-    generator.seed = 7;
+    GeneratorOptions generator = RoomLoop(30);
     generator.odometry.heading_bias = 0.004;  // rad per frame: a drift the bundle adjustment must remove
     ASSERT_TRUE(GenerateSequence(generator, sequence_dir_, /*overwrite=*/true).ok());
     PipelineOptions options;
@@ -147,11 +153,7 @@ TEST_F(PipelineOnGeneratedRoom, BundleAdjustmentHalvesRotationDriftAndLowersAte)
 // triangulated from the views that have the segment, and the report's match pictures draw them.
 TEST(PipelineWithPartialMatches, CarriesThemIntoTracksLinesAndTheReport) {
   const fs::path scratch = testing::MakeScratchDir("pipeline_partial");
-  GeneratorOptions generator;
-  generator.scene.type = SceneType::kRoom;
-  generator.trajectory.type = TrajectoryType::kLoop;
-  generator.trajectory.num_frames = 12;
-  generator.seed = 7;
+  const GeneratorOptions generator = RoomLoop(12);
   ASSERT_TRUE(GenerateSequence(generator, (scratch / "sequence").string(), /*overwrite=*/true).ok());
   PipelineOptions options;
   options.sequence_dir = (scratch / "sequence").string();
@@ -186,11 +188,7 @@ TEST(PipelineWithPartialMatches, CarriesThemIntoTracksLinesAndTheReport) {
 // trajectory, the tracks and the wireframe come from (tolerance: none).
 TEST(PipelineThreads, OneAndTwoThreadsWriteTheSameBytes) {
   const fs::path scratch = testing::MakeScratchDir("pipeline_threads");
-  GeneratorOptions generator;
-  generator.scene.type = SceneType::kRoom;
-  generator.trajectory.type = TrajectoryType::kLoop;
-  generator.trajectory.num_frames = 24;
-  generator.seed = 7;
+  const GeneratorOptions generator = RoomLoop(24);
   ASSERT_TRUE(GenerateSequence(generator, (scratch / "sequence").string(), /*overwrite=*/true).ok());
   for (int threads : {1, 2}) {
     PipelineOptions options;

@@ -394,19 +394,25 @@ GeneratorOptions CorridorDistorted() {
   return options;
 }
 
+// ExpectAgreement on the stored image and on the undistorted one.
+void ExpectBothImagesAgree(const Measured& measured, size_t min_probes, size_t min_corners,
+                           const Tolerances& tolerances = Tolerances()) {
+  {
+    SCOPED_TRACE("stored image");
+    ExpectAgreement(measured.stored, min_probes, min_corners, tolerances);
+  }
+  {
+    SCOPED_TRACE("undistorted image");
+    ExpectAgreement(measured.undistorted, min_probes, min_corners, tolerances);
+  }
+}
+
 // Both the stored image against the truth's distorted pixels (u_dist v_dist), and the junction
 // benchmark's view: that image undistorted by ImageUndistorter (OpenCV's remap) against the
 // truth's undistorted pixels (u v).
 TEST(RenderedTruthTest, CorridorDistortedStoredAndUndistortedImages) {
   const Measured measured = Measure(CorridorDistorted(), "rendered_truth_distorted");
-  {
-    SCOPED_TRACE("stored image");
-    ExpectAgreement(measured.stored, 5000, 300);
-  }
-  {
-    SCOPED_TRACE("undistorted image");
-    ExpectAgreement(measured.undistorted, 5000, 300);
-  }
+  ExpectBothImagesAgree(measured, 5000, 300);
   ExpectOcclusionEndsOnContours(measured.occlusion_gaps, 1000);
 }
 
@@ -463,14 +469,7 @@ TEST(RenderedTruthTest, RoomWithStrongTangentialDistortion) {
   // 1/32 px). Still well below a half-sample mistake (0.17 px).
   Tolerances tolerances;
   tolerances.shift = 0.06;
-  {
-    SCOPED_TRACE("stored image");
-    ExpectAgreement(measured.stored, 500, 20, tolerances);
-  }
-  {
-    SCOPED_TRACE("undistorted image");
-    ExpectAgreement(measured.undistorted, 500, 20, tolerances);
-  }
+  ExpectBothImagesAgree(measured, 500, 20, tolerances);
 }
 
 // make_sequence --lens equidistant (issue 21): a 150-degree diagonal fisheye with non-zero
@@ -493,14 +492,7 @@ TEST(RenderedTruthTest, RoomThroughAnEquidistantFisheye) {
   const Measured measured = Measure(options, "rendered_truth_fisheye");
   Tolerances tolerances;
   tolerances.shift = 0.06;
-  {
-    SCOPED_TRACE("stored image");
-    ExpectAgreement(measured.stored, 500, 20, tolerances);
-  }
-  {
-    SCOPED_TRACE("undistorted image");
-    ExpectAgreement(measured.undistorted, 500, 20, tolerances);
-  }
+  ExpectBothImagesAgree(measured, 500, 20, tolerances);
 }
 
 }  // namespace
