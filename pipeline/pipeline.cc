@@ -91,13 +91,14 @@ void DetectionBox(const Camera& camera, const PipelineOptions& options, Eigen::V
 }
 
 // Paper section 2: junctions and topology graph of every frame, in undistorted pixels, the frames
-// decoded one at a time per thread (DetectSequenceJunctions).
-Status DetectJunctionsOfAllFrames(const Sequence& sequence, const PipelineOptions& options,
-                                  Progress* progress, PipelineResult* result) {
+// decoded one at a time per thread (DetectSequenceJunctions), and their keypoints for the pairs'
+// pose hypotheses (KeypointPairPoses).
+Status DetectJunctionsOfAllFrames(const Sequence& sequence, const PipelineOptions& options, Progress* progress,
+                                  std::vector<FrameKeypoints>* keypoints, PipelineResult* result) {
   const ImageUndistorter undistorter(sequence.calibration.camera, options.undistort_interpolation,
                                      DetectionView(options));
   return DetectSequenceJunctions(sequence, undistorter, options.segments, options.junctions, progress,
-                                 &result->junctions, &result->graphs);
+                                 &result->junctions, &result->graphs, keypoints);
 }
 
 // F and its uncertainty for every pair to match (every consecutive pair and every pair two apart,
@@ -185,22 +186,39 @@ void MeasureOdometryNoise(const Sequence& sequence, const PipelineOptions& optio
 // or, when the verified poses say the odometry's gates were too narrow, the whole matching again
 // with wider ones. `diagnostics` receives each pair's refinement, in the order of `pairs`.
 Status MatchFramePairs(const Sequence& sequence, const PipelineOptions& options,
-                       const std::vector<std::pair<int, int>>& pairs, std::vector<PairGeometry>* geometries,
-                       Progress* progress, std::vector<MatchingDiagnostics>* diagnostics, PipelineResult* result) {
+                       const std::vector<std::pair<int, int>>& pairs, const std::vector<FrameKeypoints>& keypoints,
+                       std::vector<PairGeometry>* geometries, Progress* progress,
+                       std::vector<MatchingDiagnostics>* diagnostics, PipelineResult* result) {
   VerifySequencePairs(pairs, *geometries, result->junctions, result->graphs, options.Matching(), progress,
                       &result->pairs, diagnostics);
   bool rematch = false;
   MeasureOdometryNoise(sequence, options, pairs, *diagnostics, &rematch, result);
+  const PairRefinementSettings refinement = RefinementSettings(options.Matching());
   if (!rematch) {
-    GuidedSequencePairs(result->junctions, result->graphs, options.Matching(), progress, &result->pairs, diagnostics);
-    return Status::Ok();
+    const std::vector<std::optional<PoseHypothesis>> keypoint_poses =
+        KeypointPairPoses(pairs, *geometries, keypoints, refinement);
+    GuidedSequencePairs(result->junctions, result->graphs, *geometries, keypoint_poses, options.Matching(), progress,
+                        &result->pairs, diagnostics);
+  } else {
+    LOG(INFO) << "matching again with the measured odometry noise";
+    std::vector<std::pair<int, int>> same_pairs;
+    SFM_RETURN_IF_ERROR(OdometryPairGeometries(sequence, options.sequence_dir, result->initialization.used,
+                                               &same_pairs, geometries));
+    const std::vector<std::optional<PoseHypothesis>> keypoint_poses =
+        KeypointPairPoses(pairs, *geometries, keypoints, refinement);
+    result->pairs = MatchSequencePairs(pairs, *geometries, result->junctions, result->graphs, options.Matching(),
+                                       progress, diagnostics, keypoint_poses);
   }
-  LOG(INFO) << "matching again with the measured odometry noise";
-  std::vector<std::pair<int, int>> same_pairs;
-  SFM_RETURN_IF_ERROR(OdometryPairGeometries(sequence, options.sequence_dir, result->initialization.used,
-                                             &same_pairs, geometries));
-  result->pairs = MatchSequencePairs(pairs, *geometries, result->junctions, result->graphs, options.Matching(),
-                                     progress, diagnostics);
+  int& recentred = result->initialization.recentred_pairs;
+  for (const MatchingDiagnostics& pair : *diagnostics) recentred += pair.recentred;
+  LOG(INFO) << "matching: " << recentred << " of " << pairs.size()
+            << " pairs matched with the gates centred on a pose hypothesis (keypoints, neighbouring pairs)";
+  if (recentred > 0) {
+    // Their verified poses changed: the odometry's noise is measured again from the final ones.
+    const bool rematched = result->initialization.rematched;
+    MeasureOdometryNoise(sequence, options, pairs, *diagnostics, &rematch, result);
+    result->initialization.rematched = rematched;
+  }
   return Status::Ok();
 }
 
@@ -658,12 +676,14 @@ Status RunPipeline(const PipelineOptions& options, PipelineResult* result_out) {
   // 2. Front end, matching, back end.
   Clock::time_point stage_start = Clock::now();
   stages.Start("junction detection");
-  SFM_RETURN_IF_ERROR(DetectJunctionsOfAllFrames(sequence, options, &progress, &result));
+  std::vector<FrameKeypoints> keypoints;
+  SFM_RETURN_IF_ERROR(DetectJunctionsOfAllFrames(sequence, options, &progress, &keypoints, &result));
   result.times.frontend = SecondsSince(stage_start);
   stage_start = Clock::now();
   stages.Start("matching");
   std::vector<MatchingDiagnostics> diagnostics;
-  SFM_RETURN_IF_ERROR(MatchFramePairs(sequence, options, pairs, &pair_geometries, &progress, &diagnostics, &result));
+  SFM_RETURN_IF_ERROR(
+      MatchFramePairs(sequence, options, pairs, keypoints, &pair_geometries, &progress, &diagnostics, &result));
   result.times.matching = SecondsSince(stage_start);
   stage_start = Clock::now();
   stages.Start("initial trajectory");

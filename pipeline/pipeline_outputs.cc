@@ -213,6 +213,7 @@ std::string InitializationJson(const PipelineResult& result) {
                                    ", \"distance_sigma\": " + JsonNumber(translation.distance_sigma) + "}"
                              : std::string("null"))
        << ", \"rematched\": " << (summary.rematched ? "true" : "false")
+       << ", \"pairs_recentred\": " << summary.recentred_pairs
        << ", \"loops\": {\"candidates\": " << summary.loop_candidates << ", \"closed\": [" << LoopsJson(summary.loops)
        << "]}"
        << ", \"pose_graph\": {\"constraints\": " << summary.pose_graph.constraints

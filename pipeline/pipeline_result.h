@@ -45,6 +45,9 @@ struct InitializationSummary {
   OdometryNoise declared;                  // sequence.yaml's (or the default)
   OdometryNoise used;                      // what the matcher's gates and the priors were weighted by
   bool rematched = false;                  // matching ran again with the measured noise
+  // Pairs whose matches came from gates centred on a pose hypothesis instead of the odometry
+  // (GuidedPassOrHypotheses): by the keypoints' pose, and by the neighbouring pairs' poses.
+  int recentred_pairs = 0;
   // Loop closure: pairs whose views overlap far apart along the trajectory, matched; those that
   // gave a relative pose, (frame a, frame b, inliers).
   int loop_candidates = 0;

@@ -3,6 +3,7 @@
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
+#include <glog/logging.h>
 #include <opencv2/calib3d.hpp>
 #include <opencv2/core/eigen.hpp>
 
@@ -79,17 +80,26 @@ PairRefinement RelativePoseFromMatches(const PairRefinement& refinement, const s
       // The sign of the direction that recoverPose's cheirality vote chose can flip when wrong
       // matches vote; the odometry's prior knows which way the robot went.
       if (direction.dot(map.camera2_T_camera1.translation) < 0) direction = -direction;
-      wide.camera2_T_camera1 = Pose3(Eigen::Quaterniond(rotation).normalized(),
-                                     direction.normalized() * map.camera2_T_camera1.translation.norm());
-      for (size_t i = 0; i < x1.size(); ++i) {
-        if (mask.at<unsigned char>(static_cast<int>(i)) == 0) continue;
-        inliers1.push_back(x1[i]);
-        inliers2.push_back(x2[i]);
+      const Pose3 start(Eigen::Quaterniond(rotation).normalized(),
+                        direction.normalized() * map.camera2_T_camera1.translation.norm());
+      // Where the matches hold a repeated pattern, an essential matrix whose epipolar lines run
+      // along the repetition explains the right and the shifted copies at once. Such a start lies
+      // beyond the odometry's own uncertainty (the MAP pose's prior): the MAP pose and its inliers
+      // are kept.
+      int rank = 0;
+      const double distance_squared = PriorDistanceSquared(refinement.prior, start, &rank);
+      if (rank == 0 || distance_squared <= ChiSquare99(rank)) {
+        wide.camera2_T_camera1 = start;
+        for (size_t i = 0; i < x1.size(); ++i) {
+          if (mask.at<unsigned char>(static_cast<int>(i)) == 0) continue;
+          inliers1.push_back(x1[i]);
+          inliers2.push_back(x2[i]);
+        }
       }
     }
   }
   if (inliers1.empty()) {
-    // No essential matrix: the inliers of the MAP pose.
+    // No essential matrix, or one beyond the MAP pose: the inliers of the MAP pose.
     const Eigen::Matrix3d F = map.Fundamental();
     for (size_t i = 0; i < x1.size(); ++i) {
       if (std::abs(SampsonDistance(F, x1[i], x2[i])) <= settings.gate_sigmas * settings.location_sigma_px) {

@@ -6,15 +6,19 @@
 #include "frontend/junctions/undistorted_junctions.h"
 #include "util/parallel.h"
 
+#include <map>
+
 namespace sfm {
 
 Status DetectSequenceJunctions(const Sequence& sequence, const ImageUndistorter& undistorter,
                                const SegmentDetectorOptions& segment_options,
                                const JunctionDetectorOptions& junction_options, Progress* progress,
-                               std::vector<Junctions>* junctions, std::vector<TopologyGraph>* graphs) {
+                               std::vector<Junctions>* junctions, std::vector<TopologyGraph>* graphs,
+                               std::vector<FrameKeypoints>* keypoints) {
   const int n = static_cast<int>(sequence.frames.size());
   junctions->assign(n, Junctions());
   graphs->assign(n, TopologyGraph());
+  if (keypoints != nullptr) keypoints->assign(n, FrameKeypoints());
   std::vector<Status> statuses(n, Status::Ok());
   ParallelFor(n, [&](int i) {
     cv::Mat image;
@@ -22,12 +26,38 @@ Status DetectSequenceJunctions(const Sequence& sequence, const ImageUndistorter&
     if (statuses[i].ok()) {
       (*junctions)[i] = DetectUndistortedJunctions(undistorter, image, segment_options, junction_options);
       (*graphs)[i] = BuildTopologyGraph((*junctions)[i]);
+      if (keypoints != nullptr) (*keypoints)[i] = DetectKeypoints(image, sequence.calibration.camera);
     }
     progress->Tick("junction detection", "frame", n);
   });
   progress->Finish();
   for (const Status& status : statuses) SFM_RETURN_IF_ERROR(status);
   return Status::Ok();
+}
+
+std::vector<std::optional<PoseHypothesis>> KeypointPairPoses(const std::vector<std::pair<int, int>>& pairs,
+                                                             const std::vector<PairGeometry>& geometries,
+                                                             const std::vector<FrameKeypoints>& keypoints,
+                                                             const PairRefinementSettings& settings) {
+  std::vector<std::optional<PoseHypothesis>> poses(pairs.size());
+  ParallelFor(static_cast<int>(pairs.size()), [&](int p) {
+    const auto [a, b] = pairs[p];
+    // Pairs further apart have the composition of the consecutive pairs' poses (GuidedSequencePairs).
+    if (b != a + 1) return;
+    std::vector<Eigen::Vector2d> x1, x2;
+    MatchKeypoints(keypoints[a], keypoints[b], &x1, &x2);
+    const PairRefinement refined = RefinePairGeometry(geometries[p], x1, x2, settings);
+    if (!refined.Refined()) return;
+    PoseHypothesis hypothesis;
+    hypothesis.camera2_T_camera1 = refined.geometry.camera2_T_camera1;
+    for (size_t k = 0; k < x1.size(); ++k) {
+      if (!refined.inlier[k]) continue;
+      hypothesis.x1.push_back(x1[k]);
+      hypothesis.x2.push_back(x2[k]);
+    }
+    poses[p] = std::move(hypothesis);
+  });
+  return poses;
 }
 
 void VerifySequencePairs(const std::vector<std::pair<int, int>>& pairs, const std::vector<PairGeometry>& geometries,
@@ -49,17 +79,45 @@ void VerifySequencePairs(const std::vector<std::pair<int, int>>& pairs, const st
 }
 
 void GuidedSequencePairs(const std::vector<Junctions>& junctions, const std::vector<TopologyGraph>& graphs,
+                         const std::vector<PairGeometry>& geometries,
+                         const std::vector<std::optional<PoseHypothesis>>& keypoint_poses,
                          const MatchingOptions& options, Progress* progress, std::vector<FramePairMatches>* matches,
                          std::vector<MatchingDiagnostics>* diagnostics) {
   const int n = static_cast<int>(matches->size());
   CHECK_EQ(diagnostics->size(), matches->size());
-  ParallelFor(n, [&](int p) {
+  CHECK(keypoint_poses.empty() || keypoint_poses.size() == matches->size());
+  std::map<std::pair<int, int>, int> index_of_pair;
+  for (int p = 0; p < n; ++p) index_of_pair[{(*matches)[p].frame_a, (*matches)[p].frame_b}] = p;
+  // The pair's hypotheses: its keypoints' pose, and for a pair two frames apart the composition of
+  // the two consecutive pairs' verified poses (their own pass has run by then).
+  auto hypotheses_of = [&](int p) {
+    std::vector<PoseHypothesis> hypotheses;
+    if (!keypoint_poses.empty() && keypoint_poses[p]) hypotheses.push_back(*keypoint_poses[p]);
+    const int a = (*matches)[p].frame_a, b = (*matches)[p].frame_b;
+    const auto first = index_of_pair.find({a, a + 1});
+    const auto second = index_of_pair.find({a + 1, b});
+    if (b == a + 2 && first != index_of_pair.end() && second != index_of_pair.end()) {
+      const PairRefinement& r1 = (*diagnostics)[first->second].refinement;
+      const PairRefinement& r2 = (*diagnostics)[second->second].refinement;
+      if (r1.Refined() && r2.Refined()) {
+        hypotheses.push_back({ComposePairGeometries(r1.geometry, r2.geometry).camera2_T_camera1, {}, {}});
+      }
+    }
+    return hypotheses;
+  };
+  auto guided = [&](int p) {
     FramePairMatches& pair = (*matches)[p];
     const int a = pair.frame_a, b = pair.frame_b;
-    pair.matches = GuidedPass(junctions[a], graphs[a], junctions[b], graphs[b], std::move(pair.matches), options,
-                              &(*diagnostics)[p]);
+    pair.matches = GuidedPassOrHypotheses(junctions[a], graphs[a], junctions[b], graphs[b], std::move(pair.matches),
+                                          geometries[p], hypotheses_of(p), options, &(*diagnostics)[p]);
     progress->Tick("matching, guided pass", "pair", n);
-  });
+  };
+  std::vector<int> consecutive, others;
+  for (int p = 0; p < n; ++p) {
+    ((*matches)[p].frame_b == (*matches)[p].frame_a + 1 ? consecutive : others).push_back(p);
+  }
+  ParallelFor(static_cast<int>(consecutive.size()), [&](int k) { guided(consecutive[k]); });
+  ParallelFor(static_cast<int>(others.size()), [&](int k) { guided(others[k]); });
   progress->Finish();
 }
 
@@ -68,10 +126,11 @@ std::vector<FramePairMatches> MatchSequencePairs(const std::vector<std::pair<int
                                                  const std::vector<Junctions>& junctions,
                                                  const std::vector<TopologyGraph>& graphs,
                                                  const MatchingOptions& options, Progress* progress,
-                                                 std::vector<MatchingDiagnostics>* diagnostics) {
+                                                 std::vector<MatchingDiagnostics>* diagnostics,
+                                                 const std::vector<std::optional<PoseHypothesis>>& keypoint_poses) {
   std::vector<FramePairMatches> matches;
   VerifySequencePairs(pairs, geometries, junctions, graphs, options, progress, &matches, diagnostics);
-  GuidedSequencePairs(junctions, graphs, options, progress, &matches, diagnostics);
+  GuidedSequencePairs(junctions, graphs, geometries, keypoint_poses, options, progress, &matches, diagnostics);
   return matches;
 }
 

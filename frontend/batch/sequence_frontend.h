@@ -3,12 +3,14 @@
 // the results are the same for any thread count (util/parallel.h).
 #pragma once
 
+#include <optional>
 #include <utility>
 #include <vector>
 
 #include "frontend/junctions/junction.h"
 #include "frontend/junctions/junction_detector.h"
 #include "frontend/junctions/topology.h"
+#include "frontend/keypoints/keypoint_pose.h"
 #include "frontend/matching/junction_matcher.h"
 #include "frontend/matching/pair_geometry.h"
 #include "frontend/segments/segment_detector.h"
@@ -22,29 +24,45 @@ namespace sfm {
 
 // Junctions and topology graph of every frame, in undistorted pixels. Each frame is decoded when
 // its detection starts and dropped when it ends: a thread holds one image at a time. An image
-// that cannot be read fails the whole call with the error of the lowest such frame.
+// that cannot be read fails the whole call with the error of the lowest such frame. keypoints (may
+// be null) receives each frame's ORB keypoints (DetectKeypoints) from the same decoded image.
 Status DetectSequenceJunctions(const Sequence& sequence, const ImageUndistorter& undistorter,
                                const SegmentDetectorOptions& segment_options,
                                const JunctionDetectorOptions& junction_options, Progress* progress,
-                               std::vector<Junctions>* junctions, std::vector<TopologyGraph>* graphs);
+                               std::vector<Junctions>* junctions, std::vector<TopologyGraph>* graphs,
+                               std::vector<FrameKeypoints>* keypoints = nullptr);
+
+// Each consecutive pair's pose from its keypoints' correspondences (MatchKeypoints) with
+// geometries[p] as the prior (RefinePairGeometry), and the correspondences within its gate; none
+// for other pairs, where too few are within it, or where the pose leaves the prior's gate.
+std::vector<std::optional<PoseHypothesis>> KeypointPairPoses(const std::vector<std::pair<int, int>>& pairs,
+                                                             const std::vector<PairGeometry>& geometries,
+                                                             const std::vector<FrameKeypoints>& keypoints,
+                                                             const PairRefinementSettings& settings);
 
 // The matches of every pair (frame a, frame b) of `pairs`, under geometries[p], in the order of
-// `pairs`; diagnostics[p] receives the pair's refinement.
+// `pairs`; diagnostics[p] receives the pair's refinement. keypoint_poses: empty, or per pair a
+// hypothesis for GuidedPassOrHypotheses.
 std::vector<FramePairMatches> MatchSequencePairs(const std::vector<std::pair<int, int>>& pairs,
                                                  const std::vector<PairGeometry>& geometries,
                                                  const std::vector<Junctions>& junctions,
                                                  const std::vector<TopologyGraph>& graphs,
                                                  const MatchingOptions& options, Progress* progress,
-                                                 std::vector<MatchingDiagnostics>* diagnostics);
+                                                 std::vector<MatchingDiagnostics>* diagnostics,
+                                                 const std::vector<std::optional<PoseHypothesis>>& keypoint_poses = {});
 
 // The same in MatchJunctions' two steps (VerifiedFirstPass, GuidedPass), every pair in parallel
 // in each: VerifySequencePairs gives each pair's first-pass matches (in `matches`) and refinement
-// (in diagnostics); GuidedSequencePairs continues them into MatchSequencePairs' result.
+// (in diagnostics); GuidedSequencePairs continues them into MatchSequencePairs' result with
+// GuidedPassOrHypotheses: the hypotheses are keypoint_poses[p] (when not empty) and, for a pair two
+// frames apart, the composition of the two consecutive pairs' verified poses (those pairs first).
 void VerifySequencePairs(const std::vector<std::pair<int, int>>& pairs, const std::vector<PairGeometry>& geometries,
                          const std::vector<Junctions>& junctions, const std::vector<TopologyGraph>& graphs,
                          const MatchingOptions& options, Progress* progress, std::vector<FramePairMatches>* matches,
                          std::vector<MatchingDiagnostics>* diagnostics);
 void GuidedSequencePairs(const std::vector<Junctions>& junctions, const std::vector<TopologyGraph>& graphs,
+                         const std::vector<PairGeometry>& geometries,
+                         const std::vector<std::optional<PoseHypothesis>>& keypoint_poses,
                          const MatchingOptions& options, Progress* progress, std::vector<FramePairMatches>* matches,
                          std::vector<MatchingDiagnostics>* diagnostics);
 

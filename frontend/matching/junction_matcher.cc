@@ -327,6 +327,67 @@ std::vector<JunctionMatch> MatchJunctions(const Junctions& a, const TopologyGrap
                     options, report);
 }
 
+namespace {
+
+// GuidedPassOrHypotheses' test: whether `hypothesis` and the verified pose disagree. x1, x2: the
+// first pass's matches, whose inliers at the verified pose are measured.
+bool Disagree(const PoseHypothesis& hypothesis, const PairRefinement& verified, const std::vector<Eigen::Vector2d>& x1,
+              const std::vector<Eigen::Vector2d>& x2, const MatchingOptions& options) {
+  if (!verified.Refined()) return true;
+  PairGeometry at_hypothesis = verified.geometry;
+  at_hypothesis.camera2_T_camera1 = hypothesis.camera2_T_camera1;
+  const Eigen::Matrix3d F = at_hypothesis.Fundamental();
+  std::vector<double> distances;
+  for (size_t k = 0; k < x1.size(); ++k) {
+    if (verified.inlier[k]) distances.push_back(std::abs(SampsonDistance(F, x1[k], x2[k])));
+  }
+  if (distances.empty()) return true;
+  std::nth_element(distances.begin(), distances.begin() + distances.size() / 2, distances.end());
+  return distances[distances.size() / 2] >
+         kDisagreementBands * options.refine_gate_sigmas * options.location_sigma_px;
+}
+
+}  // namespace
+
+std::vector<JunctionMatch> GuidedPassOrHypotheses(const Junctions& a, const TopologyGraph& graph_a, const Junctions& b,
+                                                  const TopologyGraph& graph_b, std::vector<JunctionMatch> first,
+                                                  const PairGeometry& geometry,
+                                                  const std::vector<PoseHypothesis>& hypotheses,
+                                                  const MatchingOptions& options, MatchingDiagnostics* diagnostics) {
+  std::vector<char> disputed;
+  if (options.refine_geometry) {
+    std::vector<Eigen::Vector2d> x1, x2;
+    MatchLocations(a, b, first, &x1, &x2);
+    for (const PoseHypothesis& hypothesis : hypotheses) {
+      disputed.push_back(Disagree(hypothesis, diagnostics->refinement, x1, x2, options));
+    }
+  }
+  std::vector<JunctionMatch> matches = GuidedPass(a, graph_a, b, graph_b, std::move(first), options, diagnostics);
+  for (size_t h = 0; h < disputed.size(); ++h) {
+    if (!disputed[h]) continue;
+    PairGeometry centred = geometry;
+    centred.camera2_T_camera1 = hypotheses[h].camera2_T_camera1;
+    MatchingDiagnostics other;
+    std::vector<JunctionMatch> other_matches = GuidedPass(
+        a, graph_a, b, graph_b, VerifiedFirstPass(a, graph_a, b, graph_b, centred, options, &other), options, &other);
+    VLOG(1) << "pose hypothesis " << h << ": " << matches.size() << " matches so far, " << other_matches.size()
+            << " centred on it";
+    if (!other.refinement.Refined() ||
+        static_cast<double>(other_matches.size()) < kHypothesisMatchRatio * static_cast<double>(matches.size())) {
+      continue;
+    }
+    std::vector<Eigen::Vector2d> x1, x2;
+    MatchLocations(a, b, other_matches, &x1, &x2);
+    PairRefinement refinement = RefinePairGeometry(geometry, x1, x2, RefinementSettings(options));
+    if (!refinement.Refined()) continue;
+    *diagnostics = std::move(other);
+    diagnostics->refinement = std::move(refinement);
+    diagnostics->recentred = true;
+    matches = std::move(other_matches);
+  }
+  return matches;
+}
+
 PairRefinementSettings RefinementSettings(const MatchingOptions& options) {
   PairRefinementSettings settings;
   settings.location_sigma_px = options.location_sigma_px;

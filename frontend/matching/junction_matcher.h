@@ -29,6 +29,8 @@ struct MatchingDiagnostics {
   PairRefinement refinement;
   // Partial matches the guided pass added.
   int partial_matches = 0;
+  // The matches are a pass of GuidedPassOrHypotheses with the gates centred on a hypothesis.
+  bool recentred = false;
 };
 
 // The same with the pair's relative pose and its uncertainty (PairGeometryFromOdometry): F =
@@ -56,6 +58,22 @@ std::vector<JunctionMatch> VerifiedFirstPass(const Junctions& a, const TopologyG
 std::vector<JunctionMatch> GuidedPass(const Junctions& a, const TopologyGraph& graph_a, const Junctions& b,
                                       const TopologyGraph& graph_b, std::vector<JunctionMatch> first,
                                       const MatchingOptions& options, MatchingDiagnostics* diagnostics);
+
+// GuidedPass, then each hypothesis that disagrees with the verified pose (its epipolar lines lie
+// more than kDisagreementBands guided bands, refine_gate_sigmas * location_sigma_px, from the median
+// verified match; every hypothesis where the pose was not verified): the two
+// steps again with the gates centred on it (geometry's covariance). Such a pass replaces the best
+// so far when it has kHypothesisMatchRatio times its matches and its matches refine under
+// geometry's own prior (the odometry, which also picks between the two poses a near-planar scene
+// allows); its matches and that refinement are returned, and diagnostics->recentred is set
+// (docs/matching.md, "Pose hypotheses").
+constexpr double kDisagreementBands = 2;
+constexpr double kHypothesisMatchRatio = 1.2;
+std::vector<JunctionMatch> GuidedPassOrHypotheses(const Junctions& a, const TopologyGraph& graph_a, const Junctions& b,
+                                                  const TopologyGraph& graph_b, std::vector<JunctionMatch> first,
+                                                  const PairGeometry& geometry,
+                                                  const std::vector<PoseHypothesis>& hypotheses,
+                                                  const MatchingOptions& options, MatchingDiagnostics* diagnostics);
 
 // The settings of the refinement MatchJunctions runs (RefinePairGeometry), from options.
 PairRefinementSettings RefinementSettings(const MatchingOptions& options);

@@ -17,9 +17,6 @@ namespace {
 // Tuning constant of the Cauchy loss for 95 % asymptotic efficiency under Gaussian noise (in
 // units of the residual's sigma): the usual choice, e.g. Holland & Welsch 1977.
 constexpr double kCauchyConstant = 2.3849;
-// Chi-square 99 % quantiles for 1..6 degrees of freedom: the prior consistency gate at the same
-// level as the 99 % gate of each match.
-constexpr double kChiSquare99[6] = {6.635, 9.210, 11.345, 13.277, 15.086, 16.812};
 // Iterations of reweighted Gauss-Newton; the benchmark pairs converge in about 10 (docs/matching.md),
 // the limit only bounds the cost.
 constexpr int kMaxIterations = 30;
@@ -335,6 +332,13 @@ double SampsonDistance(const Eigen::Matrix3d& F, const Eigen::Vector2d& x1, cons
   return x2.homogeneous().dot(line2) / std::sqrt(norm_squared);
 }
 
+double ChiSquare99(int degrees_of_freedom) {
+  // The prior consistency gate at the same level as the 99 % gate of each match.
+  constexpr double kQuantiles[6] = {6.635, 9.210, 11.345, 13.277, 15.086, 16.812};
+  CHECK(degrees_of_freedom >= 1 && degrees_of_freedom <= 6) << degrees_of_freedom;
+  return kQuantiles[degrees_of_freedom - 1];
+}
+
 double PriorDistanceSquared(const PairGeometry& prior, const Pose3& pose, int* rank) {
   const Eigen::SelfAdjointEigenSolver<Matrix6> solver(prior.covariance);
   const double largest = solver.eigenvalues().maxCoeff();
@@ -359,6 +363,7 @@ PairRefinement RefinePairGeometry(const PairGeometry& prior, const std::vector<E
   CHECK_EQ(x1.size(), x2.size());
   CHECK(settings.location_sigma_px > 0 && settings.gate_sigmas > 0 && settings.min_inliers >= 0);
   PairRefinement result;
+  result.prior = prior;
   result.geometry = prior;
   result.estimate = prior.camera2_T_camera1;
   result.matches = static_cast<int>(x1.size());
@@ -401,7 +406,7 @@ PairRefinement RefinePairGeometry(const PairGeometry& prior, const std::vector<E
   Eigen::VectorXd r;
   // Only when the local fit fails a test of step 3 below (outside the prior's ellipsoid, or too
   // few inliers): a fit that passes is accepted as it is (most pairs; this bounds the cost).
-  const double prior_gate = kChiSquare99[m - 1];
+  const double prior_gate = ChiSquare99(m);
   const bool search = best.z.squaredNorm() > prior_gate || best.inliers < settings.min_inliers;
   for (int h = 0; search && h < RequiredSamples(best.inliers, n) && h < kMaxSamples; ++h) {
     std::iota(order.begin(), order.end(), 0);
@@ -484,7 +489,7 @@ PairRefinement RefinePairGeometry(const PairGeometry& prior, const std::vector<E
   }
   result.prior_distance_squared = z.squaredNorm();
   result.estimate = model.PoseAt(z);
-  result.prior_gate = kChiSquare99[m - 1];
+  result.prior_gate = ChiSquare99(m);
   if (result.inliers < settings.min_inliers) {
     result.outcome = PairRefinement::Outcome::kTooFewInliers;
     return result;

@@ -44,7 +44,9 @@ struct PairRefinement {
   };
   Outcome outcome = Outcome::kTooFewMatches;
   bool Refined() const { return outcome == Outcome::kRefined; }
-  // The refined pose and its posterior covariance when Refined(), else the prior unchanged.
+  // The prior it started from, and the refined pose with its posterior covariance when Refined()
+  // (else the prior unchanged).
+  PairGeometry prior;
   PairGeometry geometry;
   // The estimate whatever the outcome (the prior's pose when none was made): for diagnosis of a
   // fallback.
@@ -62,6 +64,9 @@ struct PairRefinement {
   // For each correspondence: within the gate at the estimate (empty unless an estimate was made).
   std::vector<bool> inlier;
 };
+
+// The chi-square distribution's 99 % quantile for 1..6 degrees of freedom.
+double ChiSquare99(int degrees_of_freedom);
 
 // Squared Mahalanobis distance of `pose` from prior.camera2_T_camera1 under prior.covariance (the
 // perturbation (omega, dt) of PairGeometry; pseudo-inverse over the directions with variance, as
