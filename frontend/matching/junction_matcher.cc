@@ -3,6 +3,7 @@
 #include <glog/logging.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <optional>
 
@@ -372,8 +373,9 @@ std::vector<JunctionMatch> GuidedPassOrHypotheses(const Junctions& a, const Topo
         a, graph_a, b, graph_b, VerifiedFirstPass(a, graph_a, b, graph_b, centred, options, &other), options, &other);
     VLOG(1) << "pose hypothesis " << h << ": " << matches.size() << " matches so far, " << other_matches.size()
             << " centred on it";
-    if (!other.refinement.Refined() ||
-        static_cast<double>(other_matches.size()) < kHypothesisMatchRatio * static_cast<double>(matches.size())) {
+    const double n = static_cast<double>(matches.size()), other_n = static_cast<double>(other_matches.size());
+    if (!other.refinement.Refined() || other_n < kHypothesisMatchRatio * n ||
+        other_n < n + kHypothesisExcessSigmas * std::sqrt(n)) {
       continue;
     }
     std::vector<Eigen::Vector2d> x1, x2;

@@ -63,12 +63,14 @@ std::vector<JunctionMatch> GuidedPass(const Junctions& a, const TopologyGraph& g
 // more than kDisagreementBands guided bands, refine_gate_sigmas * location_sigma_px, from the median
 // verified match; every hypothesis where the pose was not verified): the two
 // steps again with the gates centred on it (geometry's covariance). Such a pass replaces the best
-// so far when it has kHypothesisMatchRatio times its matches and its matches refine under
+// so far, n matches, when it has kHypothesisMatchRatio n and n + kHypothesisExcessSigmas sqrt(n)
+// (the count's own spread is about sqrt(n) at either centre), and its matches refine under
 // geometry's own prior (the odometry, which also picks between the two poses a near-planar scene
 // allows); its matches and that refinement are returned, and diagnostics->recentred is set
 // (docs/matching.md, "Pose hypotheses").
 constexpr double kDisagreementBands = 2;
 constexpr double kHypothesisMatchRatio = 1.2;
+constexpr double kHypothesisExcessSigmas = 3;
 std::vector<JunctionMatch> GuidedPassOrHypotheses(const Junctions& a, const TopologyGraph& graph_a, const Junctions& b,
                                                   const TopologyGraph& graph_b, std::vector<JunctionMatch> first,
                                                   const PairGeometry& geometry,
