@@ -108,6 +108,9 @@ void PlaceManhattanLines(const Eigen::Matrix3d& K, const std::vector<Pose3>& wor
                          const ManhattanLineOptions& options, Landmarks* drawn, ManhattanLineReport* report) {
   CHECK_EQ(world_T_camera.size(), junctions.size());
   CHECK(options.level > 0 && options.level < 1);
+  CHECK(options.min_support > 0 && options.min_support <= 1) << options.min_support;
+  CHECK_GE(options.min_views, 2);
+  CHECK_GT(options.max_end_spread_px, 0);
   ManhattanLineReport local;
   local.directions = EstimateDominantDirections(*drawn, options.inlier_deg);
   const DominantDirections& directions = local.directions;
