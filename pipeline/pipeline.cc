@@ -590,6 +590,21 @@ void SelectWireframe(const Sequence& sequence, const PipelineOptions& options, P
             << report.lines_uncertain_end0 + report.lines_uncertain_end1 << " undetermined, "
             << report.lines_unbounded << " unbounded; " << report.lines_far_end_at_point
             << " far ends at drawn points";
+  ManhattanLineOptions manhattan;
+  manhattan.pixel_sigma_px = report.pixel_sigma_px > 0 ? report.pixel_sigma_px : wireframe.pixel_sigma_px;
+  manhattan.drift = drift;
+  manhattan.level = wireframe.consistency_level;
+  manhattan.min_plane_angle_deg = options.triangulation.line.min_plane_angle_deg;
+  manhattan.wireframe = wireframe;
+  manhattan.line = options.triangulation.line;
+  ManhattanLineReport& placed = result->manhattan_lines;
+  PlaceManhattanLines(K, poses, result->junctions, result->tracks, manhattan, &result->wireframe_landmarks,
+                      &placed);
+  LOG(INFO) << "wireframe: " << placed.placed << " lines along the motion placed by the dominant directions"
+            << " (support " << placed.directions.support << ", " << placed.candidates << " candidates, "
+            << placed.inconsistent << " off every direction, " << placed.ambiguous << " ambiguous, "
+            << placed.unbounded << " unbounded, " << placed.ends_disagree << " far ends apart, "
+            << placed.undetermined << " undetermined)";
   if (options.topology_edges) AddEdgesBetweenPoints(options, poses, report, result);
   LinePointAgreementOptions agreement;
   agreement.pixel_sigma_px = report.pixel_sigma_px > 0 ? report.pixel_sigma_px : wireframe.pixel_sigma_px;

@@ -136,6 +136,8 @@ std::string WireframeJson(const PipelineResult& result) {
          ", \"point_edges_undetermined\": " + std::to_string(edges.undetermined) +
          ", \"point_edge_splits\": " + std::to_string(edges.splits) +
          ", \"lines_on_point_edges\": " + std::to_string(edges.lines_dropped) +
+         ", \"manhattan_lines\": " + std::to_string(result.manhattan_lines.placed) +
+         ", \"manhattan_support\": " + JsonNumber(result.manhattan_lines.directions.support) +
          ", \"pixel_sigma_px\": " + JsonNumber(report.pixel_sigma_px) +
          ", \"points_untestable\": " + std::to_string(report.points_untestable) +
          ", \"points_occlusion_untested\": " + std::to_string(report.points_occlusion_untested) +

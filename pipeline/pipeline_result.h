@@ -13,6 +13,7 @@
 #include "backend/metrics/drift.h"
 #include "backend/triangulation/landmarks.h"
 #include "backend/triangulation/line_point_agreement.h"
+#include "backend/triangulation/manhattan_lines.h"
 #include "backend/triangulation/topology_edges.h"
 #include "backend/triangulation/wireframe_selection.h"
 #include "frontend/junctions/junction.h"
@@ -90,6 +91,7 @@ struct PipelineResult {
   WireframeSelectionReport wireframe_selection;
   TopologyEdgeReport topology_edges;      // the edges between drawn points (AddTopologyEdges)
   LinePointAgreementReport line_point_agreement;  // lines and points made to agree (AgreeLinesAndPoints)
+  ManhattanLineReport manhattan_lines;  // lines along the motion placed (PlaceManhattanLines)
   int unobservable_lines = 0;             // segment tracks dropped as parallel to the motion
   std::vector<Pose3> world_T_camera_odometry;
   std::vector<Pose3> world_T_camera_initial;               // the pose graph's (InitializationSummary)
