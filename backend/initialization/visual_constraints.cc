@@ -53,7 +53,8 @@ Matrix6 WidenedPrior(const Matrix6& covariance, const Eigen::Vector3d& translati
 
 PairRefinement RelativePoseFromMatches(const PairRefinement& refinement, const std::vector<Eigen::Vector2d>& x1,
                                        const std::vector<Eigen::Vector2d>& x2,
-                                       const PairRefinementSettings& settings, PairGeometry* prior_used) {
+                                       const PairRefinementSettings& settings, PairGeometry* prior_used,
+                                       bool repeated_pattern) {
   const PairGeometry& map = refinement.geometry;
   PairGeometry wide = map;
   // The inliers and the start from the essential matrix (OpenCV's RANSAC, Nister's five-point
@@ -82,12 +83,12 @@ PairRefinement RelativePoseFromMatches(const PairRefinement& refinement, const s
       if (direction.dot(map.camera2_T_camera1.translation) < 0) direction = -direction;
       const Pose3 start(Eigen::Quaterniond(rotation).normalized(),
                         direction.normalized() * map.camera2_T_camera1.translation.norm());
-      // Where the matches hold a repeated pattern, an essential matrix whose epipolar lines run
-      // along the repetition explains the right and the shifted copies at once. Such a start lies
-      // beyond the odometry's own uncertainty (the MAP pose's prior): the MAP pose and its inliers
-      // are kept.
+      // On a repeated pattern, an essential matrix whose epipolar lines run along the repetition
+      // explains the right and the shifted copies at once. Such a start lies beyond the odometry's
+      // own uncertainty (the MAP pose's prior): the MAP pose and its inliers are kept.
       int rank = 0;
-      const double distance_squared = PriorDistanceSquared(refinement.prior, start, &rank);
+      const double distance_squared =
+          repeated_pattern ? PriorDistanceSquared(refinement.prior, start, &rank) : 0.0;
       if (rank == 0 || distance_squared <= ChiSquare99(rank)) {
         wide.camera2_T_camera1 = start;
         for (size_t i = 0; i < x1.size(); ++i) {
@@ -154,7 +155,8 @@ std::vector<RelativePoseConstraint> VisualConstraints(const std::vector<FramePai
       x2.push_back(frames[pair.frame_b][match.index_b].location);
     }
     PairGeometry fit_prior;
-    const PairRefinement images = RelativePoseFromMatches(refinement, x1, x2, settings, &fit_prior);
+    const PairRefinement images =
+        RelativePoseFromMatches(refinement, x1, x2, settings, &fit_prior, diagnostics[p].recentred);
     if (!images.Refined()) {
       outcomes[p] = Outcome::kTooFewInliers;
       return;

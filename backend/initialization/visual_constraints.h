@@ -37,12 +37,14 @@ Eigen::Matrix<double, 6, 6> InformationFromMatches(const PairGeometry& prior, co
 // the start. The odometry then only fixes what the matches cannot see (the translation's length;
 // all of the translation without parallax): neither it nor a few wrong matches pull the estimate
 // along the directions the matches determine only weakly (a tilt traded for a sideways
-// translation). Without an essential matrix, the inliers of the MAP pose. The outcome is the fit's;
-// prior_used (optional) receives the fit's prior.
+// translation). Without an essential matrix, the inliers of the MAP pose; with repeated_pattern
+// (the pair's matches came from gates recentred on a hypothesis, MatchingDiagnostics::recentred),
+// also when the essential matrix's pose lies beyond the 99 % gate of refinement.prior. The
+// outcome is the fit's; prior_used (optional) receives the fit's prior.
 PairRefinement RelativePoseFromMatches(const PairRefinement& refinement, const std::vector<Eigen::Vector2d>& x1,
                                        const std::vector<Eigen::Vector2d>& x2,
                                        const PairRefinementSettings& settings,
-                                       PairGeometry* prior_used = nullptr);
+                                       PairGeometry* prior_used = nullptr, bool repeated_pattern = false);
 
 // One constraint per pair whose refinement succeeded: the pose its final matches determine
 // (RelativePoseFromMatches; junction locations of frames[frame_a] and frames[frame_b]) with the
