@@ -47,12 +47,15 @@ void MatchKeypoints(const FrameKeypoints& a, const FrameKeypoints& b, std::vecto
   x2->clear();
   if (a.locations.size() < 2 || b.locations.size() < 2) return;
   const cv::BFMatcher matcher(cv::NORM_HAMMING);
-  std::vector<std::vector<cv::DMatch>> nearest;
-  matcher.knnMatch(a.descriptors, b.descriptors, nearest, 2);
-  for (const std::vector<cv::DMatch>& best : nearest) {
+  std::vector<std::vector<cv::DMatch>> forward, backward;
+  matcher.knnMatch(a.descriptors, b.descriptors, forward, 2);
+  matcher.knnMatch(b.descriptors, a.descriptors, backward, 1);
+  for (const std::vector<cv::DMatch>& best : forward) {
     if (best.size() < 2 || best[0].distance >= kRatio * best[1].distance) continue;
-    x1->push_back(a.locations[best[0].queryIdx]);
-    x2->push_back(b.locations[best[0].trainIdx]);
+    const int i = best[0].queryIdx, j = best[0].trainIdx;
+    if (backward[j].empty() || backward[j][0].trainIdx != i) continue;  // mutual
+    x1->push_back(a.locations[i]);
+    x2->push_back(b.locations[j]);
   }
 }
 

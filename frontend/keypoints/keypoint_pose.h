@@ -24,14 +24,14 @@ struct FrameKeypoints {
 };
 
 // Keypoints kept per frame: enough for dozens of correspondences a pair on 640x480 to 768x512
-// images, few enough that the brute-force matching of a pair stays near a millisecond.
-constexpr int kKeypointsPerFrame = 500;
+// images, few enough that the brute-force matching of a pair stays a few milliseconds.
+constexpr int kKeypointsPerFrame = 1000;
 
 // ORB keypoints of a stored image (grey or colour, 8 or 16 bit) of `camera`.
 FrameKeypoints DetectKeypoints(const cv::Mat& image, const Camera& camera);
 
-// Correspondences between two frames' keypoints: nearest descriptors (Hamming) that pass Lowe's
-// ratio test, x1[k] in a <-> x2[k] in b (undistorted pixels).
+// Correspondences between two frames' keypoints: mutual nearest descriptors (Hamming) that pass
+// Lowe's ratio test, x1[k] in a <-> x2[k] in b (undistorted pixels).
 void MatchKeypoints(const FrameKeypoints& a, const FrameKeypoints& b, std::vector<Eigen::Vector2d>* x1,
                     std::vector<Eigen::Vector2d>* x2);
 
