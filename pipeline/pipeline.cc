@@ -186,7 +186,8 @@ void MeasureOdometryNoise(const Sequence& sequence, const PipelineOptions& optio
 // or, when the verified poses say the odometry's gates were too narrow, the whole matching again
 // with wider ones. `diagnostics` receives each pair's refinement, in the order of `pairs`.
 Status MatchFramePairs(const Sequence& sequence, const PipelineOptions& options,
-                       const std::vector<std::pair<int, int>>& pairs, const std::vector<FrameKeypoints>& keypoints,
+                       const std::vector<std::pair<int, int>>& pairs,
+                       const std::vector<KeypointCorrespondences>& keypoint_matches,
                        std::vector<PairGeometry>* geometries, Progress* progress,
                        std::vector<MatchingDiagnostics>* diagnostics, PipelineResult* result) {
   VerifySequencePairs(pairs, *geometries, result->junctions, result->graphs, options.Matching(), progress,
@@ -196,7 +197,7 @@ Status MatchFramePairs(const Sequence& sequence, const PipelineOptions& options,
   const PairRefinementSettings refinement = RefinementSettings(options.Matching());
   if (!rematch) {
     const std::vector<std::optional<PoseHypothesis>> keypoint_poses =
-        KeypointPairPoses(pairs, *geometries, keypoints, refinement);
+        KeypointPairPoses(*geometries, keypoint_matches, refinement);
     GuidedSequencePairs(result->junctions, result->graphs, *geometries, keypoint_poses, options.Matching(), progress,
                         &result->pairs, diagnostics);
   } else {
@@ -205,7 +206,7 @@ Status MatchFramePairs(const Sequence& sequence, const PipelineOptions& options,
     SFM_RETURN_IF_ERROR(OdometryPairGeometries(sequence, options.sequence_dir, result->initialization.used,
                                                &same_pairs, geometries));
     const std::vector<std::optional<PoseHypothesis>> keypoint_poses =
-        KeypointPairPoses(pairs, *geometries, keypoints, refinement);
+        KeypointPairPoses(*geometries, keypoint_matches, refinement);
     result->pairs = MatchSequencePairs(pairs, *geometries, result->junctions, result->graphs, options.Matching(),
                                        progress, diagnostics, keypoint_poses);
   }
@@ -691,14 +692,18 @@ Status RunPipeline(const PipelineOptions& options, PipelineResult* result_out) {
   // 2. Front end, matching, back end.
   Clock::time_point stage_start = Clock::now();
   stages.Start("junction detection");
-  std::vector<FrameKeypoints> keypoints;
-  SFM_RETURN_IF_ERROR(DetectJunctionsOfAllFrames(sequence, options, &progress, &keypoints, &result));
+  std::vector<KeypointCorrespondences> keypoint_matches;
+  {
+    std::vector<FrameKeypoints> keypoints;
+    SFM_RETURN_IF_ERROR(DetectJunctionsOfAllFrames(sequence, options, &progress, &keypoints, &result));
+    keypoint_matches = MatchConsecutiveKeypoints(pairs, keypoints);
+  }
   result.times.frontend = SecondsSince(stage_start);
   stage_start = Clock::now();
   stages.Start("matching");
   std::vector<MatchingDiagnostics> diagnostics;
   SFM_RETURN_IF_ERROR(
-      MatchFramePairs(sequence, options, pairs, keypoints, &pair_geometries, &progress, &diagnostics, &result));
+      MatchFramePairs(sequence, options, pairs, keypoint_matches, &pair_geometries, &progress, &diagnostics, &result));
   result.times.matching = SecondsSince(stage_start);
   stage_start = Clock::now();
   stages.Start("initial trajectory");

@@ -35,25 +35,32 @@ Status DetectSequenceJunctions(const Sequence& sequence, const ImageUndistorter&
   return Status::Ok();
 }
 
-std::vector<std::optional<PoseHypothesis>> KeypointPairPoses(const std::vector<std::pair<int, int>>& pairs,
-                                                             const std::vector<PairGeometry>& geometries,
-                                                             const std::vector<FrameKeypoints>& keypoints,
-                                                             const PairRefinementSettings& settings) {
-  std::vector<std::optional<PoseHypothesis>> poses(pairs.size());
+std::vector<KeypointCorrespondences> MatchConsecutiveKeypoints(const std::vector<std::pair<int, int>>& pairs,
+                                                               const std::vector<FrameKeypoints>& keypoints) {
+  std::vector<KeypointCorrespondences> correspondences(pairs.size());
   ParallelFor(static_cast<int>(pairs.size()), [&](int p) {
     const auto [a, b] = pairs[p];
-    // Pairs further apart have the composition of the consecutive pairs' poses (GuidedSequencePairs).
-    if (b != a + 1) return;
-    std::vector<Eigen::Vector2d> x1, x2;
-    MatchKeypoints(keypoints[a], keypoints[b], &x1, &x2);
-    const PairRefinement refined = RefinePairGeometry(geometries[p], x1, x2, settings);
+    if (b == a + 1) correspondences[p] = MatchKeypoints(keypoints[a], keypoints[b]);
+  });
+  return correspondences;
+}
+
+std::vector<std::optional<PoseHypothesis>> KeypointPairPoses(const std::vector<PairGeometry>& geometries,
+                                                             const std::vector<KeypointCorrespondences>& correspondences,
+                                                             const PairRefinementSettings& settings) {
+  CHECK_EQ(geometries.size(), correspondences.size());
+  std::vector<std::optional<PoseHypothesis>> poses(geometries.size());
+  ParallelFor(static_cast<int>(geometries.size()), [&](int p) {
+    const KeypointCorrespondences& matches = correspondences[p];
+    if (matches.x1.empty()) return;
+    const PairRefinement refined = RefinePairGeometry(geometries[p], matches.x1, matches.x2, settings);
     if (!refined.Refined()) return;
     PoseHypothesis hypothesis;
     hypothesis.camera2_T_camera1 = refined.geometry.camera2_T_camera1;
-    for (size_t k = 0; k < x1.size(); ++k) {
+    for (size_t k = 0; k < matches.x1.size(); ++k) {
       if (!refined.inlier[k]) continue;
-      hypothesis.x1.push_back(x1[k]);
-      hypothesis.x2.push_back(x2[k]);
+      hypothesis.x1.push_back(matches.x1[k]);
+      hypothesis.x2.push_back(matches.x2[k]);
     }
     poses[p] = std::move(hypothesis);
   });

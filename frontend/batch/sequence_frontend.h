@@ -32,12 +32,17 @@ Status DetectSequenceJunctions(const Sequence& sequence, const ImageUndistorter&
                                std::vector<Junctions>* junctions, std::vector<TopologyGraph>* graphs,
                                std::vector<FrameKeypoints>* keypoints = nullptr);
 
-// Each consecutive pair's pose from its keypoints' correspondences (MatchKeypoints) with
-// geometries[p] as the prior (RefinePairGeometry), and the correspondences within its gate; none
-// for other pairs, where too few are within it, or where the pose leaves the prior's gate.
-std::vector<std::optional<PoseHypothesis>> KeypointPairPoses(const std::vector<std::pair<int, int>>& pairs,
-                                                             const std::vector<PairGeometry>& geometries,
-                                                             const std::vector<FrameKeypoints>& keypoints,
+// The keypoint correspondences (MatchKeypoints) of each consecutive pair of `pairs` (b = a + 1),
+// empty for the others, which get the composition of the consecutive pairs' poses instead
+// (GuidedSequencePairs). Kept instead of the keypoints: about a tenth of their memory.
+std::vector<KeypointCorrespondences> MatchConsecutiveKeypoints(const std::vector<std::pair<int, int>>& pairs,
+                                                               const std::vector<FrameKeypoints>& keypoints);
+
+// Each pair's pose from its keypoint correspondences with geometries[p] as the prior
+// (RefinePairGeometry), and the correspondences within its gate; none where too few are, or where
+// the pose leaves the prior's gate.
+std::vector<std::optional<PoseHypothesis>> KeypointPairPoses(const std::vector<PairGeometry>& geometries,
+                                                             const std::vector<KeypointCorrespondences>& correspondences,
                                                              const PairRefinementSettings& settings);
 
 // The matches of every pair (frame a, frame b) of `pairs`, under geometries[p], in the order of

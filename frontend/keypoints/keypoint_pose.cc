@@ -41,11 +41,9 @@ FrameKeypoints DetectKeypoints(const cv::Mat& image, const Camera& camera) {
   return frame;
 }
 
-void MatchKeypoints(const FrameKeypoints& a, const FrameKeypoints& b, std::vector<Eigen::Vector2d>* x1,
-                    std::vector<Eigen::Vector2d>* x2) {
-  x1->clear();
-  x2->clear();
-  if (a.locations.size() < 2 || b.locations.size() < 2) return;
+KeypointCorrespondences MatchKeypoints(const FrameKeypoints& a, const FrameKeypoints& b) {
+  KeypointCorrespondences correspondences;
+  if (a.locations.size() < 2 || b.locations.size() < 2) return correspondences;
   const cv::BFMatcher matcher(cv::NORM_HAMMING);
   std::vector<std::vector<cv::DMatch>> forward, backward;
   matcher.knnMatch(a.descriptors, b.descriptors, forward, 2);
@@ -54,9 +52,10 @@ void MatchKeypoints(const FrameKeypoints& a, const FrameKeypoints& b, std::vecto
     if (best.size() < 2 || best[0].distance >= kRatio * best[1].distance) continue;
     const int i = best[0].queryIdx, j = best[0].trainIdx;
     if (backward[j].empty() || backward[j][0].trainIdx != i) continue;  // mutual
-    x1->push_back(a.locations[i]);
-    x2->push_back(b.locations[j]);
+    correspondences.x1.push_back(a.locations[i]);
+    correspondences.x2.push_back(b.locations[j]);
   }
+  return correspondences;
 }
 
 }  // namespace sfm

@@ -32,7 +32,9 @@ FrameKeypoints DetectKeypoints(const cv::Mat& image, const Camera& camera);
 
 // Correspondences between two frames' keypoints: mutual nearest descriptors (Hamming) that pass
 // Lowe's ratio test, x1[k] in a <-> x2[k] in b (undistorted pixels).
-void MatchKeypoints(const FrameKeypoints& a, const FrameKeypoints& b, std::vector<Eigen::Vector2d>* x1,
-                    std::vector<Eigen::Vector2d>* x2);
+struct KeypointCorrespondences {
+  std::vector<Eigen::Vector2d> x1, x2;
+};
+KeypointCorrespondences MatchKeypoints(const FrameKeypoints& a, const FrameKeypoints& b);
 
 }  // namespace sfm

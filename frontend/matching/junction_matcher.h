@@ -29,7 +29,8 @@ struct MatchingDiagnostics {
   PairRefinement refinement;
   // Partial matches the guided pass added.
   int partial_matches = 0;
-  // The matches are a pass of GuidedPassOrHypotheses with the gates centred on a hypothesis.
+  // The matches are a pass of GuidedPassOrHypotheses with the gates centred on a hypothesis; the
+  // other fields are that pass's, but `refinement` is of its final matches under the odometry.
   bool recentred = false;
 };
 

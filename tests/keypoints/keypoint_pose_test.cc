@@ -52,7 +52,7 @@ TEST(KeypointPoseTest, StrechaEntryP10PosesRefinedUnderTheOdometry) {
         sequence.calibration.odometry_noise.rotation_sigma, b - a));
   }
   const std::vector<std::optional<PoseHypothesis>> refined =
-      KeypointPairPoses(pairs, geometries, keypoints, PairRefinementSettings());
+      KeypointPairPoses(geometries, MatchConsecutiveKeypoints(pairs, keypoints), PairRefinementSettings());
   for (size_t p = 0; p < pairs.size(); ++p) {
     const auto [a, b] = pairs[p];
     const Pose3 camera_a = *sequence.frames[a].world_T_base_groundtruth * sequence.calibration.base_T_camera;
@@ -82,14 +82,14 @@ TEST(KeypointPoseTest, UniformImagesGiveNoPose) {
   const cv::Mat grey(240, 320, CV_8UC1, cv::Scalar(128));
   const FrameKeypoints keypoints = DetectKeypoints(grey, camera);
   EXPECT_TRUE(keypoints.locations.empty());
-  std::vector<Eigen::Vector2d> x1, x2;
-  MatchKeypoints(keypoints, keypoints, &x1, &x2);
-  EXPECT_TRUE(x1.empty());
+  EXPECT_TRUE(MatchKeypoints(keypoints, keypoints).x1.empty());
   PairGeometry geometry;
   geometry.K = camera.K();
   geometry.camera2_T_camera1.translation = Eigen::Vector3d(-1, 0, 0);
   geometry.covariance.diagonal().setConstant(1e-4);
-  EXPECT_FALSE(KeypointPairPoses({{0, 1}}, {geometry}, {keypoints, keypoints}, PairRefinementSettings())[0].has_value());
+  EXPECT_FALSE(KeypointPairPoses({geometry}, MatchConsecutiveKeypoints({{0, 1}}, {keypoints, keypoints}),
+                                 PairRefinementSettings())[0]
+                   .has_value());
 }
 
 }  // namespace
