@@ -40,14 +40,16 @@ class FloorPriorState {
   bool holds_landmarks() const { return !(floor_.points.empty() && floor_.lines.empty()); }
   // BaseOnFloorCost on every pose but the first (the odometry shows the rig on the floor).
   bool base_on_floor() const { return base_on_floor_; }
-  // Before the first selection, wherever the prior may apply and the odometry shows the rig on a
-  // level floor (check 1 of docs/bundle_adjustment.md, "Floor prior"): the coarse solve holds the
-  // bases on it.
+  // Before the first selection, where StartsAtFloorScale: the coarse solve holds the bases on the
+  // floor.
   bool bases_level_before_selection() const;
+  // At least options.floor_start_min_frames frames, the prior not off, and the odometry shows the
+  // rig on a level floor (check 1 of docs/bundle_adjustment.md, "Floor prior").
+  bool StartsAtFloorScale() const;
   // After the first selection, on the coarse map (bases held level, at the odometry's scale): the
   // gain about the first camera that puts the plane found at z = 0, the start the floor's scale
-  // implies; 1 when the prior does not apply, the bases were not held, or the plane is beyond
-  // what the noise model allows (--floor_prior=on).
+  // implies; 1 when the prior does not apply, not StartsAtFloorScale, or the plane is beyond what
+  // the noise model allows (--floor_prior=on).
   double StartGain(const AdjustmentParameters& parameters) const;
   // The report notes the odometry scale the map was started at.
   void NoteStartScale(double odometry_scale, BundleAdjustmentSummary* summary);
