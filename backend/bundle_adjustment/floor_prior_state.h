@@ -72,11 +72,11 @@ class FloorPriorState {
 
   const AdjustmentSetup& setup_;
   bool scale_free_ = false;
-  bool selected_ = false;
-  double first_plane_z_m_ = 0;
+  bool selected_ = false;       // the first selection was made
+  double first_plane_z_m_ = 0;  // m, the plane it found
   bool base_on_floor_ = false;
-  std::string stray_slab_note_;
-  std::string start_note_;  // the report's note when the first selection passed over a stray slab
+  std::string stray_slab_note_;  // the report's note when the first selection passed over a stray slab
+  std::string start_note_;       // the report's note of the scale the fine solves started at
   FloorLandmarks floor_;
   Anchors anchors_;
 };

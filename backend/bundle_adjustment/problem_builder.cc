@@ -191,8 +191,8 @@ JointProblem::JointProblem(const AdjustmentSetup& setup, const FloorPriorState& 
   problem.AddParameterBlock(scale, 1);
   ordering_->AddElementToGroup(scale, 1);
   if (!floor.applied() || parameters->hold_scale) problem.SetParameterBlockConstant(scale);
-  // Before the floor's decision (the coarse solve), wherever the rig may be on a level floor: the
-  // coarse map stays level, so that its floor's height measures the odometry's scale.
+  // Before the floor's decision (the coarse solve) of a long sequence whose rig may be on a level
+  // floor: the coarse map stays level, so that its floor's height measures the odometry's scale.
   if (!floor.applied() && floor.bases_level_before_selection()) HoldBasesOnFloor();
   if (floor.applied()) {
     const FloorLandmarks& held = floor.landmarks();
