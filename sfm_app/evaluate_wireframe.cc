@@ -12,7 +12,7 @@
 // per edge direction (sfm_app/wireframe_evaluation.h; docs/metrics.md, "Wireframe").
 //
 // A second, diagnostic figure takes out what a monocular camera cannot see (docs/bundle_adjustment.md,
-// "What the camera cannot correct"): the scale about the first camera that best maps the refined
+// "Parameters and gauge"): the scale about the first camera that best maps the refined
 // camera positions (<output>/trajectory_refined.txt) onto the true ones
 // (<output>/trajectory_groundtruth.txt) is applied to the vertices before measuring.
 //

@@ -169,6 +169,11 @@ Status BundleAdjustment::SolveCoarse() {
     RevertToOdometry("no landmark left observable on the refined poses");
   } else {
     floor_.Select(/*first=*/true, parameters_, *landmarks_, summary_);
+    const double gain = floor_.StartGain(parameters_);
+    if (gain != 1) {
+      ScaleMapAboutFirstCamera(gain);
+      floor_.NoteStartScale(parameters_.odometry_scale, summary_);
+    }
   }
   WritePoses();
   return Status::Ok();

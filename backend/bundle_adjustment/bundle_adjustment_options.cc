@@ -36,6 +36,7 @@ Status BundleAdjustmentOptions::Check() const {
   if (!(min_depth_m >= 0 && std::isfinite(min_depth_m))) return error("min_depth_m must be >= 0 m");
   if (!(floor_sigma_m > 0 && std::isfinite(floor_sigma_m))) return error("floor_sigma_m must be > 0 m");
   if (floor_min_landmarks < 1) return error("floor_min_landmarks must be >= 1");
+  if (floor_start_min_frames < 0) return error("floor_start_min_frames must be >= 0");
   return Status::Ok();
 }
 

@@ -19,6 +19,7 @@ void FloorPriorState::Select(bool first, const AdjustmentParameters& parameters,
     if (first) summary->floor_prior_report = "floor prior off (--floor_prior=off)";
     return;
   }
+  if (first) selected_ = true;
   if (!first && !scale_free_) return;  // not applied in the first place
   const bool automatic = options.floor_prior == FloorPriorMode::kAuto;
   const double sigma_m = options.floor_sigma_m;
@@ -63,6 +64,7 @@ void FloorPriorState::Select(bool first, const AdjustmentParameters& parameters,
     }
   }
   if (first) summary->floor_plane_z_m = plane.z_m;
+  if (first) first_plane_z_m_ = plane.z_m;
   if (automatic && !(std::abs(plane.z_m) <= allowed_m)) {
     return skip("the lowest horizontal plane (" + std::to_string(plane.support) + " landmarks) is at z = " +
                 std::to_string(plane.z_m) + " m, beyond the " + std::to_string(allowed_m) +
@@ -72,11 +74,36 @@ void FloorPriorState::Select(bool first, const AdjustmentParameters& parameters,
   anchors_.clear();
   for (int line : floor_.lines) anchors_.push_back({landmarks.lines[line].end0, landmarks.lines[line].end1});
   scale_free_ = true;
-  summary->floor_prior_report = "floor prior: plane at z = " + std::to_string(plane.z_m) + " m (" +
-                                std::to_string(plane.support) + " of " + std::to_string(plane.below_camera) +
-                                " landmarks below the cameras), " + std::to_string(floor_.points.size()) +
-                                " points and " + std::to_string(floor_.lines.size()) + " lines held" +
-                                (base_on_floor_ ? ", base poses held on it" : "") + stray_slab_note_;
+  summary->floor_prior_report =
+      "floor prior: plane at z = " + std::to_string(plane.z_m) + " m (" + std::to_string(plane.support) +
+      " of " + std::to_string(plane.below_camera) + " landmarks below the cameras), " +
+      std::to_string(floor_.points.size()) + " points and " + std::to_string(floor_.lines.size()) +
+      " lines held" + (base_on_floor_ ? ", base poses held on it" : "") + stray_slab_note_ + start_note_;
+}
+
+bool FloorPriorState::bases_level_before_selection() const { return !selected_ && StartsAtFloorScale(); }
+
+bool FloorPriorState::StartsAtFloorScale() const {
+  const BundleAdjustmentOptions& options = setup_.options;
+  return static_cast<int>(setup_.odometry.size()) >= options.floor_start_min_frames &&
+         options.floor_prior != FloorPriorMode::kOff &&
+         FloorPriorRigProblem(setup_.base_T_camera, setup_.odometry, options.floor_sigma_m).empty();
+}
+
+// A map s times too long, scaled about the first camera (height c above the floor, held by the
+// bases' prior), has its floor at z = c (1 - s): the gain 1 / s = c / (c - z) puts it back at 0.
+double FloorPriorState::StartGain(const AdjustmentParameters& parameters) const {
+  if (!StartsAtFloorScale() || !scale_free_ || !(std::abs(first_plane_z_m_) <= AllowedFloorHeight())) {
+    return 1;
+  }
+  const double camera_z_m = (parameters.poses[0].ToPose() * setup_.base_T_camera).translation.z();
+  if (!(camera_z_m > first_plane_z_m_)) return 1;
+  return camera_z_m / (camera_z_m - first_plane_z_m_);
+}
+
+void FloorPriorState::NoteStartScale(double odometry_scale, BundleAdjustmentSummary* summary) {
+  start_note_ = "; started at odometry scale " + std::to_string(odometry_scale);
+  summary->floor_prior_report += start_note_;
 }
 
 double FloorPriorState::AllowedFloorHeight() const {

@@ -40,6 +40,19 @@ class FloorPriorState {
   bool holds_landmarks() const { return !(floor_.points.empty() && floor_.lines.empty()); }
   // BaseOnFloorCost on every pose but the first (the odometry shows the rig on the floor).
   bool base_on_floor() const { return base_on_floor_; }
+  // Before the first selection, where StartsAtFloorScale: the coarse solve holds the bases on the
+  // floor.
+  bool bases_level_before_selection() const;
+  // At least options.floor_start_min_frames frames, the prior not off, and the odometry shows the
+  // rig on a level floor (check 1 of docs/bundle_adjustment.md, "Floor prior").
+  bool StartsAtFloorScale() const;
+  // After the first selection, on the coarse map (bases held level, at the odometry's scale): the
+  // gain about the first camera that puts the plane found at z = 0, the start the floor's scale
+  // implies; 1 when the prior does not apply, not StartsAtFloorScale, or the plane is beyond what
+  // the noise model allows (--floor_prior=on).
+  double StartGain(const AdjustmentParameters& parameters) const;
+  // The report notes the odometry scale the map was started at.
+  void NoteStartScale(double odometry_scale, BundleAdjustmentSummary* summary);
   const FloorLandmarks& landmarks() const { return floor_; }
   // Each selected line's end-points when it was selected, the plane its prior holds it to.
   const Anchors& anchors() const { return anchors_; }
@@ -59,8 +72,11 @@ class FloorPriorState {
 
   const AdjustmentSetup& setup_;
   bool scale_free_ = false;
+  bool selected_ = false;       // the first selection was made
+  double first_plane_z_m_ = 0;  // m, the plane it found
   bool base_on_floor_ = false;
   std::string stray_slab_note_;  // the report's note when the first selection passed over a stray slab
+  std::string start_note_;       // the report's note of the scale the fine solves started at
   FloorLandmarks floor_;
   Anchors anchors_;
 };

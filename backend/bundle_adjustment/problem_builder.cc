@@ -191,6 +191,9 @@ JointProblem::JointProblem(const AdjustmentSetup& setup, const FloorPriorState& 
   problem.AddParameterBlock(scale, 1);
   ordering_->AddElementToGroup(scale, 1);
   if (!floor.applied() || parameters->hold_scale) problem.SetParameterBlockConstant(scale);
+  // Before the floor's decision (the coarse solve) of a long sequence whose rig may be on a level
+  // floor: the coarse map stays level, so that its floor's height measures the odometry's scale.
+  if (!floor.applied() && floor.bases_level_before_selection()) HoldBasesOnFloor();
   if (floor.applied()) {
     const FloorLandmarks& held = floor.landmarks();
     for (int point : held.points) {
@@ -202,14 +205,7 @@ JointProblem::JointProblem(const AdjustmentSetup& setup, const FloorPriorState& 
           FloorLineCost::Create(floor.anchors()[k][0], floor.anchors()[k][1], options.floor_sigma_m),
           &floor_loss_, line_block(joint_slot[held.lines[k]]));
     }
-    if (floor.base_on_floor()) {
-      // The first pose is held constant; its prior would be a constant.
-      const double tilt_sigma_rad = options.floor_sigma_m / setup.base_T_camera.translation.z();
-      for (size_t f = 1; f < poses.size(); ++f) {
-        AddResidual(BaseOnFloorCost::Create(options.floor_sigma_m, tilt_sigma_rad), nullptr,
-                    {poses[f].rotation.data(), poses[f].translation.data()});
-      }
-    }
+    if (floor.base_on_floor()) HoldBasesOnFloor();
     problem.AddResidualBlock(OdometryScalePriorCost::Create(setup.noise.translation_sigma), nullptr, scale);
     // With nothing on the floor left, the scale it gave is kept.
     if (held.points.empty() && (!with_lines || held.lines.empty())) problem.SetParameterBlockConstant(scale);
@@ -240,6 +236,17 @@ JointProblem::JointProblem(const AdjustmentSetup& setup, const FloorPriorState& 
     AddResidual(OdometryPriorCost::Create(motion, rotation_sigma, sigmas.along_m, sigmas.across_m), nullptr,
                 {poses[f].rotation.data(), poses[f].translation.data(), poses[f + 1].rotation.data(),
                  poses[f + 1].translation.data(), scale, bias});
+  }
+}
+
+// BaseOnFloorCost on every pose but the first, which is held constant (its prior would be a constant).
+void JointProblem::HoldBasesOnFloor() {
+  const BundleAdjustmentOptions& options = setup_.options;
+  const double tilt_sigma_rad = options.floor_sigma_m / setup_.base_T_camera.translation.z();
+  std::vector<PoseParameters>& poses = parameters_->poses;
+  for (size_t f = 1; f < poses.size(); ++f) {
+    AddResidual(BaseOnFloorCost::Create(options.floor_sigma_m, tilt_sigma_rad), nullptr,
+                {poses[f].rotation.data(), poses[f].translation.data()});
   }
 }
 

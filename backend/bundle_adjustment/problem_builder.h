@@ -43,6 +43,7 @@ class JointProblem {
  private:
   void AddResidual(ceres::CostFunction* cost, ceres::LossFunction* loss, const std::vector<double*>& blocks);
   bool IsPoseRotation(const double* block) const;
+  void HoldBasesOnFloor();
   std::shared_ptr<ceres::ParameterBlockOrdering> InnerIterationOrdering();
   double* point_block(size_t i) { return landmark_values_.data() + 3 * i; }
   double* line_block(size_t i) { return landmark_values_.data() + 3 * point_count_ + 6 * i; }
