@@ -14,6 +14,7 @@
 #include "frontend/sequence/sequence.h"
 #include "sequences/importers/imported_sequence.h"
 #include "sequences/importers/strecha_importer.h"
+#include "tests/test_cameras.h"
 #include "tests/test_data.h"
 
 namespace sfm {
@@ -73,13 +74,8 @@ TEST(KeypointPoseTest, StrechaEntryP10PosesRefinedUnderTheOdometry) {
 
 // A frame without texture gives no keypoints and so no pose, not a made-up one.
 TEST(KeypointPoseTest, UniformImagesGiveNoPose) {
-  Camera camera;
-  camera.width = 320;
-  camera.height = 240;
-  camera.fx = camera.fy = 300;
-  camera.cx = 160;
-  camera.cy = 120;
-  const cv::Mat grey(240, 320, CV_8UC1, cv::Scalar(128));
+  const Camera camera = testing::BenchmarkLens();
+  const cv::Mat grey(camera.height, camera.width, CV_8UC1, cv::Scalar(128));
   const FrameKeypoints keypoints = DetectKeypoints(grey, camera);
   EXPECT_TRUE(keypoints.locations.empty());
   EXPECT_TRUE(MatchKeypoints(keypoints, keypoints).x1.empty());
