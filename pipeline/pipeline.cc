@@ -194,19 +194,18 @@ Status MatchFramePairs(const Sequence& sequence, const PipelineOptions& options,
                       &result->pairs, diagnostics);
   bool rematch = false;
   MeasureOdometryNoise(sequence, options, pairs, *diagnostics, &rematch, result);
-  const PairRefinementSettings refinement = RefinementSettings(options.Matching());
-  if (!rematch) {
-    const std::vector<std::optional<PoseHypothesis>> keypoint_poses =
-        KeypointPairPoses(*geometries, keypoint_matches, refinement);
-    GuidedSequencePairs(result->junctions, result->graphs, *geometries, keypoint_poses, options.Matching(), progress,
-                        &result->pairs, diagnostics);
-  } else {
+  if (rematch) {
     LOG(INFO) << "matching again with the measured odometry noise";
     std::vector<std::pair<int, int>> same_pairs;
     SFM_RETURN_IF_ERROR(OdometryPairGeometries(sequence, options.sequence_dir, result->initialization.used,
                                                &same_pairs, geometries));
-    const std::vector<std::optional<PoseHypothesis>> keypoint_poses =
-        KeypointPairPoses(*geometries, keypoint_matches, refinement);
+  }
+  const std::vector<std::optional<Pose3>> keypoint_poses =
+      KeypointPairPoses(*geometries, keypoint_matches, RefinementSettings(options.Matching()));
+  if (!rematch) {
+    GuidedSequencePairs(result->junctions, result->graphs, *geometries, keypoint_poses, options.Matching(), progress,
+                        &result->pairs, diagnostics);
+  } else {
     result->pairs = MatchSequencePairs(pairs, *geometries, result->junctions, result->graphs, options.Matching(),
                                        progress, diagnostics, keypoint_poses);
   }

@@ -45,24 +45,17 @@ std::vector<KeypointCorrespondences> MatchConsecutiveKeypoints(const std::vector
   return correspondences;
 }
 
-std::vector<std::optional<PoseHypothesis>> KeypointPairPoses(const std::vector<PairGeometry>& geometries,
+std::vector<std::optional<Pose3>> KeypointPairPoses(const std::vector<PairGeometry>& geometries,
                                                              const std::vector<KeypointCorrespondences>& correspondences,
                                                              const PairRefinementSettings& settings) {
   CHECK_EQ(geometries.size(), correspondences.size());
-  std::vector<std::optional<PoseHypothesis>> poses(geometries.size());
+  std::vector<std::optional<Pose3>> poses(geometries.size());
   ParallelFor(static_cast<int>(geometries.size()), [&](int p) {
     const KeypointCorrespondences& matches = correspondences[p];
     if (matches.x1.empty()) return;
     const PairRefinement refined = RefinePairGeometry(geometries[p], matches.x1, matches.x2, settings);
     if (!refined.Refined()) return;
-    PoseHypothesis hypothesis;
-    hypothesis.camera2_T_camera1 = refined.geometry.camera2_T_camera1;
-    for (size_t k = 0; k < matches.x1.size(); ++k) {
-      if (!refined.inlier[k]) continue;
-      hypothesis.x1.push_back(matches.x1[k]);
-      hypothesis.x2.push_back(matches.x2[k]);
-    }
-    poses[p] = std::move(hypothesis);
+    poses[p] = refined.geometry.camera2_T_camera1;
   });
   return poses;
 }
@@ -87,7 +80,7 @@ void VerifySequencePairs(const std::vector<std::pair<int, int>>& pairs, const st
 
 void GuidedSequencePairs(const std::vector<Junctions>& junctions, const std::vector<TopologyGraph>& graphs,
                          const std::vector<PairGeometry>& geometries,
-                         const std::vector<std::optional<PoseHypothesis>>& keypoint_poses,
+                         const std::vector<std::optional<Pose3>>& keypoint_poses,
                          const MatchingOptions& options, Progress* progress, std::vector<FramePairMatches>* matches,
                          std::vector<MatchingDiagnostics>* diagnostics) {
   const int n = static_cast<int>(matches->size());
@@ -98,7 +91,7 @@ void GuidedSequencePairs(const std::vector<Junctions>& junctions, const std::vec
   // The pair's hypotheses: its keypoints' pose, and for a pair two frames apart the composition of
   // the two consecutive pairs' verified poses (their own pass has run by then).
   auto hypotheses_of = [&](int p) {
-    std::vector<PoseHypothesis> hypotheses;
+    std::vector<Pose3> hypotheses;
     if (!keypoint_poses.empty() && keypoint_poses[p]) hypotheses.push_back(*keypoint_poses[p]);
     const int a = (*matches)[p].frame_a, b = (*matches)[p].frame_b;
     const auto first = index_of_pair.find({a, a + 1});
@@ -107,7 +100,7 @@ void GuidedSequencePairs(const std::vector<Junctions>& junctions, const std::vec
       const PairRefinement& r1 = (*diagnostics)[first->second].refinement;
       const PairRefinement& r2 = (*diagnostics)[second->second].refinement;
       if (r1.Refined() && r2.Refined()) {
-        hypotheses.push_back({ComposePairGeometries(r1.geometry, r2.geometry).camera2_T_camera1, {}, {}});
+        hypotheses.push_back(r2.geometry.camera2_T_camera1 * r1.geometry.camera2_T_camera1);
       }
     }
     return hypotheses;
@@ -134,7 +127,7 @@ std::vector<FramePairMatches> MatchSequencePairs(const std::vector<std::pair<int
                                                  const std::vector<TopologyGraph>& graphs,
                                                  const MatchingOptions& options, Progress* progress,
                                                  std::vector<MatchingDiagnostics>* diagnostics,
-                                                 const std::vector<std::optional<PoseHypothesis>>& keypoint_poses) {
+                                                 const std::vector<std::optional<Pose3>>& keypoint_poses) {
   std::vector<FramePairMatches> matches;
   VerifySequencePairs(pairs, geometries, junctions, graphs, options, progress, &matches, diagnostics);
   GuidedSequencePairs(junctions, graphs, geometries, keypoint_poses, options, progress, &matches, diagnostics);

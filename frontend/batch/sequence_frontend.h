@@ -39,9 +39,9 @@ std::vector<KeypointCorrespondences> MatchConsecutiveKeypoints(const std::vector
                                                                const std::vector<FrameKeypoints>& keypoints);
 
 // Each pair's pose from its keypoint correspondences with geometries[p] as the prior
-// (RefinePairGeometry), and the correspondences within its gate; none where too few are, or where
-// the pose leaves the prior's gate.
-std::vector<std::optional<PoseHypothesis>> KeypointPairPoses(const std::vector<PairGeometry>& geometries,
+// (RefinePairGeometry); none where too few are within its gate, or where the pose leaves the
+// prior's gate.
+std::vector<std::optional<Pose3>> KeypointPairPoses(const std::vector<PairGeometry>& geometries,
                                                              const std::vector<KeypointCorrespondences>& correspondences,
                                                              const PairRefinementSettings& settings);
 
@@ -54,7 +54,7 @@ std::vector<FramePairMatches> MatchSequencePairs(const std::vector<std::pair<int
                                                  const std::vector<TopologyGraph>& graphs,
                                                  const MatchingOptions& options, Progress* progress,
                                                  std::vector<MatchingDiagnostics>* diagnostics,
-                                                 const std::vector<std::optional<PoseHypothesis>>& keypoint_poses = {});
+                                                 const std::vector<std::optional<Pose3>>& keypoint_poses = {});
 
 // The same in MatchJunctions' two steps (VerifiedFirstPass, GuidedPass), every pair in parallel
 // in each: VerifySequencePairs gives each pair's first-pass matches (in `matches`) and refinement
@@ -67,7 +67,7 @@ void VerifySequencePairs(const std::vector<std::pair<int, int>>& pairs, const st
                          std::vector<MatchingDiagnostics>* diagnostics);
 void GuidedSequencePairs(const std::vector<Junctions>& junctions, const std::vector<TopologyGraph>& graphs,
                          const std::vector<PairGeometry>& geometries,
-                         const std::vector<std::optional<PoseHypothesis>>& keypoint_poses,
+                         const std::vector<std::optional<Pose3>>& keypoint_poses,
                          const MatchingOptions& options, Progress* progress, std::vector<FramePairMatches>* matches,
                          std::vector<MatchingDiagnostics>* diagnostics);
 

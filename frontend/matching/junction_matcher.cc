@@ -332,11 +332,11 @@ namespace {
 
 // GuidedPassOrHypotheses' test: whether `hypothesis` and the verified pose disagree. x1, x2: the
 // first pass's matches, whose inliers at the verified pose are measured.
-bool Disagree(const PoseHypothesis& hypothesis, const PairRefinement& verified, const std::vector<Eigen::Vector2d>& x1,
+bool Disagree(const Pose3& hypothesis, const PairRefinement& verified, const std::vector<Eigen::Vector2d>& x1,
               const std::vector<Eigen::Vector2d>& x2, const MatchingOptions& options) {
   if (!verified.Refined()) return true;
   PairGeometry at_hypothesis = verified.geometry;
-  at_hypothesis.camera2_T_camera1 = hypothesis.camera2_T_camera1;
+  at_hypothesis.camera2_T_camera1 = hypothesis;
   const Eigen::Matrix3d F = at_hypothesis.Fundamental();
   std::vector<double> distances;
   for (size_t k = 0; k < x1.size(); ++k) {
@@ -353,13 +353,13 @@ bool Disagree(const PoseHypothesis& hypothesis, const PairRefinement& verified, 
 std::vector<JunctionMatch> GuidedPassOrHypotheses(const Junctions& a, const TopologyGraph& graph_a, const Junctions& b,
                                                   const TopologyGraph& graph_b, std::vector<JunctionMatch> first,
                                                   const PairGeometry& geometry,
-                                                  const std::vector<PoseHypothesis>& hypotheses,
+                                                  const std::vector<Pose3>& hypotheses,
                                                   const MatchingOptions& options, MatchingDiagnostics* diagnostics) {
   std::vector<char> disputed;
-  if (options.refine_geometry) {
+  if (options.refine_geometry && !hypotheses.empty()) {
     std::vector<Eigen::Vector2d> x1, x2;
     MatchLocations(a, b, first, &x1, &x2);
-    for (const PoseHypothesis& hypothesis : hypotheses) {
+    for (const Pose3& hypothesis : hypotheses) {
       disputed.push_back(Disagree(hypothesis, diagnostics->refinement, x1, x2, options));
     }
   }
@@ -367,7 +367,7 @@ std::vector<JunctionMatch> GuidedPassOrHypotheses(const Junctions& a, const Topo
   for (size_t h = 0; h < disputed.size(); ++h) {
     if (!disputed[h]) continue;
     PairGeometry centred = geometry;
-    centred.camera2_T_camera1 = hypotheses[h].camera2_T_camera1;
+    centred.camera2_T_camera1 = hypotheses[h];
     MatchingDiagnostics other;
     std::vector<JunctionMatch> other_matches = GuidedPass(
         a, graph_a, b, graph_b, VerifiedFirstPass(a, graph_a, b, graph_b, centred, options, &other), options, &other);

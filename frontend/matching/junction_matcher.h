@@ -75,7 +75,7 @@ constexpr double kHypothesisExcessSigmas = 3;
 std::vector<JunctionMatch> GuidedPassOrHypotheses(const Junctions& a, const TopologyGraph& graph_a, const Junctions& b,
                                                   const TopologyGraph& graph_b, std::vector<JunctionMatch> first,
                                                   const PairGeometry& geometry,
-                                                  const std::vector<PoseHypothesis>& hypotheses,
+                                                  const std::vector<Pose3>& hypotheses,
                                                   const MatchingOptions& options, MatchingDiagnostics* diagnostics);
 
 // The settings of the refinement MatchJunctions runs (RefinePairGeometry), from options.

@@ -60,24 +60,6 @@ PairGeometry InversePairGeometry(const PairGeometry& geometry) {
   return inverse;
 }
 
-PairGeometry ComposePairGeometries(const PairGeometry& camera2_from_1, const PairGeometry& camera3_from_2) {
-  const Eigen::Matrix3d R_b = camera3_from_2.camera2_T_camera1.RotationMatrix();
-  const Eigen::Vector3d& t_a = camera2_from_1.camera2_T_camera1.translation;
-  // Exp(w_b) R_b Exp(w_a) R_a = Exp(w_b + R_b w_a) R_b R_a and, to first order, the translation
-  // moves by -[R_b t_a]x w_b + R_b dt_a + dt_b.
-  Eigen::Matrix<double, 6, 6> J_a = Eigen::Matrix<double, 6, 6>::Zero();
-  J_a.topLeftCorner<3, 3>() = R_b;
-  J_a.bottomRightCorner<3, 3>() = R_b;
-  Eigen::Matrix<double, 6, 6> J_b = Eigen::Matrix<double, 6, 6>::Identity();
-  J_b.bottomLeftCorner<3, 3>() = -Cross(R_b * t_a);
-  PairGeometry composed;
-  composed.K = camera2_from_1.K;
-  composed.camera2_T_camera1 = camera3_from_2.camera2_T_camera1 * camera2_from_1.camera2_T_camera1;
-  composed.covariance = J_a * camera2_from_1.covariance * J_a.transpose() +
-                        J_b * camera3_from_2.covariance * J_b.transpose();
-  return composed;
-}
-
 Eigen::Matrix3d PairGeometry::Fundamental() const {
   const Eigen::Matrix3d K_inverse = K.inverse();
   return K_inverse.transpose() * Cross(camera2_T_camera1.translation) * camera2_T_camera1.RotationMatrix() *

@@ -6,7 +6,6 @@
 
 #include <Eigen/Core>
 #include <cmath>
-#include <vector>
 
 #include "geometry/pose.h"
 
@@ -28,14 +27,6 @@ struct PairGeometry {
   void FundamentalDeviations(Eigen::Matrix3d G[6]) const;
 };
 
-// A centre for the matcher's gates from other evidence than the odometry: a pose from keypoints
-// (KeypointPairPoses, with the correspondences it rests on) or one composed of neighbouring pairs'
-// verified poses.
-struct PoseHypothesis {
-  Pose3 camera2_T_camera1;
-  std::vector<Eigen::Vector2d> x1, x2;
-};
-
 // The two odometry poses with sequence.yaml's noise model (docs/formats.md): translation_sigma is
 // a fraction of the distance travelled, rotation_sigma radians per frame. Read as wheel odometry's
 // errors on the base increment base1_T_base2 = (Exp(w) R_B, t_B + dt), accumulated over the
@@ -50,10 +41,6 @@ PairGeometry PairGeometryFromOdometry(const Eigen::Matrix3d& K, const Pose3& bas
 
 // The same two views with their roles swapped (camera1_T_camera2 and its covariance, to first order).
 PairGeometry InversePairGeometry(const PairGeometry& geometry);
-
-// Views 1 -> 3 through view 2, camera3_T_camera1 = camera3_from_2's pose * camera2_from_1's, with
-// the two (independent) covariances propagated to first order. Both must share K.
-PairGeometry ComposePairGeometries(const PairGeometry& camera2_from_1, const PairGeometry& camera3_from_2);
 
 // Standard deviations (pixels) of the distance of x1 from the epipolar line of x2 (in_image1) and
 // of x2 from that of x1 (in_image2) due to the pose uncertainty alone, to first order about

@@ -158,51 +158,5 @@ TEST(PairGeometryTest, MatcherRejectsAPairBehindTheCameras) {
   EXPECT_EQ(matches[0].index_b, 0);
 }
 
-// ComposePairGeometries against a numerical Jacobian: the composed pose is B * A, and its
-// covariance J_a C_a J_a^T + J_b C_b J_b^T with J the derivatives of the composed perturbation
-// (omega, dt) by each pair's, taken by central differences (step 1e-6; agreement to 1e-7 of the
-// largest entry).
-TEST(PairGeometryTest, ComposedCovarianceMatchesANumericalJacobian) {
-  auto exp_rotation = [](const Eigen::Vector3d& w) {
-    return w.norm() > 0 ? Eigen::AngleAxisd(w.norm(), w.normalized()).toRotationMatrix()
-                        : Eigen::Matrix3d(Eigen::Matrix3d::Identity());
-  };
-  auto perturbed = [&](const Pose3& pose, const Eigen::Matrix<double, 6, 1>& xi) {
-    return Pose3(exp_rotation(xi.head<3>()) * pose.RotationMatrix(), pose.translation + xi.tail<3>());
-  };
-  PairGeometry a, b;
-  a.K = b.K = TestK();
-  a.camera2_T_camera1 = Pose3(exp_rotation(Eigen::Vector3d(0.02, -0.05, 0.01)), Eigen::Vector3d(-0.3, 0.05, -0.9));
-  b.camera2_T_camera1 = Pose3(exp_rotation(Eigen::Vector3d(-0.01, 0.08, 0.02)), Eigen::Vector3d(-0.2, -0.02, -1.1));
-  Eigen::Matrix<double, 6, 6> root_a = Eigen::Matrix<double, 6, 6>::Random() * 0.01;
-  Eigen::Matrix<double, 6, 6> root_b = Eigen::Matrix<double, 6, 6>::Random() * 0.02;
-  a.covariance = root_a * root_a.transpose();
-  b.covariance = root_b * root_b.transpose();
-  const PairGeometry composed = ComposePairGeometries(a, b);
-  const Pose3 expected = b.camera2_T_camera1 * a.camera2_T_camera1;
-  EXPECT_LT((composed.camera2_T_camera1.translation - expected.translation).norm(), 1e-12);
-  EXPECT_LT(RotationAngle(composed.camera2_T_camera1.rotation, expected.rotation), 1e-12);
-
-  const double h = 1e-6;
-  Eigen::Matrix<double, 6, 12> J;
-  for (int k = 0; k < 12; ++k) {
-    Eigen::Matrix<double, 6, 1> plus[2], minus[2];
-    for (int p = 0; p < 2; ++p) plus[p].setZero(), minus[p].setZero();
-    plus[k / 6](k % 6) = h;
-    minus[k / 6](k % 6) = -h;
-    const Pose3 up = perturbed(b.camera2_T_camera1, plus[1]) * perturbed(a.camera2_T_camera1, plus[0]);
-    const Pose3 down = perturbed(b.camera2_T_camera1, minus[1]) * perturbed(a.camera2_T_camera1, minus[0]);
-    const Eigen::AngleAxisd turn(up.RotationMatrix() * down.RotationMatrix().transpose());
-    J.col(k).head<3>() = turn.angle() * turn.axis() / (2 * h);
-    J.col(k).tail<3>() = (up.translation - down.translation) / (2 * h);
-  }
-  Eigen::Matrix<double, 12, 12> both = Eigen::Matrix<double, 12, 12>::Zero();
-  both.topLeftCorner<6, 6>() = a.covariance;
-  both.bottomRightCorner<6, 6>() = b.covariance;
-  const Eigen::Matrix<double, 6, 6> numeric = J * both * J.transpose();
-  EXPECT_LT((composed.covariance - numeric).cwiseAbs().maxCoeff(), 1e-7 * numeric.cwiseAbs().maxCoeff())
-      << composed.covariance << "\n\n" << numeric;
-}
-
 }  // namespace
 }  // namespace sfm
