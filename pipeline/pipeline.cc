@@ -177,8 +177,7 @@ void MeasureOdometryNoise(const Sequence& sequence, const PipelineOptions& optio
                  << " rad per frame, but the images measure " << measured << "; the measured value is used";
   }
   summary.used.rotation_sigma = measured;
-  summary.rematched = measured > kRematchNoiseFactor * summary.declared.rotation_sigma;
-  *rematch = summary.rematched;
+  *rematch = measured > kRematchNoiseFactor * summary.declared.rotation_sigma;
 }
 
 // Paper sections 3-4 on the pairs of OdometryPairGeometries, with their geometry, in two steps:
@@ -194,6 +193,7 @@ Status MatchFramePairs(const Sequence& sequence, const PipelineOptions& options,
                       &result->pairs, diagnostics);
   bool rematch = false;
   MeasureOdometryNoise(sequence, options, pairs, *diagnostics, &rematch, result);
+  result->initialization.rematched = rematch;
   if (rematch) {
     LOG(INFO) << "matching again with the measured odometry noise";
     std::vector<std::pair<int, int>> same_pairs;
@@ -215,9 +215,8 @@ Status MatchFramePairs(const Sequence& sequence, const PipelineOptions& options,
             << " pairs matched with the gates centred on a pose hypothesis (keypoints, neighbouring pairs)";
   if (recentred > 0) {
     // Their verified poses changed: the odometry's noise is measured again from the final ones.
-    const bool rematched = result->initialization.rematched;
-    MeasureOdometryNoise(sequence, options, pairs, *diagnostics, &rematch, result);
-    result->initialization.rematched = rematched;
+    bool wider_than_declared = false;
+    MeasureOdometryNoise(sequence, options, pairs, *diagnostics, &wider_than_declared, result);
   }
   return Status::Ok();
 }
