@@ -343,8 +343,10 @@ std::vector<Pose3> CameraPoses(const Sequence& sequence, bool groundtruth) {
   return poses;
 }
 
-// Tracks, then 3D points and lines on the initial trajectory.
-void Reconstruct(const Sequence& sequence, const PipelineOptions& options, PipelineResult* result) {
+// Tracks, then 3D points and lines on the trajectory world_T_camera (the initial one, or after
+// RematchAfterAdjustment the refined one).
+void Reconstruct(const Sequence& sequence, const PipelineOptions& options, const std::vector<Pose3>& world_T_camera,
+                 PipelineResult* result) {
   TrackBuildReport track_report;
   result->tracks = BuildTracks(result->junctions, result->pairs, &track_report);
   LOG(INFO) << "tracks: " << result->tracks.size() << " from " << track_report.matches << " matches ("
@@ -352,7 +354,7 @@ void Reconstruct(const Sequence& sequence, const PipelineOptions& options, Pipel
             << " rejected as inconsistent, " << track_report.skipped_partial_occlusion
             << " partial matches at a T or X not joined)";
   TriangulationReport triangulation_report;
-  result->landmarks = TriangulateTracks(sequence.calibration.camera.K(), result->world_T_camera_initial,
+  result->landmarks = TriangulateTracks(sequence.calibration.camera.K(), world_T_camera,
                                         result->junctions, result->tracks, options.triangulation,
                                         &triangulation_report);
   result->unobservable_lines = triangulation_report.Count(LineStatus::kUnobservable);
@@ -442,15 +444,15 @@ Status AdjustAndExtendTracks(const std::vector<Pose3>& world_T_base_odometry, co
   return Status::Ok();
 }
 
-// Bundle adjustment from the initial trajectory, the odometry its prior, the tracks extended in it:
-// refined poses, landmarks and tracks.
-Status Refine(const Sequence& sequence, const PipelineOptions& options, Progress* progress,
-              PipelineResult* result) {
+// Bundle adjustment from the trajectory world_T_camera (the landmarks' own), the odometry its
+// prior, the tracks extended in it: refined poses, landmarks and tracks.
+Status Refine(const Sequence& sequence, const PipelineOptions& options, const std::vector<Pose3>& world_T_camera,
+              Progress* progress, PipelineResult* result) {
   const std::vector<Pose3> world_T_base_odometry = OdometryBasePoses(sequence);
   Reconstruction reconstruction;
   reconstruction.calibration = sequence.calibration;
   reconstruction.calibration.odometry_noise = result->initialization.used;
-  reconstruction.world_T_base = BasesFromCameras(result->world_T_camera_initial, sequence.calibration.base_T_camera);
+  reconstruction.world_T_base = BasesFromCameras(world_T_camera, sequence.calibration.base_T_camera);
   reconstruction.junctions = std::move(result->junctions);
   reconstruction.tracks = std::move(result->tracks);
   reconstruction.landmarks = std::move(result->landmarks);
@@ -478,6 +480,31 @@ Status Refine(const Sequence& sequence, const PipelineOptions& options, Progress
             << (summary.floor_prior_used ? "; odometry scale " + std::to_string(summary.odometry_scale) : "");
   LogFloorLandmarks("first", *result);
   return Status::Ok();
+}
+
+// The pairs whose matches the refined trajectory contradicts (a repeated pattern matched a period
+// off in the odometry's gates) matched again in the odometry's band centred on the refined poses;
+// when any was, the tracks and landmarks are built again on the refined trajectory and adjusted
+// again, the odometry still the prior (docs/matching.md, "Matching again after the adjustment").
+Status RematchAfterAdjustment(const Sequence& sequence, const PipelineOptions& options, Progress* progress,
+                              PipelineResult* result) {
+  const Calibration& calibration = sequence.calibration;
+  const OdometryNoise& noise = result->initialization.used;
+  const std::vector<Pose3> bases = BasesFromCameras(result->world_T_camera_refined, calibration.base_T_camera);
+  std::vector<PairGeometry> geometries;
+  for (const FramePairMatches& pair : result->pairs) {
+    const int a = pair.frame_a, b = pair.frame_b;
+    geometries.push_back(PairGeometryFromOdometry(calibration.camera.K(), calibration.base_T_camera, bases[a],
+                                                  bases[b], noise.translation_sigma, noise.rotation_sigma, b - a));
+  }
+  int& rematched = result->initialization.pairs_rematched_after_adjustment;
+  rematched = RematchDisagreeingPairs(geometries, result->junctions, result->graphs, options.Matching(), &result->pairs);
+  LOG(INFO) << "matching again after the adjustment: " << rematched << " of " << result->pairs.size()
+            << " pairs whose matches the refined trajectory contradicts";
+  if (rematched == 0) return Status::Ok();
+  const std::vector<Pose3> start = result->world_T_camera_refined;
+  Reconstruct(sequence, options, start, result);
+  return Refine(sequence, options, start, progress, result);
 }
 
 // The odometry's distance noise and scale error measured against the refined trajectory's step
@@ -707,15 +734,16 @@ Status RunPipeline(const PipelineOptions& options, PipelineResult* result_out) {
   stages.Start("initial trajectory");
   SFM_RETURN_IF_ERROR(InitialTrajectory(sequence, options, diagnostics, &result));
   stages.Start("tracks and triangulation");
-  Reconstruct(sequence, options, &result);
+  Reconstruct(sequence, options, result.world_T_camera_initial, &result);
   stages.Start("loop closure");
   if (CloseLoops(sequence, options, &progress, &diagnostics, &result)) {
     SFM_RETURN_IF_ERROR(InitialTrajectory(sequence, options, diagnostics, &result));
-    Reconstruct(sequence, options, &result);
+    Reconstruct(sequence, options, result.world_T_camera_initial, &result);
   }
   if (options.bundle_adjustment) {
     stages.Start("bundle adjustment");
-    SFM_RETURN_IF_ERROR(Refine(sequence, options, &progress, &result));
+    SFM_RETURN_IF_ERROR(Refine(sequence, options, result.world_T_camera_initial, &progress, &result));
+    SFM_RETURN_IF_ERROR(RematchAfterAdjustment(sequence, options, &progress, &result));
     stages.Start("evidence");
     MeasureOdometryTranslationNoise(sequence, options, &result);
     WeighTheEvidence(sequence, options, &result);

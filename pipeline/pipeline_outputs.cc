@@ -216,6 +216,7 @@ std::string InitializationJson(const PipelineResult& result) {
                              : std::string("null"))
        << ", \"rematched\": " << (summary.rematched ? "true" : "false")
        << ", \"pairs_recentred\": " << summary.recentred_pairs
+       << ", \"pairs_rematched_after_adjustment\": " << summary.pairs_rematched_after_adjustment
        << ", \"loops\": {\"candidates\": " << summary.loop_candidates << ", \"closed\": [" << LoopsJson(summary.loops)
        << "]}"
        << ", \"pose_graph\": {\"constraints\": " << summary.pose_graph.constraints

@@ -49,6 +49,9 @@ struct InitializationSummary {
   // Pairs whose matches came from gates centred on a pose hypothesis instead of the odometry
   // (GuidedPassOrHypotheses): by the keypoints' pose, and by the neighbouring pairs' poses.
   int recentred_pairs = 0;
+  // Pairs matched again under the refined trajectory, which their matches contradicted
+  // (RematchAfterAdjustment); the map was then built and adjusted again.
+  int pairs_rematched_after_adjustment = 0;
   // Loop closure: pairs whose views overlap far apart along the trajectory, matched; those that
   // gave a relative pose, (frame a, frame b, inliers).
   int loop_candidates = 0;

@@ -1,5 +1,7 @@
 #include "frontend/batch/sequence_frontend.h"
 
+#include <algorithm>
+
 #include <glog/logging.h>
 #include <opencv2/core.hpp>
 
@@ -132,6 +134,25 @@ std::vector<FramePairMatches> MatchSequencePairs(const std::vector<std::pair<int
   VerifySequencePairs(pairs, geometries, junctions, graphs, options, progress, &matches, diagnostics);
   GuidedSequencePairs(junctions, graphs, geometries, keypoint_poses, options, progress, &matches, diagnostics);
   return matches;
+}
+
+
+int RematchDisagreeingPairs(const std::vector<PairGeometry>& geometries, const std::vector<Junctions>& junctions,
+                            const std::vector<TopologyGraph>& graphs, const MatchingOptions& options,
+                            std::vector<FramePairMatches>* matches) {
+  CHECK_EQ(geometries.size(), matches->size());
+  std::vector<char> rematched(matches->size(), 0);
+  ParallelFor(static_cast<int>(matches->size()), [&](int p) {
+    FramePairMatches& pair = (*matches)[p];
+    const int a = pair.frame_a, b = pair.frame_b;
+    if (!MatchesDisagree(junctions[a], junctions[b], pair.matches, geometries[p], options)) return;
+    MatchingDiagnostics diagnostics;
+    const size_t before = pair.matches.size();
+    pair.matches = MatchJunctions(junctions[a], graphs[a], junctions[b], graphs[b], geometries[p], options, &diagnostics);
+    VLOG(1) << "pair " << a << "-" << b << " matched again: " << before << " -> " << pair.matches.size() << " matches";
+    rematched[p] = 1;
+  });
+  return static_cast<int>(std::count(rematched.begin(), rematched.end(), 1));
 }
 
 }  // namespace sfm

@@ -330,17 +330,16 @@ std::vector<JunctionMatch> MatchJunctions(const Junctions& a, const TopologyGrap
 
 namespace {
 
-// GuidedPassOrHypotheses' test: whether `hypothesis` and the verified pose disagree. x1, x2: the
-// first pass's matches, whose inliers at the verified pose are measured.
-bool Disagree(const Pose3& hypothesis, const PairRefinement& verified, const std::vector<Eigen::Vector2d>& x1,
-              const std::vector<Eigen::Vector2d>& x2, const MatchingOptions& options) {
-  if (!verified.Refined()) return true;
-  PairGeometry at_hypothesis = verified.geometry;
-  at_hypothesis.camera2_T_camera1 = hypothesis;
-  const Eigen::Matrix3d F = at_hypothesis.Fundamental();
+// Whether the median |Sampson distance| under `geometry`'s pose of the correspondences x1[k] <->
+// x2[k] with use[k] (all when use is empty) lies beyond kDisagreementBands guided bands; true
+// when none is used.
+bool MedianBeyondBands(const PairGeometry& geometry, const std::vector<Eigen::Vector2d>& x1,
+                       const std::vector<Eigen::Vector2d>& x2, const std::vector<bool>& use,
+                       const MatchingOptions& options) {
+  const Eigen::Matrix3d F = geometry.Fundamental();
   std::vector<double> distances;
   for (size_t k = 0; k < x1.size(); ++k) {
-    if (verified.inlier[k]) distances.push_back(std::abs(SampsonDistance(F, x1[k], x2[k])));
+    if (use.empty() || use[k]) distances.push_back(std::abs(SampsonDistance(F, x1[k], x2[k])));
   }
   if (distances.empty()) return true;
   std::nth_element(distances.begin(), distances.begin() + distances.size() / 2, distances.end());
@@ -348,7 +347,25 @@ bool Disagree(const Pose3& hypothesis, const PairRefinement& verified, const std
          kDisagreementBands * options.refine_gate_sigmas * options.location_sigma_px;
 }
 
+// GuidedPassOrHypotheses' test: whether `hypothesis` and the verified pose disagree. x1, x2: the
+// first pass's matches, whose inliers at the verified pose are measured.
+bool Disagree(const Pose3& hypothesis, const PairRefinement& verified, const std::vector<Eigen::Vector2d>& x1,
+              const std::vector<Eigen::Vector2d>& x2, const MatchingOptions& options) {
+  if (!verified.Refined()) return true;
+  PairGeometry at_hypothesis = verified.geometry;
+  at_hypothesis.camera2_T_camera1 = hypothesis;
+  return MedianBeyondBands(at_hypothesis, x1, x2, verified.inlier, options);
+}
+
 }  // namespace
+
+bool MatchesDisagree(const Junctions& a, const Junctions& b, const std::vector<JunctionMatch>& matches,
+                     const PairGeometry& geometry, const MatchingOptions& options) {
+  if (matches.empty()) return false;
+  std::vector<Eigen::Vector2d> x1, x2;
+  MatchLocations(a, b, matches, &x1, &x2);
+  return MedianBeyondBands(geometry, x1, x2, {}, options);
+}
 
 std::vector<JunctionMatch> GuidedPassOrHypotheses(const Junctions& a, const TopologyGraph& graph_a, const Junctions& b,
                                                   const TopologyGraph& graph_b, std::vector<JunctionMatch> first,

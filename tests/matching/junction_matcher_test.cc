@@ -647,5 +647,50 @@ TEST(JunctionMatcherTest, RivalsOnOneArmDoNotBlockEachOther) {
   EXPECT_TRUE(matched_to_y(not_one_arm).empty()) << "rivals on different segments still block each other";
 }
 
+// MatchesDisagree, the test of a pair's matches against a refined trajectory: the true pair of
+// 30 junctions under poses rotated ever further about camera 2's x axis. Figure protected: the
+// decision is "median |Sampson distance| > kDisagreementBands * refine_gate_sigmas *
+// location_sigma_px" (2.58 px at the defaults) at every angle, computed here independently, and
+// both decisions occur over the angles (0 to 2 deg: a median of 0.2 to 10.6 px).
+TEST(JunctionMatcherTest, MatchesDisagreeWhenTheirMedianLiesBeyondTwoGuidedBands) {
+  std::mt19937 rng(5);
+  const TwoViews views = testing::MakeTwoViews();
+  std::vector<Junction3d> junctions3d;
+  for (int k = 0; k < 30; ++k) junctions3d.push_back(testing::RandomJunction3d(views, 2 + k % 2, &rng));
+  const Scene scene = MakeScene(views, junctions3d, 0, &rng);
+  std::vector<JunctionMatch> matches;
+  for (int i = 0; i < static_cast<int>(scene.a.size()); ++i) {
+    JunctionMatch match;
+    match.index_a = i;
+    match.index_b = scene.b_of_a[i];
+    matches.push_back(match);
+  }
+  const MatchingOptions options;
+  const double threshold = kDisagreementBands * options.refine_gate_sigmas * options.location_sigma_px;
+  PairGeometry geometry;
+  geometry.K = views.K;
+  const Pose3 truth = views.world_T_camera2.Inverse() * views.world_T_camera1;
+  int disagreeing = 0, agreeing = 0;
+  for (double degrees = 0; degrees <= 2.0; degrees += 0.1) {
+    const Eigen::Quaterniond turn(Eigen::AngleAxisd(degrees * M_PI / 180, Eigen::Vector3d::UnitX()));
+    geometry.camera2_T_camera1 = Pose3(turn * truth.rotation, turn * truth.translation);
+    const Eigen::Matrix3d F = geometry.Fundamental();
+    std::vector<double> distances;
+    for (const JunctionMatch& match : matches) {
+      distances.push_back(
+          std::abs(SampsonDistance(F, scene.a[match.index_a].location, scene.b[match.index_b].location)));
+    }
+    std::sort(distances.begin(), distances.end());
+    const double median = distances[distances.size() / 2];
+    if (std::abs(median - threshold) < 0.05) continue;  // too near the threshold to call
+    const bool disagree = MatchesDisagree(scene.a, scene.b, matches, geometry, options);
+    EXPECT_EQ(disagree, median > threshold) << degrees << " deg: median " << median << " px";
+    (disagree ? disagreeing : agreeing) += 1;
+  }
+  EXPECT_GT(disagreeing, 0);
+  EXPECT_GT(agreeing, 0);
+  EXPECT_FALSE(MatchesDisagree(scene.a, scene.b, {}, geometry, options));
+}
+
 }  // namespace
 }  // namespace sfm
