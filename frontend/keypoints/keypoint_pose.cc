@@ -1,5 +1,7 @@
 #include "frontend/keypoints/keypoint_pose.h"
 
+#include <limits>
+
 #include <glog/logging.h>
 
 #include <opencv2/features2d.hpp>
@@ -44,14 +46,38 @@ FrameKeypoints DetectKeypoints(const cv::Mat& image, const Camera& camera) {
 KeypointCorrespondences MatchKeypoints(const FrameKeypoints& a, const FrameKeypoints& b) {
   KeypointCorrespondences correspondences;
   if (a.locations.size() < 2 || b.locations.size() < 2) return correspondences;
-  const cv::BFMatcher matcher(cv::NORM_HAMMING);
-  std::vector<std::vector<cv::DMatch>> forward, backward;
-  matcher.knnMatch(a.descriptors, b.descriptors, forward, 2);
-  matcher.knnMatch(b.descriptors, a.descriptors, backward, 1);
-  for (const std::vector<cv::DMatch>& best : forward) {
-    if (best.size() < 2 || best[0].distance >= kRatio * best[1].distance) continue;
-    const int i = best[0].queryIdx, j = best[0].trainIdx;
-    if (backward[j].empty() || backward[j][0].trainIdx != i) continue;  // mutual
+  // Every Hamming distance once; both directions' nearest neighbours from it. Ties go to the lower
+  // index, as OpenCV's brute-force matcher breaks them.
+  cv::Mat distances;
+  cv::batchDistance(a.descriptors, b.descriptors, distances, CV_32S, cv::noArray(), cv::NORM_HAMMING);
+  const int rows = distances.rows, cols = distances.cols;
+  constexpr int kNone = std::numeric_limits<int>::max();
+  std::vector<int> best_a_of_b(cols, -1), best_distance_of_b(cols, kNone);
+  std::vector<int> best_b(rows, -1), best(rows, kNone), second(rows, kNone);
+  for (int i = 0; i < rows; ++i) {
+    const int* row = distances.ptr<int>(i);
+    for (int j = 0; j < cols; ++j) {
+      const int d = row[j];
+      if (d < second[i]) {
+        if (d < best[i]) {
+          second[i] = best[i];
+          best[i] = d;
+          best_b[i] = j;
+        } else {
+          second[i] = d;
+        }
+      }
+      if (d < best_distance_of_b[j]) {
+        best_distance_of_b[j] = d;
+        best_a_of_b[j] = i;
+      }
+    }
+  }
+  for (int i = 0; i < rows; ++i) {
+    // Lowe's ratio test on the two nearest, then the mutual check.
+    if (!(best[i] < kRatio * second[i])) continue;
+    const int j = best_b[i];
+    if (best_a_of_b[j] != i) continue;
     correspondences.x1.push_back(a.locations[i]);
     correspondences.x2.push_back(b.locations[j]);
   }
