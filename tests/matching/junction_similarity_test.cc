@@ -232,6 +232,55 @@ TEST(JunctionSimilarityTest, PartialRhoPairsAnLWithTheRightTwoSegmentsOfAY) {
 
 // ToString / FromString (the --match_rho1 flag): every kind's name parses back to it; another name
 // is an error naming the choices, and leaves the kind as it was.
+// PossiblePartners' list: the junctions of b with the same segment count (or one apart with
+// max_count_difference 1) and p'0 within R of the epipolar line of p0 (no pose: R =
+// max_epipolar_distance_px), in increasing index. Figure protected: equal lists for 200 junctions
+// of a against 800 of b, under a general F and under one whose epipolar lines are steep.
+TEST(JunctionSimilarityTest, PossiblePartnersListsEveryJunctionWithinTheBand) {
+  std::mt19937 rng(9);
+  std::uniform_real_distribution<double> x(-20, 660), y(-20, 500);
+  std::uniform_int_distribution<int> segments(2, 4), edge(0, 20);
+  auto random_junctions = [&](int n) {
+    Junctions junctions(n);
+    for (int i = 0; i < n; ++i) {
+      junctions[i].id = i;
+      junctions[i].location = {x(rng), y(rng)};
+      if (i % 10 == 0) junctions[i].location.x() = 32.0 * edge(rng);
+      if (i % 10 == 1) junctions[i].location.y() = 32.0 * edge(rng);
+      for (int s = segments(rng); s > 0; --s) {
+        junctions[i].segments.push_back({junctions[i].location + Direction(s * 100.0) * 30, -1});
+      }
+    }
+    return junctions;
+  };
+  const Junctions a = random_junctions(200), b = random_junctions(800);
+  Eigen::Matrix3d general, steep;
+  general << 1e-6, -3e-4, 0.05, 3.1e-4, 2e-6, -0.2, -0.06, 0.19, 1;
+  steep << 0, 0, 0.3, 0, 0, -0.001, -0.3, 0.002, 1;  // lines near x = const
+  MatchingOptions options;
+  options.max_epipolar_distance_px = 12;
+  for (const Eigen::Matrix3d& F : {general, steep}) {
+    const JunctionSimilarity similarity(a, b, F, options);
+    for (int difference : {0, 1}) {
+      for (int i = 0; i < static_cast<int>(a.size()); ++i) {
+        Eigen::Vector3d line = F * a[i].location.homogeneous();
+        line /= line.head<2>().norm();
+        std::vector<int> expected;
+        for (int j = 0; j < static_cast<int>(b.size()); ++j) {
+          const double distance = std::abs(line(0) * b[j].location.x() + line(1) * b[j].location.y() + line(2));
+          if (distance <= options.max_epipolar_distance_px &&
+              std::abs(b[j].NumSegments() - a[i].NumSegments()) <= difference) {
+            expected.push_back(j);
+          }
+        }
+        std::vector<int> listed;
+        similarity.PossiblePartners(i, &listed, difference);
+        EXPECT_EQ(listed, expected) << "junction " << i << ", count difference " << difference;
+      }
+    }
+  }
+}
+
 TEST(Rho1KindTest, NamesParseBackAndOthersAreRefused) {
   for (const Rho1Kind kind : {Rho1Kind::kExponential, Rho1Kind::kLinear}) {
     Rho1Kind parsed = kind == Rho1Kind::kLinear ? Rho1Kind::kExponential : Rho1Kind::kLinear;
