@@ -136,7 +136,6 @@ std::vector<FramePairMatches> MatchSequencePairs(const std::vector<std::pair<int
   return matches;
 }
 
-
 int RematchDisagreeingPairs(const std::vector<PairGeometry>& geometries, const std::vector<Junctions>& junctions,
                             const std::vector<TopologyGraph>& graphs, const MatchingOptions& options,
                             std::vector<FramePairMatches>* matches) {

@@ -72,7 +72,7 @@ void GuidedSequencePairs(const std::vector<Junctions>& junctions, const std::vec
                          std::vector<MatchingDiagnostics>* diagnostics);
 
 // The pairs of `matches` whose matches disagree with geometries[p] (MatchesDisagree) matched again
-// under it (VerifiedFirstPass, GuidedPass); the others unchanged. geometries in the order of
+// under it (MatchJunctions); the others unchanged, each pair on its own (any thread count). geometries in the order of
 // `matches`. Returns how many were matched again.
 int RematchDisagreeingPairs(const std::vector<PairGeometry>& geometries, const std::vector<Junctions>& junctions,
                             const std::vector<TopologyGraph>& graphs, const MatchingOptions& options,
