@@ -498,7 +498,10 @@ Status RematchAfterAdjustment(const Sequence& sequence, const PipelineOptions& o
                                                   bases[b], noise.translation_sigma, noise.rotation_sigma, b - a));
   }
   int& rematched = result->initialization.pairs_rematched_after_adjustment;
-  rematched = RematchDisagreeingPairs(geometries, result->junctions, result->graphs, options.Matching(), &result->pairs);
+  std::vector<int>* inliers = &result->evidence.pair_inliers;
+  if (inliers->size() != result->pairs.size()) inliers = nullptr;
+  rematched =
+      RematchDisagreeingPairs(geometries, result->junctions, result->graphs, options.Matching(), &result->pairs, inliers);
   LOG(INFO) << "matching again after the adjustment: " << rematched << " of " << result->pairs.size()
             << " pairs whose matches the refined trajectory contradicts";
   if (rematched == 0) return Status::Ok();

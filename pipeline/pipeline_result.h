@@ -73,8 +73,8 @@ struct TrajectoryEvidence {
   // ended by a convergence test.
   double point_rms_px = 0, line_rms_px = 0;
   bool adjustment_converged = false;
-  // Inliers of each matched pair's pose (the matcher's refinement; 0 without one), in the order
-  // of PipelineResult::pairs.
+  // Inliers of each matched pair's pose (the matcher's refinement, or its refinement when matched
+  // again after the adjustment; 0 without one), in the order of PipelineResult::pairs.
   std::vector<int> pair_inliers;
   // How far the camera centres moved: from the odometry to the refined trajectory (median and
   // largest over the frames), and in the adjustment (largest), metres.

@@ -138,8 +138,9 @@ std::vector<FramePairMatches> MatchSequencePairs(const std::vector<std::pair<int
 
 int RematchDisagreeingPairs(const std::vector<PairGeometry>& geometries, const std::vector<Junctions>& junctions,
                             const std::vector<TopologyGraph>& graphs, const MatchingOptions& options,
-                            std::vector<FramePairMatches>* matches) {
+                            std::vector<FramePairMatches>* matches, std::vector<int>* inliers) {
   CHECK_EQ(geometries.size(), matches->size());
+  if (inliers != nullptr) CHECK_EQ(inliers->size(), matches->size());
   std::vector<char> rematched(matches->size(), 0);
   ParallelFor(static_cast<int>(matches->size()), [&](int p) {
     FramePairMatches& pair = (*matches)[p];
@@ -149,6 +150,7 @@ int RematchDisagreeingPairs(const std::vector<PairGeometry>& geometries, const s
     const size_t before = pair.matches.size();
     pair.matches = MatchJunctions(junctions[a], graphs[a], junctions[b], graphs[b], geometries[p], options, &diagnostics);
     VLOG(1) << "pair " << a << "-" << b << " matched again: " << before << " -> " << pair.matches.size() << " matches";
+    if (inliers != nullptr) (*inliers)[p] = diagnostics.refinement.inliers;
     rematched[p] = 1;
   });
   return static_cast<int>(std::count(rematched.begin(), rematched.end(), 1));
