@@ -23,6 +23,7 @@
 #include "pipeline/report/base64.h"
 #include "pipeline/report/plot.h"
 #include "util/atomic_file.h"
+#include "util/parallel.h"
 
 namespace sfm {
 namespace {
@@ -393,52 +394,64 @@ std::string MatchPictureSection(const Context& c, const std::vector<cv::Mat>& im
 
   // Each shown frame at picture scale, undistorted: given, or from the stored frames (given or read
   // again), shrunk before the undistortion (a 48-megapixel remap would cost more than the rest).
+  // The frames are read, and the pictures drawn and encoded, in parallel; joined in order.
   const double f = PictureScale(c.sequence.calibration.camera.width);
-  std::unique_ptr<ImageUndistorter> undistorter;
-  std::map<int, cv::Mat> pictures;
-  auto image_of = [&](int frame, cv::Mat* image) -> Status {
-    if (const auto it = pictures.find(frame); it != pictures.end()) {
-      *image = it->second;
-      return Status::Ok();
-    }
-    if (!images.empty()) {
-      *image = Shrunk(images.at(frame), f);
-    } else {
-      cv::Mat grey;
-      if (!stored_images.empty()) {
-        grey = stored_images.at(frame);
-      } else {
-        SFM_RETURN_IF_ERROR(LoadFrameImage(c.sequence, frame, &grey));
-      }
-      const cv::Mat small = Shrunk(grey, f);
-      if (!undistorter) {
-        undistorter =
-            std::make_unique<ImageUndistorter>(ShrunkCamera(c.sequence.calibration.camera, f, small.size()));
-      }
-      *image = undistorter->Apply(small);
-    }
-    pictures[frame] = *image;
-    return Status::Ok();
-  };
+  std::vector<int> frames;  // distinct, in order of first use
   for (const FramePairMatches* pair : shown) {
-    cv::Mat image_a, image_b;
-    Status status = image_of(pair->frame_a, &image_a);
-    if (status.ok()) status = image_of(pair->frame_b, &image_b);
-    if (!status.ok()) {
-      html += Note("Frames " + std::to_string(pair->frame_a) + " and " + std::to_string(pair->frame_b) +
-                   ": no picture, the image could not be read (" + Html(status.message()) + ").");
-      continue;
+    for (const int frame : {pair->frame_a, pair->frame_b}) {
+      if (std::find(frames.begin(), frames.end(), frame) == frames.end()) frames.push_back(frame);
     }
+  }
+  std::vector<cv::Mat> pictures(frames.size());
+  std::vector<Status> statuses(frames.size(), Status::Ok());
+  ParallelFor(static_cast<int>(frames.size()), [&](int k) {
+    if (!images.empty()) {
+      pictures[k] = Shrunk(images.at(frames[k]), f);
+      return;
+    }
+    cv::Mat grey;
+    if (!stored_images.empty()) {
+      grey = stored_images.at(frames[k]);
+    } else {
+      statuses[k] = LoadFrameImage(c.sequence, frames[k], &grey);
+      if (!statuses[k].ok()) return;
+    }
+    pictures[k] = Shrunk(grey, f);
+  });
+  if (images.empty()) {
+    const auto first = std::find_if(statuses.begin(), statuses.end(), [](const Status& s) { return s.ok(); });
+    if (first != statuses.end()) {
+      const ImageUndistorter undistorter(
+          ShrunkCamera(c.sequence.calibration.camera, f, pictures[first - statuses.begin()].size()));
+      ParallelFor(static_cast<int>(frames.size()), [&](int k) {
+        if (statuses[k].ok()) pictures[k] = undistorter.Apply(pictures[k]);
+      });
+    }
+  }
+  auto slot = [&](int frame) { return std::find(frames.begin(), frames.end(), frame) - frames.begin(); };
+  std::vector<std::string> figures(shown.size());
+  ParallelFor(static_cast<int>(shown.size()), [&](int s) {
+    const FramePairMatches* pair = shown[s];
+    const auto ka = slot(pair->frame_a), kb = slot(pair->frame_b);
+    const Status& status = statuses[ka].ok() ? statuses[kb] : statuses[ka];
+    if (!status.ok()) {
+      figures[s] = Note("Frames " + std::to_string(pair->frame_a) + " and " + std::to_string(pair->frame_b) +
+                        ": no picture, the image could not be read (" + Html(status.message()) + ").");
+      return;
+    }
+    const cv::Mat& image_a = pictures[ka];
+    const cv::Mat& image_b = pictures[kb];
     const Junctions& a = c.result.junctions.at(pair->frame_a);
     const Junctions& b = c.result.junctions.at(pair->frame_b);
     const int scale = image_a.cols < 400 ? 2 : 1;  // small images enlarged so that the numbers stay readable
     const cv::Mat picture =
         DrawMatchOverlay(image_a, Shrunk(a, f), image_b, Shrunk(b, f), pair->matches, scale);
-    html += Figure(picture, "matches between frames " + std::to_string(pair->frame_a) + " and " + std::to_string(pair->frame_b),
-                   "Frames " + std::to_string(pair->frame_a) + " (left) and " + std::to_string(pair->frame_b) +
-                       " (right): " + std::to_string(pair->matches.size()) + " matches of " + std::to_string(a.size()) +
-                       " and " + std::to_string(b.size()) + " junctions.");
-  }
+    figures[s] = Figure(picture, "matches between frames " + std::to_string(pair->frame_a) + " and " + std::to_string(pair->frame_b),
+                        "Frames " + std::to_string(pair->frame_a) + " (left) and " + std::to_string(pair->frame_b) +
+                            " (right): " + std::to_string(pair->matches.size()) + " matches of " + std::to_string(a.size()) +
+                            " and " + std::to_string(b.size()) + " junctions.");
+  });
+  for (const std::string& figure : figures) html += figure;
   return html;
 }
 
