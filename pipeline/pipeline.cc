@@ -101,6 +101,16 @@ Status DetectJunctionsOfAllFrames(const Sequence& sequence, const PipelineOption
                                  &result->junctions, &result->graphs, keypoints);
 }
 
+// F and its uncertainty of frames a and b from base poses world_T_base (the odometry's, or a
+// trajectory's the noise is then centred on) with the odometry's noise model.
+PairGeometry PairGeometryOnTrajectory(const Calibration& calibration, const std::vector<Pose3>& world_T_base,
+                                      int a, int b, const OdometryNoise& noise) {
+  return PairGeometryFromOdometry(calibration.camera.K(), calibration.base_T_camera, world_T_base[a], world_T_base[b],
+                                  noise.translation_sigma, noise.rotation_sigma, b - a);
+}
+
+std::vector<Pose3> OdometryBasePoses(const Sequence& sequence);
+
 // F and its uncertainty for every pair to match (every consecutive pair and every pair two apart,
 // so a junction missed in one frame does not break its track), from the calibration, the two
 // odometry poses and the noise model of sequence.yaml. Part of the input's validation: finite but
@@ -108,14 +118,12 @@ Status DetectJunctionsOfAllFrames(const Sequence& sequence, const PipelineOption
 Status OdometryPairGeometries(const Sequence& sequence, const std::string& sequence_dir,
                               const OdometryNoise& noise, std::vector<std::pair<int, int>>* pairs,
                               std::vector<PairGeometry>* geometries) {
-  const Calibration& calibration = sequence.calibration;
+  const std::vector<Pose3> odometry = OdometryBasePoses(sequence);
   *pairs = FramePairsToMatch(static_cast<int>(sequence.frames.size()));
   geometries->clear();
   geometries->reserve(pairs->size());
   for (const auto& [a, b] : *pairs) {
-    PairGeometry geometry = PairGeometryFromOdometry(
-        calibration.camera.K(), calibration.base_T_camera, sequence.frames[a].world_T_base_odometry,
-        sequence.frames[b].world_T_base_odometry, noise.translation_sigma, noise.rotation_sigma, b - a);
+    const PairGeometry geometry = PairGeometryOnTrajectory(sequence.calibration, odometry, a, b, noise);
     if (!(geometry.camera2_T_camera1.translation.allFinite() && geometry.covariance.allFinite())) {
       return Status::Error((std::filesystem::path(sequence_dir) / "odometry.txt").string() +
                            ": the poses of frames " + std::to_string(a) + " and " + std::to_string(b) +
@@ -126,7 +134,6 @@ Status OdometryPairGeometries(const Sequence& sequence, const std::string& seque
   return Status::Ok();
 }
 
-std::vector<Pose3> OdometryBasePoses(const Sequence& sequence);
 std::vector<Pose3> CamerasFromBases(const std::vector<Pose3>& world_T_base, const Pose3& base_T_camera);
 std::vector<Pose3> BasesFromCameras(const std::vector<Pose3>& world_T_camera, const Pose3& base_T_camera);
 
@@ -286,9 +293,7 @@ bool CloseLoops(const Sequence& sequence, const PipelineOptions& options, Progre
   std::vector<std::pair<int, int>> pairs;
   std::vector<PairGeometry> geometries;
   for (const auto& [a, b] : candidates) {
-    const PairGeometry geometry =
-        PairGeometryFromOdometry(K, calibration.base_T_camera, bases[a], bases[b], summary.used.translation_sigma,
-                                 summary.used.rotation_sigma, b - a);
+    const PairGeometry geometry = PairGeometryOnTrajectory(calibration, bases, a, b, summary.used);
     if (!(geometry.camera2_T_camera1.translation.allFinite() && geometry.covariance.allFinite())) continue;
     pairs.emplace_back(a, b);
     geometries.push_back(geometry);
@@ -488,14 +493,12 @@ Status Refine(const Sequence& sequence, const PipelineOptions& options, const st
 // again, the odometry still the prior (docs/matching.md, "Matching again after the adjustment").
 Status RematchAfterAdjustment(const Sequence& sequence, const PipelineOptions& options, Progress* progress,
                               PipelineResult* result) {
-  const Calibration& calibration = sequence.calibration;
-  const OdometryNoise& noise = result->initialization.used;
-  const std::vector<Pose3> bases = BasesFromCameras(result->world_T_camera_refined, calibration.base_T_camera);
+  const std::vector<Pose3> bases =
+      BasesFromCameras(result->world_T_camera_refined, sequence.calibration.base_T_camera);
   std::vector<PairGeometry> geometries;
   for (const FramePairMatches& pair : result->pairs) {
-    const int a = pair.frame_a, b = pair.frame_b;
-    geometries.push_back(PairGeometryFromOdometry(calibration.camera.K(), calibration.base_T_camera, bases[a],
-                                                  bases[b], noise.translation_sigma, noise.rotation_sigma, b - a));
+    geometries.push_back(
+        PairGeometryOnTrajectory(sequence.calibration, bases, pair.frame_a, pair.frame_b, result->initialization.used));
   }
   int& rematched = result->initialization.pairs_rematched_after_adjustment;
   std::vector<int>* inliers = &result->evidence.pair_inliers;

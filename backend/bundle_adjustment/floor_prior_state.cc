@@ -63,8 +63,10 @@ void FloorPriorState::Select(bool first, const AdjustmentParameters& parameters,
       plane = allowed;
     }
   }
-  if (first) summary->floor_plane_z_m = plane.z_m;
-  if (first) first_plane_z_m_ = plane.z_m;
+  if (first) {
+    summary->floor_plane_z_m = plane.z_m;
+    first_plane_z_m_ = plane.z_m;
+  }
   if (automatic && !(std::abs(plane.z_m) <= allowed_m)) {
     return skip("the lowest horizontal plane (" + std::to_string(plane.support) + " landmarks) is at z = " +
                 std::to_string(plane.z_m) + " m, beyond the " + std::to_string(allowed_m) +

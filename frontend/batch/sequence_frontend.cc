@@ -1,14 +1,13 @@
 #include "frontend/batch/sequence_frontend.h"
 
 #include <algorithm>
+#include <map>
 
 #include <glog/logging.h>
 #include <opencv2/core.hpp>
 
 #include "frontend/junctions/undistorted_junctions.h"
 #include "util/parallel.h"
-
-#include <map>
 
 namespace sfm {
 

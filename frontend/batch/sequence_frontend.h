@@ -72,9 +72,9 @@ void GuidedSequencePairs(const std::vector<Junctions>& junctions, const std::vec
                          std::vector<MatchingDiagnostics>* diagnostics);
 
 // The pairs of `matches` whose matches disagree with geometries[p] (MatchesDisagree) matched again
-// under it (MatchJunctions); the others unchanged, each pair on its own (any thread count). geometries in the order of
-// `matches`. inliers (may be null; one per pair): a pair matched again gets its new pose's inlier
-// count. Returns how many were matched again.
+// under it (MatchJunctions), each on its own (the same for any thread count); the others
+// unchanged. geometries in the order of `matches`. inliers (may be null; one per pair): a pair
+// matched again gets its new pose's inlier count. Returns how many were matched again.
 int RematchDisagreeingPairs(const std::vector<PairGeometry>& geometries, const std::vector<Junctions>& junctions,
                             const std::vector<TopologyGraph>& graphs, const MatchingOptions& options,
                             std::vector<FramePairMatches>* matches, std::vector<int>* inliers = nullptr);

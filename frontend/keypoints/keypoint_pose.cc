@@ -5,7 +5,6 @@
 #include <glog/logging.h>
 
 #include <opencv2/features2d.hpp>
-#include <opencv2/imgproc.hpp>
 
 namespace sfm {
 
@@ -14,21 +13,14 @@ namespace {
 // Lowe's ratio: the best descriptor distance must be below this share of the second best.
 constexpr double kRatio = 0.8;
 
-cv::Mat Grey8(const cv::Mat& image) {
-  cv::Mat grey = image;
-  if (grey.channels() == 3) cv::cvtColor(grey, grey, cv::COLOR_BGR2GRAY);
-  if (grey.channels() == 4) cv::cvtColor(grey, grey, cv::COLOR_BGRA2GRAY);
-  if (grey.depth() == CV_16U) grey.convertTo(grey, CV_8U, 1.0 / 257);
-  return grey;
-}
-
 }  // namespace
 
 FrameKeypoints DetectKeypoints(const cv::Mat& image, const Camera& camera) {
   cv::Ptr<cv::ORB> orb = cv::ORB::create(kKeypointsPerFrame);
   std::vector<cv::KeyPoint> keypoints;
   cv::Mat descriptors;
-  orb->detectAndCompute(Grey8(image), cv::noArray(), keypoints, descriptors);
+  CHECK_EQ(image.type(), CV_8UC1);
+  orb->detectAndCompute(image, cv::noArray(), keypoints, descriptors);
   FrameKeypoints frame;
   frame.locations.reserve(keypoints.size());
   std::vector<int> kept;

@@ -27,7 +27,7 @@ struct FrameKeypoints {
 // images, few enough that the brute-force matching of a pair stays a few milliseconds.
 constexpr int kKeypointsPerFrame = 1000;
 
-// ORB keypoints of a stored image (grey or colour, 8 or 16 bit) of `camera`.
+// ORB keypoints of a frame of `camera` as LoadFrameImage decodes it (8-bit grey; CHECKed).
 FrameKeypoints DetectKeypoints(const cv::Mat& image, const Camera& camera);
 
 // Correspondences between two frames' keypoints: mutual nearest descriptors (Hamming) that pass

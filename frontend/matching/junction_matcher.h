@@ -70,13 +70,6 @@ std::vector<JunctionMatch> GuidedPass(const Junctions& a, const TopologyGraph& g
 // allows); its matches and that refinement are returned, and diagnostics->recentred is set
 // (docs/matching.md, "Pose hypotheses").
 constexpr double kDisagreementBands = 2;
-
-// Whether the median of `matches` (a pair's, a's junctions against b's) lies more than
-// kDisagreementBands guided bands from the epipolar lines of geometry's pose; false without
-// matches. The test of a pair's matches against a refined trajectory (docs/matching.md,
-// "Matching again after the adjustment").
-bool MatchesDisagree(const Junctions& a, const Junctions& b, const std::vector<JunctionMatch>& matches,
-                     const PairGeometry& geometry, const MatchingOptions& options);
 constexpr double kHypothesisMatchRatio = 1.2;
 constexpr double kHypothesisExcessSigmas = 3;
 std::vector<JunctionMatch> GuidedPassOrHypotheses(const Junctions& a, const TopologyGraph& graph_a, const Junctions& b,
@@ -84,6 +77,13 @@ std::vector<JunctionMatch> GuidedPassOrHypotheses(const Junctions& a, const Topo
                                                   const PairGeometry& geometry,
                                                   const std::vector<Pose3>& hypotheses,
                                                   const MatchingOptions& options, MatchingDiagnostics* diagnostics);
+
+// Whether the median of `matches` (a pair's, a's junctions against b's) lies more than
+// kDisagreementBands guided bands from the epipolar lines of geometry's pose; false without
+// matches. The test of a pair's matches against a refined trajectory (docs/matching.md,
+// "Matching again after the adjustment").
+bool MatchesDisagree(const Junctions& a, const Junctions& b, const std::vector<JunctionMatch>& matches,
+                     const PairGeometry& geometry, const MatchingOptions& options);
 
 // The settings of the refinement MatchJunctions runs (RefinePairGeometry), from options.
 PairRefinementSettings RefinementSettings(const MatchingOptions& options);

@@ -489,7 +489,7 @@ PairRefinement RefinePairGeometry(const PairGeometry& prior, const std::vector<E
   }
   result.prior_distance_squared = z.squaredNorm();
   result.estimate = model.PoseAt(z);
-  result.prior_gate = ChiSquare99(m);
+  result.prior_gate = prior_gate;
   if (result.inliers < settings.min_inliers) {
     result.outcome = PairRefinement::Outcome::kTooFewInliers;
     return result;

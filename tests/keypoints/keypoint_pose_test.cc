@@ -2,41 +2,29 @@
 // imported at 768x512.
 #include "frontend/keypoints/keypoint_pose.h"
 
-#include "frontend/batch/sequence_frontend.h"
-
 #include <algorithm>
 #include <cmath>
-#include <filesystem>
 #include <iostream>
 
 #include <gtest/gtest.h>
 
+#include "frontend/batch/sequence_frontend.h"
 #include "frontend/sequence/sequence.h"
-#include "sequences/importers/imported_sequence.h"
-#include "sequences/importers/strecha_importer.h"
+#include "tests/keypoints/strecha_entry.h"
 #include "tests/test_cameras.h"
-#include "tests/test_data.h"
 
 namespace sfm {
 namespace {
-
-namespace fs = std::filesystem;
 
 // Figures protected, on consecutive pairs 0-1, 4-5 and 8-9 with three times the importer's default
 // odometry noise: the keypoints' pose (KeypointPairPoses) is within 0.6 deg of the true rotation and
 // closer to it than the odometry's (measured 0.11, 0.22, 0.35 deg against 0.71, 1.85, 0.86), and
 // the translation keeps about the odometry's length.
 TEST(KeypointPoseTest, StrechaEntryP10PosesRefinedUnderTheOdometry) {
-  const std::string data = testing::SharedDataDir("strecha-entry-P10");
-  if (data.empty()) GTEST_SKIP() << "../shared/data/strecha-entry-P10 is absent";
-  const fs::path out = fs::path(testing::MakeScratchDir("keypoint_pose_entry")) / "sequence";
-  ImportedSequence imported;
-  ASSERT_TRUE(ReadStrechaSequence(data, &imported).ok());
-  SequenceWriteOptions write;
-  write.odometry = write.odometry.Scaled(3);
-  ASSERT_TRUE(WriteImportedSequence(imported, write, out.string()).ok());
+  const std::string out = testing::ImportStrechaEntryAtThreeTimesTheNoise("keypoint_pose_entry");
+  if (out.empty()) GTEST_SKIP() << "../shared/data/strecha-entry-P10 is absent";
   Sequence sequence;
-  ASSERT_TRUE(ReadSequence(out.string(), &sequence).ok());
+  ASSERT_TRUE(ReadSequence(out, &sequence).ok());
   const Camera& camera = sequence.calibration.camera;
   std::vector<FrameKeypoints> keypoints;
   for (int frame = 0; frame < static_cast<int>(sequence.frames.size()); ++frame) {

@@ -6,9 +6,7 @@
 #include <gtest/gtest.h>
 
 #include "pipeline/pipeline.h"
-#include "sequences/importers/imported_sequence.h"
-#include "sequences/importers/strecha_importer.h"
-#include "tests/test_data.h"
+#include "tests/keypoints/strecha_entry.h"
 
 namespace sfm {
 namespace {
@@ -21,18 +19,11 @@ namespace fs = std::filesystem;
 // least 4 pairs move (measured 6) and the refined Sim(3) ATE is at most 0.12 m (measured 0.090 m)
 // and below the odometry's.
 TEST(PoseHypothesesTest, StrechaEntryP10AtThreeTimesTheOdometryNoise) {
-  const std::string data = testing::SharedDataDir("strecha-entry-P10");
-  if (data.empty()) GTEST_SKIP() << "../shared/data/strecha-entry-P10 is absent";
-  const fs::path scratch = testing::MakeScratchDir("pose_hypotheses_entry");
-  ImportedSequence imported;
-  ASSERT_TRUE(ReadStrechaSequence(data, &imported).ok());
-  SequenceWriteOptions write;
-  write.odometry = write.odometry.Scaled(3);
-  write.seed = 1;
-  ASSERT_TRUE(WriteImportedSequence(imported, write, (scratch / "sequence").string()).ok());
+  const std::string sequence = testing::ImportStrechaEntryAtThreeTimesTheNoise("pose_hypotheses_entry");
+  if (sequence.empty()) GTEST_SKIP() << "../shared/data/strecha-entry-P10 is absent";
   PipelineOptions options;
-  options.sequence_dir = (scratch / "sequence").string();
-  options.output_dir = (scratch / "output").string();
+  options.sequence_dir = sequence;
+  options.output_dir = (fs::path(sequence).parent_path() / "output").string();
   options.show_progress = false;
   PipelineResult result;
   const Status status = RunPipeline(options, &result);
