@@ -629,6 +629,11 @@ void SelectWireframe(const Sequence& sequence, const PipelineOptions& options, P
   manhattan.min_plane_angle_deg = options.triangulation.line.min_plane_angle_deg;
   manhattan.wireframe = wireframe;
   manhattan.line = options.triangulation.line;
+  const Camera& camera = sequence.calibration.camera;
+  const double border_margin = options.segments.border_margin;
+  manhattan.seen_by_image = [&camera, border_margin](const Eigen::Vector2d& pixel) {
+    return SeenByStoredImage(camera, pixel, border_margin);
+  };
   ManhattanLineReport& placed = result->manhattan_lines;
   PlaceManhattanLines(K, poses, result->junctions, result->tracks, manhattan, &result->wireframe_landmarks,
                       &placed);
@@ -636,7 +641,8 @@ void SelectWireframe(const Sequence& sequence, const PipelineOptions& options, P
             << " (support " << placed.directions.support << ", " << placed.candidates << " candidates, "
             << placed.inconsistent << " off every direction, " << placed.ambiguous << " ambiguous, "
             << placed.unbounded << " unbounded, " << placed.ends_disagree << " far ends apart, "
-            << placed.undetermined << " undetermined)";
+            << placed.undetermined << " undetermined; " << placed.leaving_view
+            << " of the placed leave the view)";
   if (options.topology_edges) AddEdgesBetweenPoints(options, poses, report, result);
   LinePointAgreementOptions agreement;
   agreement.pixel_sigma_px = report.pixel_sigma_px > 0 ? report.pixel_sigma_px : wireframe.pixel_sigma_px;

@@ -137,6 +137,7 @@ std::string WireframeJson(const PipelineResult& result) {
          ", \"point_edge_splits\": " + std::to_string(edges.splits) +
          ", \"lines_on_point_edges\": " + std::to_string(edges.lines_dropped) +
          ", \"manhattan_lines\": " + std::to_string(result.manhattan_lines.placed) +
+         ", \"manhattan_leaving_view\": " + std::to_string(result.manhattan_lines.leaving_view) +
          ", \"manhattan_support\": " + JsonNumber(result.manhattan_lines.directions.support) +
          ", \"pixel_sigma_px\": " + JsonNumber(report.pixel_sigma_px) +
          ", \"points_untestable\": " + std::to_string(report.points_untestable) +

@@ -13,18 +13,6 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-// Parameter s of the point line.point + s * line.direction nearest to the viewing ray of `pixel`
-// (closest points of two lines); nullopt when the ray is within 1e-9 rad of parallel to the line.
-std::optional<double> BackProjectOntoLine(const Eigen::Matrix3d& K, const Pose3& world_T_camera,
-                                          const Eigen::Vector2d& pixel, const Line3& line) {
-  const Eigen::Vector3d ray = (world_T_camera.rotation * (K.inverse() * pixel.homogeneous())).normalized();
-  const double cos_angle = ray.dot(line.direction);
-  const double sin_squared = 1 - cos_angle * cos_angle;
-  if (!(sin_squared > 1e-18)) return std::nullopt;
-  const Eigen::Vector3d w = world_T_camera.translation - line.point;
-  return (line.direction.dot(w) - cos_angle * ray.dot(w)) / sin_squared;
-}
-
 double DistanceToLine(const Eigen::Vector3d& x, const Line3& line) {
   const Eigen::Vector3d offset = x - line.point;
   return (offset - line.direction.dot(offset) * line.direction).norm();
@@ -38,6 +26,16 @@ double Median(std::vector<double> values) {
 }
 
 }  // namespace
+
+std::optional<double> BackProjectOntoLine(const Eigen::Matrix3d& K, const Pose3& world_T_camera,
+                                          const Eigen::Vector2d& pixel, const Line3& line) {
+  const Eigen::Vector3d ray = (world_T_camera.rotation * (K.inverse() * pixel.homogeneous())).normalized();
+  const double cos_angle = ray.dot(line.direction);
+  const double sin_squared = 1 - cos_angle * cos_angle;
+  if (!(sin_squared > 1e-18)) return std::nullopt;
+  const Eigen::Vector3d w = world_T_camera.translation - line.point;
+  return (line.direction.dot(w) - cos_angle * ray.dot(w)) / sin_squared;
+}
 
 const char* LineStatusName(LineStatus status) {
   switch (status) {

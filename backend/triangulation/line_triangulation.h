@@ -5,6 +5,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <optional>
 #include <vector>
 
 #include "backend/triangulation/triangulation_options.h"
@@ -82,6 +83,11 @@ double LineReprojectionError(const Eigen::Matrix3d& K, const std::vector<LineVie
 // options must pass Check() (CHECKed).
 LineStatus TriangulateLine(const Eigen::Matrix3d& K, const std::vector<LineView>& views,
                            const LineTriangulationOptions& options, Line3* line);
+
+// Parameter s of the point line.point + s * line.direction nearest to the viewing ray of `pixel`
+// (closest points of two lines); nullopt when the ray is within 1e-9 rad of parallel to the line.
+std::optional<double> BackProjectOntoLine(const Eigen::Matrix3d& K, const Pose3& world_T_camera,
+                                          const Eigen::Vector2d& pixel, const Line3& line);
 
 // Bounds the line into a segment. Every observed end is back-projected onto the line (the point of
 // the line nearest to its viewing ray; a ray within 1e-9 rad of parallel to the line is skipped).

@@ -5,6 +5,8 @@
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
+#include <functional>
+#include <optional>
 #include <limits>
 #include <set>
 #include <tuple>
@@ -186,22 +188,81 @@ void PlaceManhattanLines(const Eigen::Matrix3d& K, const std::vector<Pose3>& wor
         ++local.ambiguous;
         continue;
       }
+      // A far end-point at the image border may be where the edge leaves the view, not where it
+      // ends: it bounds the edge's extent from below and says nothing of its end.
+      std::vector<bool> clipped(views.size(), false);
+      int num_clipped = 0;
+      for (size_t i = 0; i < views.size(); ++i) {
+        const Eigen::Vector2d beyond =
+            views[i].p1 + options.border_step_px * (views[i].p1 - views[i].p0).normalized();
+        clipped[i] = options.seen_by_image && !options.seen_by_image(beyond);
+        num_clipped += clipped[i];
+      }
       Segment3 segment;
-      if (BoundLine(K, views, Line3{P, direction}, &P, options.line, &segment) != LineStatus::kOk) {
-        ++local.unbounded;
-        continue;
-      }
-      // Within the plane the images hold only the far end-points' positions along the segments: a
-      // line in the plane but off the chosen direction, or an end that moves (clipped, occluded),
-      // shows as far end-points spread along the segments about end1's projections.
-      double spread_px = 0;
-      for (const LineView& view : views) {
-        const Eigen::Vector2d end = (K * (view.world_T_camera.Inverse() * segment.end1)).hnormalized();
-        spread_px = std::max(spread_px, std::abs((view.p1 - view.p0).normalized().dot(view.p1 - end)));
-      }
-      if (!(spread_px <= options.max_end_spread_px)) {
-        ++local.ends_disagree;
-        continue;
+      std::vector<LineSegmentView> seeing_end = segment_views;  // the views that see end1
+      if (n - num_clipped >= 2) {
+        // Enough views end the edge in the image: they must agree on one end (clipped views
+        // left out).
+        std::vector<LineView> ended;
+        std::vector<LineSegmentView> ended_segments;
+        for (int i = 0; i < n; ++i) {
+          if (clipped[i]) continue;
+          ended.push_back(views[i]);
+          ended_segments.push_back(segment_views[i]);
+        }
+        if (BoundLine(K, ended, Line3{P, direction}, &P, options.line, &segment) != LineStatus::kOk) {
+          ++local.unbounded;
+          continue;
+        }
+        // Within the plane the images hold only the far end-points' positions along the segments:
+        // a line in the plane but off the chosen direction, or an end that moves (occluded), shows
+        // as far end-points spread along the segments about end1's projections.
+        double spread_px = 0;
+        for (const LineView& view : ended) {
+          const Eigen::Vector2d end = (K * (view.world_T_camera.Inverse() * segment.end1)).hnormalized();
+          spread_px = std::max(spread_px, std::abs((view.p1 - view.p0).normalized().dot(view.p1 - end)));
+        }
+        if (!(spread_px <= options.max_end_spread_px)) {
+          ++local.ends_disagree;
+          continue;
+        }
+        seeing_end = ended_segments;
+      } else {
+        // The edge leaves the view in (nearly) every view: it reaches at least as far as the
+        // second-farthest far end-point, the extent two views see.
+        std::vector<double> far;
+        const Line3 line{P, direction};
+        for (const LineView& view : views) {
+          const std::optional<double> s_far = BackProjectOntoLine(K, view.world_T_camera, view.p1, line);
+          if (s_far) far.push_back(*s_far);
+        }
+        double sum = 0;
+        for (const double s_far : far) sum += s_far;
+        const double sign = sum >= 0 ? 1 : -1;
+        for (double& s_far : far) s_far *= sign;
+        if (far.size() < 2) {
+          ++local.unbounded;
+          continue;
+        }
+        std::nth_element(far.begin(), far.begin() + 1, far.end(), std::greater<double>());
+        const double extent = far[1];
+        if (!(extent > 0)) {
+          ++local.unbounded;
+          continue;
+        }
+        segment = {P, P + sign * extent * direction};
+        seeing_end.clear();
+        bool too_close = false;
+        for (int i = 0; i < n; ++i) {
+          const std::optional<double> s_far = BackProjectOntoLine(K, views[i].world_T_camera, views[i].p1, line);
+          if (!s_far || sign * *s_far < extent) continue;
+          seeing_end.push_back(segment_views[i]);
+          too_close = too_close || !((views[i].world_T_camera.Inverse() * segment.end1).z() >= options.line.min_depth_m);
+        }
+        if (too_close) {
+          ++local.unbounded;
+          continue;
+        }
       }
       const double length = (segment.end1 - segment.end0).norm();
       const Eigen::Vector3d u = (segment.end1 - segment.end0) / length;
@@ -216,9 +277,9 @@ void PlaceManhattanLines(const Eigen::Matrix3d& K, const std::vector<Pose3>& wor
       }
       const double across = std::hypot(point_sigma, length * directions.sigma_rad);
       const double along =
-          LineEndAlongSigma(K, segment_views, segment.end1, u, options.pixel_sigma_px, across);
+          LineEndAlongSigma(K, seeing_end, segment.end1, u, options.pixel_sigma_px, across);
       double depth = std::numeric_limits<double>::infinity();
-      for (const LineView& view : views)
+      for (const LineSegmentView& view : seeing_end)
         depth = std::min(depth, (view.world_T_camera.Inverse() * segment.end1).z());
       if (!(std::hypot(across, along) <= MaxVertexSigma(bound, K(0, 0), depth))) {
         ++local.undetermined;
@@ -235,6 +296,7 @@ void PlaceManhattanLines(const Eigen::Matrix3d& K, const std::vector<Pose3>& wor
       for (const LineObservation& observation : observations)
         used.insert({observation.frame, observation.junction, observation.segment});
       ++local.placed;
+      if (n - num_clipped < 2) ++local.leaving_view;
     }
   }
   if (report != nullptr) *report = local;

@@ -8,6 +8,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <functional>
 #include <vector>
 
 #include "backend/triangulation/landmark_uncertainty.h"
@@ -55,6 +56,12 @@ struct ManhattanLineOptions {
   // the placed line's end1: the end-point model's spread on generated vertex ends (10 % / 90 %
   // -4.8 / 0.9 px, docs/endpoint_model.md). Pixels, > 0.
   double max_end_spread_px = 5.0;
+  // Whether an undistorted pixel lies in the part of the image the segments were detected in (for
+  // SeenByStoredImage with the segment detector's border margin). A view's far end-point is at the
+  // border when the point border_step_px beyond it along its segment is not: the edge may leave
+  // the view there. Empty: no end-point is at the border.
+  std::function<bool(const Eigen::Vector2d&)> seen_by_image;
+  double border_step_px = 2.0;
   // EstimateDominantDirections' inlier angle, degrees in (0, 45).
   double inlier_deg = 2.0;
   // Lines are placed only when the dominant directions hold at least this share of the drawn
@@ -75,6 +82,7 @@ struct ManhattanLineReport {
   int ends_disagree = 0;  // a far end-point beyond max_end_spread_px of end1's projection
   int undetermined = 0;   // the far end's sigma above the wireframe selection's bound
   int placed = 0;         // lines added
+  int leaving_view = 0;   // of which bounded by the extent two views see (far ends at the border)
 };
 
 // Adds the placed lines to `drawn` (the landmarks SelectWireframeLandmarks kept; before
@@ -84,10 +92,14 @@ struct ManhattanLineReport {
 // whose back-projected planes spread by at most min_plane_angle_deg. For each dominant direction a,
 // the line P + t a passes when its distances from the observed p0 and p1 pass the chi-square test
 // at `level` with 2n - 2 degrees of freedom (n views; P's own fit takes two); exactly one must
-// pass. The segment is BoundLine's (end0 = P, end1 the median back-projected far end-point), kept
-// when end1's sigma, sqrt(c^2 + e^2) with c = sqrt(sigma_P^2 + (L sigma_rad)^2) across the line
-// (sigma_P: P's PointPositionSigma with the drift, L the length) and e = LineEndAlongSigma along
-// it, is within MaxVertexSigma of end1's smallest depth. Nothing is placed when
+// pass. The segment: when at least two views' far end-points lie inside the image (not at the
+// border, seen_by_image), BoundLine's over those views (end0 = P, end1 their median back-projected
+// far end-point), whose far end-points must lie within max_end_spread_px of end1's projection;
+// otherwise end1 is the second-farthest back-projected far end-point (the extent two views see),
+// at least min_depth_m deep in the views that see it. Kept when end1's sigma, sqrt(c^2 + e^2) with
+// c = sqrt(sigma_P^2 + (L sigma_rad)^2) across the line (sigma_P: P's PointPositionSigma with the
+// drift, L the length) and e = LineEndAlongSigma along it (over the views that see end1), is
+// within MaxVertexSigma of end1's smallest depth in those views. Nothing is placed when
 // report.directions.support < min_support.
 void PlaceManhattanLines(const Eigen::Matrix3d& K, const std::vector<Pose3>& world_T_camera,
                          const std::vector<Junctions>& junctions, const std::vector<JunctionTrack>& tracks,

@@ -28,25 +28,46 @@ struct Scene {
   Landmarks drawn;
 };
 
-// The edge from P = (4, 1, 2) towards `direction` for 3 m, seen in every camera as a junction
-// segment (0.3 px noise, seed 7) from P's junction to the edge's far end. P is drawn 4 mm off its
-// true position. Drawn lines (no observations: they only set the dominant directions): four along
+// The 640 x 480 image's part SeenByStoredImage counts with a 2 px margin.
+bool SeenByTestImage(const Eigen::Vector2d& pixel) {
+  return pixel.x() >= 2 && pixel.y() >= 2 && pixel.x() <= 637 && pixel.y() <= 477;
+}
+
+// The pixel where the edge from P towards E leaves camera's view (the last of 1 mm steps from P
+// that is in front of the camera and seen), or E's pixel when it does not.
+Eigen::Vector2d FarthestSeenPixel(const Eigen::Matrix3d& K, const Pose3& camera, const Eigen::Vector3d& P,
+                                  const Eigen::Vector3d& E) {
+  const int steps = static_cast<int>((E - P).norm() / 0.001);
+  Eigen::Vector2d last = Project(K, camera, P);
+  for (int k = 1; k <= steps; ++k) {
+    const Eigen::Vector3d X = P + (E - P) * (static_cast<double>(k) / steps);
+    const Eigen::Vector2d pixel = Project(K, camera, X);
+    if (!((camera.Inverse() * X).z() > 0.1 && SeenByTestImage(pixel))) break;
+    last = pixel;
+  }
+  return last;
+}
+
+// The edge from P = (4, 1, 2) towards `direction` for `length` m, seen in every camera as a
+// junction segment (0.3 px noise, seed 7) from P's junction to the edge's far end, or to where the
+// edge leaves the view. P is drawn `point_error` off its true position (4 mm by default). Drawn lines (no observations: they only set the dominant directions): four along
 // each axis, one of each set turned by 0.5 degrees, and a short one turned by 30 degrees.
-Scene MakeScene(const Eigen::Vector3d& direction, bool manhattan = true) {
+Scene MakeScene(const Eigen::Vector3d& direction, bool manhattan = true, double length = 3,
+                const Eigen::Vector3d& point_error = Eigen::Vector3d(0.002, -0.002, 0.003)) {
   Scene scene;
   const Eigen::Matrix3d K = TestK();
   std::mt19937 random(7);
   const Eigen::Vector3d P(4, 1, 2);
-  const Eigen::Vector3d E = P + 3 * direction.normalized();
+  const Eigen::Vector3d E = P + length * direction.normalized();
   PointLandmark point;
   point.track_id = 0;
-  point.position = P + Eigen::Vector3d(0.002, -0.002, 0.003);
+  point.position = P + point_error;
   JunctionTrack track;
   track.id = 0;
   for (size_t f = 0; f < scene.cameras.size(); ++f) {
     Junction junction;
     junction.location = Project(K, scene.cameras[f], P) + PixelNoise(random, 0.3);
-    junction.segments.push_back({Project(K, scene.cameras[f], E) + PixelNoise(random, 0.3), 0});
+    junction.segments.push_back({FarthestSeenPixel(K, scene.cameras[f], P, E) + PixelNoise(random, 0.3), 0});
     scene.junctions.push_back({junction});
     point.observations.push_back({static_cast<int>(f), 0, junction.location});
     track.views.push_back({static_cast<int>(f), 0, {0}});
@@ -126,6 +147,39 @@ TEST(PlaceManhattanLines, LeavesALineOffTheDominantDirections) {
   EXPECT_EQ(report.inconsistent, 1);
   EXPECT_EQ(report.placed, 0);
   EXPECT_EQ(scene.drawn.lines.size(), lines);
+}
+
+// The edge from P back along the motion leaves the top of the image in every view, 1.9-3.5 m from
+// the cameras' centres along x: the far end-points at the border are no end of the edge. P is drawn
+// 1 mm off (4 mm would move the line's image 0.9 px at 1.9 m: the image test, pixel noise only,
+// would refuse every direction). Without
+// the border known they spread along the segments and nothing is placed; with it the line is
+// placed up to the extent two views see, x = 2.295 (camera 1, at x = 0.4: the edge at 2 m height
+// meets the image's top margin 1.895 m ahead of it). Figures protected: end1.x within 3 cm of
+// 2.295 (2.301: the 0.3 px noise on a ray 28 degrees off the line), end1 within 2 cm of the true
+// line. The farthest extent (camera 0's, x = 1.895) would be 0.4 m off.
+TEST(PlaceManhattanLines, BoundsALineThatLeavesTheViewByTheExtentTwoViewsSee) {
+  ManhattanLineReport report;
+  const Eigen::Vector3d point_error(0.0005, -0.0005, 0.0007);
+  Scene unbounded = MakeScene(-Eigen::Vector3d::UnitX(), /*manhattan=*/true, /*length=*/3.9, point_error);
+  PlaceManhattanLines(TestK(), unbounded.cameras, unbounded.junctions, unbounded.tracks, Options(),
+                      &unbounded.drawn, &report);
+  EXPECT_EQ(report.candidates, 1);
+  EXPECT_EQ(report.ends_disagree, 1);
+  EXPECT_EQ(report.placed, 0);
+
+  Scene scene = MakeScene(-Eigen::Vector3d::UnitX(), /*manhattan=*/true, /*length=*/3.9, point_error);
+  ManhattanLineOptions options = Options();
+  options.seen_by_image = SeenByTestImage;
+  PlaceManhattanLines(TestK(), scene.cameras, scene.junctions, scene.tracks, options, &scene.drawn, &report);
+  EXPECT_EQ(report.candidates, 1);
+  ASSERT_EQ(report.placed, 1);
+  EXPECT_EQ(report.leaving_view, 1);
+  const LineLandmark& line = scene.drawn.lines.back();
+  const Eigen::Vector3d P(4, 1, 2);
+  EXPECT_LT(DistanceToLine(line.end0, P, Eigen::Vector3d::UnitX()), 0.01);
+  EXPECT_LT(DistanceToLine(line.end1, P, Eigen::Vector3d::UnitX()), 0.02);
+  EXPECT_NEAR(line.end1.x(), 2.295, 0.03);
 }
 
 // Drawn lines in no three orthogonal directions: the support is below 0.6 and nothing is placed.
