@@ -67,6 +67,10 @@ std::string FiguresJson(const sfm::WireframeFigures& figures) {
                      ", \"seen_length_m\": " + Number(figures.seen_length_m) +
                      ", \"covered_length_m\": " + Number(figures.covered_length_m) +
                      ", \"completeness\": " + Number(figures.completeness) +
+                     ", \"in_view_length_m\": " + Number(figures.in_view_length_m) +
+                     ", \"in_view_share\": " + Number(Share(figures.in_view_length_m, figures.seen_length_m)) +
+                     ", \"completeness_in_view\": " +
+                     Number(Share(figures.covered_in_view_length_m, figures.in_view_length_m)) +
                      ", \"edge_length_m\": " + Number(figures.edge_length_m) +
                      ", \"edge_share\": " + Number(figures.edge_precision) + ", \"by_direction\": {";
   for (int k = 0; k < sfm::kEdgeDirections; ++k) {
@@ -107,8 +111,9 @@ int main(int argc, char** argv) {
   options.threshold_m = FLAGS_threshold;
   const std::vector<bool> seen = sfm::SeenTrueEdges(truth, options.min_views);
   const std::vector<sfm::EdgeDirection> direction = sfm::ClassifyTrueEdges(truth);
+  const sfm::TrueEdgeViews views = sfm::ViewsOfTrueEdges(truth);
   const auto measure = [&](const std::vector<Eigen::Vector3d>& vertices) {
-    return sfm::EvaluateWireframe(vertices, wireframe.edges, truth.wireframe, seen, direction, options);
+    return sfm::EvaluateWireframe(vertices, wireframe.edges, truth.wireframe, seen, direction, options, &views);
   };
   const sfm::WireframeFigures plain = measure(wireframe.vertices);
 

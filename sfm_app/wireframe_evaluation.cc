@@ -55,6 +55,17 @@ std::vector<bool> SeenTrueEdges(const GroundTruth& truth, int min_views) {
   return seen;
 }
 
+TrueEdgeViews ViewsOfTrueEdges(const GroundTruth& truth) {
+  TrueEdgeViews views(truth.wireframe.edges.size());
+  for (const FrameTruth& frame : truth.frames) {
+    for (const VisibleSegment& segment : frame.segments) {
+      if (segment.edge >= 0 && segment.edge < static_cast<int>(views.size()))
+        views[segment.edge].emplace_back(segment.t[0], segment.t[1]);
+    }
+  }
+  return views;
+}
+
 std::vector<EdgeDirection> ClassifyTrueEdges(const GroundTruth& truth) {
   const std::vector<std::vector<int>> views = FramesSeeingVertex(truth);
   const int frames = static_cast<int>(truth.frames.size());
@@ -95,8 +106,9 @@ std::vector<EdgeDirection> ClassifyTrueEdges(const GroundTruth& truth) {
 WireframeFigures EvaluateWireframe(const std::vector<Eigen::Vector3d>& vertices,
                                    const std::vector<std::pair<int, int>>& edges, const Wireframe& truth,
                                    const std::vector<bool>& seen, const std::vector<EdgeDirection>& direction,
-                                   const WireframeEvaluationOptions& options) {
+                                   const WireframeEvaluationOptions& options, const TrueEdgeViews* views) {
   CHECK_EQ(seen.size(), truth.edges.size());
+  if (views != nullptr) CHECK_EQ(views->size(), truth.edges.size());
   CHECK_EQ(direction.size(), truth.edges.size());
   CHECK_GT(options.sample_step_m, 0);
   const double nan = std::numeric_limits<double>::quiet_NaN();
@@ -146,14 +158,25 @@ WireframeFigures EvaluateWireframe(const std::vector<Eigen::Vector3d>& vertices,
     figures.seen_length_m += length;
     figures.seen_length_by_direction[k] += length;
     for (int i = 0; i < pieces; ++i) {
-      const Eigen::Vector3d sample = a + ((i + 0.5) / pieces) * (b - a);
+      const double t = (i + 0.5) / pieces;
+      const Eigen::Vector3d sample = a + t * (b - a);
+      bool covered = false;
       for (const auto& [first, second] : edges) {
         if (DistanceToSegment(sample, vertices[first], vertices[second]) <= options.threshold_m) {
-          figures.covered_length_m += piece;
-          figures.covered_length_by_direction[k] += piece;
+          covered = true;
           break;
         }
       }
+      if (covered) {
+        figures.covered_length_m += piece;
+        figures.covered_length_by_direction[k] += piece;
+      }
+      if (views == nullptr) continue;
+      bool in_view = false;
+      for (const auto& [t0, t1] : (*views)[e]) in_view = in_view || (t >= t0 && t <= t1);
+      if (!in_view) continue;
+      figures.in_view_length_m += piece;
+      if (covered) figures.covered_in_view_length_m += piece;
     }
   }
   figures.completeness = figures.seen_length_m > 0 ? figures.covered_length_m / figures.seen_length_m : nan;

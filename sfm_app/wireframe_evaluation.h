@@ -33,6 +33,11 @@ struct WireframeEvaluationOptions {
 // `min_views` frames of truth.frames.
 std::vector<bool> SeenTrueEdges(const GroundTruth& truth, int min_views);
 
+// Per true edge: the part of it each frame sees, [t0, t1] along it (truth.frames' visible
+// segments, occlusion and the image border taken out), one entry per visible segment.
+using TrueEdgeViews = std::vector<std::vector<std::pair<double, double>>>;
+TrueEdgeViews ViewsOfTrueEdges(const GroundTruth& truth);
+
 // Per true edge: vertical when its direction is more than 45 degrees from the horizontal (world z is
 // up, docs/conventions.md); otherwise along the motion when, summed over the frames that see one of
 // its vertices (all frames when none does), the components of the camera's motion at each frame
@@ -49,6 +54,11 @@ struct WireframeFigures {
   double seen_length_m = 0;     // total length of the seen true edges
   double covered_length_m = 0;  // of it, the length within threshold_m of a reconstructed edge
   double completeness = 0;      // covered / seen (NaN when nothing is seen)
+  // Of the seen length, the part some frame sees (EvaluateWireframe's `views`; 0 without them):
+  // what a reconstruction from these frames can cover, the completeness' ceiling (but for the
+  // threshold's slack at the ends); and of it, the length within threshold_m of a reconstructed edge.
+  double in_view_length_m = 0;
+  double covered_in_view_length_m = 0;
   double edge_length_m = 0;     // total length of the reconstructed edges
   double edge_within_m = 0;     // of it, the length within threshold_m of a true edge
   double edge_precision = 0;    // edge_within / edge_length (NaN without edges of positive length)
@@ -61,10 +71,12 @@ struct WireframeFigures {
 // `truth`, with `seen` and `direction` per true edge (SeenTrueEdges, ClassifyTrueEdges; CHECKed to
 // have one entry per edge). An edge of length L (true, or reconstructed for the edge precision) is
 // sampled at the midpoints of ceil(L / step) equal pieces, each standing for its piece's length.
+// `views` (ViewsOfTrueEdges, one entry per edge, CHECKed), when given, sets the in-view figures.
 WireframeFigures EvaluateWireframe(const std::vector<Eigen::Vector3d>& vertices,
                                    const std::vector<std::pair<int, int>>& edges, const Wireframe& truth,
                                    const std::vector<bool>& seen, const std::vector<EdgeDirection>& direction,
-                                   const WireframeEvaluationOptions& options);
+                                   const WireframeEvaluationOptions& options,
+                                   const TrueEdgeViews* views = nullptr);
 
 // Distance from p to the segment ab (to a when a == b).
 double DistanceToSegment(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b);

@@ -65,6 +65,28 @@ TEST(EvaluateWireframe, ExactSharesOnHandBuiltEdges) {
   EXPECT_NEAR(figures.edge_within_m, 0.46 + 26 * 1.495 / 75 + 2, 1e-12);
 }
 
+// The in-view figures of the same wireframe: frames see e0 over t in [0, 0.6] (twice) and [0.1,
+// 0.8], e1 over [0.25, 1], e2 (not seen: ignored) whole. In view: e0's samples 0.01-0.79 (40,
+// 0.80 m; r0 covers 25 of them, 0.50 m) and e1's 0.25-0.99 (38, 0.76 m; r1 covers the 26 from
+// 0.49). Ceiling 1.56 of 2 m; covered in view 1.02 m.
+TEST(EvaluateWireframe, InViewLengthIsWhatSomeFrameSees) {
+  const Wireframe truth = TrueWireframe({{0, 0, 0}, {1, 0, 0}, {5, 0, 0}, {5, 0, 1}, {10, 0, 0}, {12, 0, 0}},
+                                        {{0, 1}, {2, 3}, {4, 5}});
+  const std::vector<EdgeDirection> direction = {EdgeDirection::kAlong, EdgeDirection::kVertical,
+                                                EdgeDirection::kAcross};
+  const std::vector<Eigen::Vector3d> vertices = {{0, 0.03, 0}, {0.46, 0.03, 0}, {5.04, 0, 0.505}, {5.04, 0, 2}};
+  const TrueEdgeViews views = {{{0, 0.6}, {0, 0.6}, {0.1, 0.8}}, {{0.25, 1}}, {{0, 1}}};
+  const WireframeFigures figures = EvaluateWireframe(vertices, {{0, 1}, {2, 3}}, truth, {true, true, false},
+                                                     direction, WireframeEvaluationOptions(), &views);
+  EXPECT_NEAR(figures.seen_length_m, 2.0, 1e-12);
+  EXPECT_NEAR(figures.in_view_length_m, 0.80 + 0.76, 1e-12);
+  EXPECT_NEAR(figures.covered_in_view_length_m, 0.50 + 0.52, 1e-12);
+  EXPECT_NEAR(figures.covered_length_m, 1.02, 1e-12);
+  const WireframeFigures without = EvaluateWireframe(vertices, {{0, 1}, {2, 3}}, truth, {true, true, false},
+                                                     direction, WireframeEvaluationOptions());
+  EXPECT_EQ(without.in_view_length_m, 0.0);
+}
+
 // Points alone cover nothing; an edge lying on a true edge covers all of it; nothing seen: NaN.
 TEST(EvaluateWireframe, PointsAloneAreNotComplete) {
   const Wireframe truth = TrueWireframe({{0, 0, 0}, {0.3, 0, 0}}, {{0, 1}});
