@@ -187,20 +187,47 @@ void MeasureOdometryNoise(const Sequence& sequence, const PipelineOptions& optio
   *rematch = measured > kRematchNoiseFactor * summary.declared.rotation_sigma;
 }
 
+// VerifySequencePairs on the pairs whose `consecutive` (frame b = frame a + 1) is as given, into
+// their places in `matches` and `diagnostics` (sized for every pair).
+void VerifyPairsWhere(bool consecutive, const std::vector<std::pair<int, int>>& pairs,
+                      const std::vector<PairGeometry>& geometries, const PipelineOptions& options,
+                      Progress* progress, PipelineResult* result, std::vector<MatchingDiagnostics>* diagnostics) {
+  std::vector<int> chosen;
+  std::vector<std::pair<int, int>> chosen_pairs;
+  std::vector<PairGeometry> chosen_geometries;
+  for (size_t p = 0; p < pairs.size(); ++p) {
+    if ((pairs[p].second == pairs[p].first + 1) != consecutive) continue;
+    chosen.push_back(static_cast<int>(p));
+    chosen_pairs.push_back(pairs[p]);
+    chosen_geometries.push_back(geometries[p]);
+  }
+  std::vector<FramePairMatches> matches;
+  std::vector<MatchingDiagnostics> chosen_diagnostics;
+  VerifySequencePairs(chosen_pairs, chosen_geometries, result->junctions, result->graphs, options.Matching(),
+                      progress, &matches, &chosen_diagnostics);
+  for (size_t k = 0; k < chosen.size(); ++k) {
+    result->pairs[chosen[k]] = std::move(matches[k]);
+    (*diagnostics)[chosen[k]] = std::move(chosen_diagnostics[k]);
+  }
+}
+
 // Paper sections 3-4 on the pairs of OdometryPairGeometries, with their geometry, in two steps:
 // every pair's first pass and verified pose, then (MeasureOdometryNoise) every pair's guided pass,
 // or, when the verified poses say the odometry's gates were too narrow, the whole matching again
-// with wider ones. `diagnostics` receives each pair's refinement, in the order of `pairs`.
+// with wider ones. The noise is measured on consecutive pairs, so the other pairs' first pass runs
+// only when it is kept. `diagnostics` receives each pair's refinement, in the order of `pairs`.
 Status MatchFramePairs(const Sequence& sequence, const PipelineOptions& options,
                        const std::vector<std::pair<int, int>>& pairs,
                        const std::vector<KeypointCorrespondences>& keypoint_matches,
                        std::vector<PairGeometry>* geometries, Progress* progress,
                        std::vector<MatchingDiagnostics>* diagnostics, PipelineResult* result) {
-  VerifySequencePairs(pairs, *geometries, result->junctions, result->graphs, options.Matching(), progress,
-                      &result->pairs, diagnostics);
+  result->pairs.assign(pairs.size(), FramePairMatches());
+  diagnostics->assign(pairs.size(), MatchingDiagnostics());
+  VerifyPairsWhere(/*consecutive=*/true, pairs, *geometries, options, progress, result, diagnostics);
   bool rematch = false;
   MeasureOdometryNoise(sequence, options, pairs, *diagnostics, &rematch, result);
   result->initialization.rematched = rematch;
+  if (!rematch) VerifyPairsWhere(/*consecutive=*/false, pairs, *geometries, options, progress, result, diagnostics);
   if (rematch) {
     LOG(INFO) << "matching again with the measured odometry noise";
     std::vector<std::pair<int, int>> same_pairs;
