@@ -434,7 +434,9 @@ void RecordTrackExtension(const TrackExtensionReport& report, size_t tracks, Clo
   summary.points_changed = static_cast<int>(report.changed_points.size());
   summary.lines_changed = static_cast<int>(report.changed_lines.size());
   summary.seconds = SecondsSince(start);
-  LOG(INFO) << "track extension: " << report.observations_added << " observations added, "
+  LOG(INFO) << "track extension: " << summary.points_triangulated_again
+            << " points triangulated again on the solved poses, " << report.observations_added
+            << " observations added, "
             << report.tracks_merged << " tracks merged (" << report.merges_refused << " refused), "
             << report.ambiguous << " ambiguous projections, " << report.gate_too_wide << " gates too wide, "
             << report.no_junction << " empty, " << report.incompatible
@@ -467,6 +469,11 @@ Status AdjustAndExtendTracks(const std::vector<Pose3>& world_T_base_odometry, co
     TrackExtensionReport report;
     Eigen::Vector2d box_min, box_max;
     DetectionBox(reconstruction->calibration.camera, options, &box_min, &box_max);
+    // Tracks whose point failed on the start's poses (a long track's reprojection error pushed
+    // past the bound by the drift) are triangulated again on the solved ones, then extended.
+    result->track_extension.points_triangulated_again = TriangulateMissingPoints(
+        reconstruction->calibration.camera.K(), reconstruction->WorldTCamera(), reconstruction->junctions,
+        reconstruction->tracks, options.triangulation.point, &reconstruction->landmarks);
     ExtendTracks(options.track_extension, box_min, box_max, reconstruction, &report);
     RecordTrackExtension(report, reconstruction->tracks.size(), start, result);
     SFM_RETURN_IF_ERROR(adjustment.AcceptChangedMap());

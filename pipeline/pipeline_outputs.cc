@@ -158,7 +158,8 @@ std::string WireframeJson(const PipelineResult& result) {
 std::string TrackExtensionJson(const PipelineResult& result) {
   const TrackExtensionSummary& summary = result.track_extension;
   if (!summary.ran) return "null";
-  return "{\"observations_added\": " + std::to_string(summary.observations_added) +
+  return "{\"points_triangulated_again\": " + std::to_string(summary.points_triangulated_again) +
+         ", \"observations_added\": " + std::to_string(summary.observations_added) +
          ", \"tracks_merged\": " + std::to_string(summary.tracks_merged) +
          ", \"ambiguous\": " + std::to_string(summary.ambiguous) +
          ", \"points_changed\": " + std::to_string(summary.points_changed) +

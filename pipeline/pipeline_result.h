@@ -29,6 +29,7 @@ struct StageTimes {
 // What the track extension inside the bundle adjustment did (PipelineOptions::extend_tracks).
 struct TrackExtensionSummary {
   bool ran = false;
+  int points_triangulated_again = 0;  // tracks without a point, triangulated on the solved poses
   int observations_added = 0;    // unassigned junctions joined to a track
   int tracks_merged = 0;         // tracks absorbed into another
   int ambiguous = 0;             // projections with two or more compatible junctions in the gate

@@ -3,6 +3,7 @@
 #include <glog/logging.h>
 
 #include <algorithm>
+#include <unordered_set>
 
 namespace sfm {
 
@@ -98,6 +99,33 @@ Landmarks TriangulateTracks(const Eigen::Matrix3d& K, const std::vector<Pose3>& 
   }
   if (report != nullptr) *report = std::move(statuses);
   return landmarks;
+}
+
+int TriangulateMissingPoints(const Eigen::Matrix3d& K, const std::vector<Pose3>& world_T_camera,
+                             const std::vector<Junctions>& frames, const std::vector<JunctionTrack>& tracks,
+                             const PointTriangulationOptions& options, Landmarks* landmarks) {
+  std::unordered_set<int> with_point;
+  for (const PointLandmark& point : landmarks->points) with_point.insert(point.track_id);
+  int added = 0;
+  for (const JunctionTrack& track : tracks) {
+    if (with_point.count(track.id) > 0) continue;
+    std::vector<PointView> views;
+    std::vector<PointObservation> observations;
+    for (const TrackView& view : track.views) {
+      CHECK(view.frame >= 0 && view.frame < static_cast<int>(frames.size()) && view.junction >= 0 &&
+            view.junction < static_cast<int>(frames[view.frame].size()))
+          << "track " << track.id << " views junction " << view.junction << " of frame " << view.frame;
+      const Eigen::Vector2d& location = frames[view.frame][view.junction].location;
+      views.push_back({world_T_camera[view.frame], location});
+      observations.push_back({view.frame, view.junction, location});
+    }
+    Eigen::Vector3d position;
+    if (TriangulatePoint(K, views, options, &position) != PointStatus::kOk) continue;
+    landmarks->points.push_back({track.id, position, observations});
+    landmarks->points.back().occlusion_candidate = SeenAsTOrX(frames, landmarks->points.back());
+    ++added;
+  }
+  return added;
 }
 
 }  // namespace sfm

@@ -44,4 +44,12 @@ Landmarks TriangulateTracks(const Eigen::Matrix3d& K, const std::vector<Pose3>& 
                             const std::vector<Junctions>& frames, const std::vector<JunctionTrack>& tracks,
                             const TriangulationOptions& options, TriangulationReport* report = nullptr);
 
+// The points of the tracks that have none in `landmarks` (their triangulation failed on the poses
+// they were built on, typically a long track whose reprojection error a drifting start pushed past
+// the bound), triangulated again on `world_T_camera` as TriangulateTracks does and appended.
+// Returns how many were added. Lines are left as they are.
+int TriangulateMissingPoints(const Eigen::Matrix3d& K, const std::vector<Pose3>& world_T_camera,
+                             const std::vector<Junctions>& frames, const std::vector<JunctionTrack>& tracks,
+                             const PointTriangulationOptions& options, Landmarks* landmarks);
+
 }  // namespace sfm

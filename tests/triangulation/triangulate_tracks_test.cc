@@ -146,5 +146,42 @@ TEST(TriangulateTracksTest, NoTrackNoLandmark) {
   EXPECT_TRUE(report.point_status.empty());
 }
 
+// Poses that drifted (the last two cameras turned 1 and 2 degrees about the vertical, as an
+// odometry's heading drifts) put the near corner's rays 8-16 px apart: on them its track fails
+// with kLargeReprojectionError (bound 4 px), the far one fails too. TriangulateMissingPoints on the true poses adds that
+// point (within 1e-9 m of the corner, with its five observations) and not the far corner (low
+// parallax on any poses); a second call adds nothing, the track having its point.
+TEST(TriangulateMissingPointsTest, AddsThePointsOfTracksThatFailedOnDriftedPoses) {
+  const Eigen::Vector3d corner(5, 1.5, 1.8);
+  const std::vector<Eigen::Vector3d> ends = {corner + Eigen::Vector3d(1.5, 0, 0),
+                                             corner + Eigen::Vector3d(0, 0, -1.2),
+                                             corner + Eigen::Vector3d(0, -0.8, 0)};
+  const Eigen::Vector3d far_corner(80, -2, 2);
+  const Scene scene =
+      MakeScene(corner, ends, far_corner,
+                {far_corner + Eigen::Vector3d(0, 0, -1), far_corner + Eigen::Vector3d(0, 1, 0)});
+  std::vector<Pose3> drifted = scene.cameras;
+  for (int k = 3; k < 5; ++k) {
+    const double yaw = (k - 2) * 3.14159265358979323846 / 180;
+    drifted[k].rotation = Eigen::Quaterniond(Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ())) * drifted[k].rotation;
+  }
+  TriangulationReport report;
+  Landmarks landmarks =
+      TriangulateTracks(TestK(), drifted, scene.frames, scene.tracks, TriangulationOptions(), &report);
+  ASSERT_EQ(report.point_status.size(), 2u);
+  EXPECT_EQ(report.point_status[0], PointStatus::kLargeReprojectionError);
+  EXPECT_NE(report.point_status[1], PointStatus::kOk);  // behind a turned camera
+  ASSERT_TRUE(landmarks.points.empty());
+
+  const PointTriangulationOptions options = TriangulationOptions().point;
+  EXPECT_EQ(TriangulateMissingPoints(TestK(), scene.cameras, scene.frames, scene.tracks, options, &landmarks), 1);
+  ASSERT_EQ(landmarks.points.size(), 1u);
+  EXPECT_EQ(landmarks.points[0].track_id, scene.tracks[0].id);
+  EXPECT_LT((landmarks.points[0].position - corner).norm(), 1e-9);
+  EXPECT_EQ(landmarks.points[0].observations.size(), 5u);
+  EXPECT_EQ(TriangulateMissingPoints(TestK(), scene.cameras, scene.frames, scene.tracks, options, &landmarks), 0);
+  EXPECT_EQ(landmarks.points.size(), 1u);
+}
+
 }  // namespace
 }  // namespace sfm
