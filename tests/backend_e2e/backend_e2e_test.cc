@@ -454,7 +454,8 @@ TEST_F(BackendEndToEnd, TrackExtensionLengthensThePointTracks) {
   for (const JunctionTrack& track : on.tracks) views += track.views.size();
   const std::string csv = ReadFile(output_dir() / "tracks.csv");
   EXPECT_EQ(static_cast<size_t>(std::count(csv.begin(), csv.end(), '\n')), views + 1);
-  EXPECT_THAT(ReadFile(output_dir() / "metrics.json"), HasSubstr("\"track_extension\": {\"observations_added\": "));
+  EXPECT_THAT(ReadFile(output_dir() / "metrics.json"),
+              HasSubstr("\"track_extension\": {\"points_triangulated_again\": "));
 }
 
 }  // namespace
