@@ -36,6 +36,25 @@ void MarkOcclusionCandidates(const std::vector<Junctions>& junctions, Landmarks*
   for (PointLandmark& point : landmarks->points) point.occlusion_candidate = SeenAsTOrX(junctions, point);
 }
 
+namespace {
+
+// The track's junction locations with their frames' poses, and as point observations (the
+// track's views must index frames, CHECKed).
+void TrackPointViews(const std::vector<Pose3>& world_T_camera, const std::vector<Junctions>& frames,
+                     const JunctionTrack& track, std::vector<PointView>* views,
+                     std::vector<PointObservation>* observations) {
+  for (const TrackView& view : track.views) {
+    CHECK(view.frame >= 0 && view.frame < static_cast<int>(frames.size()) && view.junction >= 0 &&
+          view.junction < static_cast<int>(frames[view.frame].size()))
+        << "track " << track.id << " views junction " << view.junction << " of frame " << view.frame;
+    const Eigen::Vector2d& location = frames[view.frame][view.junction].location;
+    views->push_back({world_T_camera[view.frame], location});
+    observations->push_back({view.frame, view.junction, location});
+  }
+}
+
+}  // namespace
+
 Landmarks TriangulateTracks(const Eigen::Matrix3d& K, const std::vector<Pose3>& world_T_camera,
                             const std::vector<Junctions>& frames, const std::vector<JunctionTrack>& tracks,
                             const TriangulationOptions& options, TriangulationReport* report) {
@@ -46,14 +65,7 @@ Landmarks TriangulateTracks(const Eigen::Matrix3d& K, const std::vector<Pose3>& 
   for (const JunctionTrack& track : tracks) {
     std::vector<PointView> point_views;
     std::vector<PointObservation> point_observations;
-    for (const TrackView& view : track.views) {
-      CHECK(view.frame >= 0 && view.frame < static_cast<int>(frames.size()) && view.junction >= 0 &&
-            view.junction < static_cast<int>(frames[view.frame].size()))
-          << "track " << track.id << " views junction " << view.junction << " of frame " << view.frame;
-      const Eigen::Vector2d& location = frames[view.frame][view.junction].location;
-      point_views.push_back({world_T_camera[view.frame], location});
-      point_observations.push_back({view.frame, view.junction, location});
-    }
+    TrackPointViews(world_T_camera, frames, track, &point_views, &point_observations);
     Eigen::Vector3d position;
     const PointStatus point_status = TriangulatePoint(K, point_views, options.point, &position);
     statuses.point_status.push_back(point_status);
@@ -111,14 +123,7 @@ int TriangulateMissingPoints(const Eigen::Matrix3d& K, const std::vector<Pose3>&
     if (with_point.count(track.id) > 0) continue;
     std::vector<PointView> views;
     std::vector<PointObservation> observations;
-    for (const TrackView& view : track.views) {
-      CHECK(view.frame >= 0 && view.frame < static_cast<int>(frames.size()) && view.junction >= 0 &&
-            view.junction < static_cast<int>(frames[view.frame].size()))
-          << "track " << track.id << " views junction " << view.junction << " of frame " << view.frame;
-      const Eigen::Vector2d& location = frames[view.frame][view.junction].location;
-      views.push_back({world_T_camera[view.frame], location});
-      observations.push_back({view.frame, view.junction, location});
-    }
+    TrackPointViews(world_T_camera, frames, track, &views, &observations);
     Eigen::Vector3d position;
     if (TriangulatePoint(K, views, options, &position) != PointStatus::kOk) continue;
     landmarks->points.push_back({track.id, position, observations});

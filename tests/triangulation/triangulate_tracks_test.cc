@@ -53,18 +53,23 @@ Scene MakeScene(const Eigen::Vector3d& corner, const std::vector<Eigen::Vector3d
   return scene;
 }
 
-TEST(TriangulateTracksTest, MakesPointsAndBoundedLinesAndCountsTheFailures) {
-  // A wall's top corner 5 m ahead on the left: an edge along the motion (unobservable), one down
-  // and one across. A second corner 80 m ahead: too little parallax for its point, and its two
-  // edges' planes nearly coincide.
-  const Eigen::Vector3d corner(5, 1.5, 1.8);
-  const std::vector<Eigen::Vector3d> ends = {corner + Eigen::Vector3d(1.5, 0, 0),
-                                             corner + Eigen::Vector3d(0, 0, -1.2),
-                                             corner + Eigen::Vector3d(0, -0.8, 0)};
+// A wall's top corner 5 m ahead on the left: an edge along the motion (unobservable), one down
+// and one across. A second corner 80 m ahead: too little parallax for its point, and its two
+// edges' planes nearly coincide.
+const Eigen::Vector3d kCorner(5, 1.5, 1.8);
+const std::vector<Eigen::Vector3d> kCornerEnds = {kCorner + Eigen::Vector3d(1.5, 0, 0),
+                                                  kCorner + Eigen::Vector3d(0, 0, -1.2),
+                                                  kCorner + Eigen::Vector3d(0, -0.8, 0)};
+Scene WallCornerScene() {
   const Eigen::Vector3d far_corner(80, -2, 2);
-  const Scene scene =
-      MakeScene(corner, ends, far_corner,
-                {far_corner + Eigen::Vector3d(0, 0, -1), far_corner + Eigen::Vector3d(0, 1, 0)});
+  return MakeScene(kCorner, kCornerEnds, far_corner,
+                   {far_corner + Eigen::Vector3d(0, 0, -1), far_corner + Eigen::Vector3d(0, 1, 0)});
+}
+
+TEST(TriangulateTracksTest, MakesPointsAndBoundedLinesAndCountsTheFailures) {
+  const Eigen::Vector3d& corner = kCorner;
+  const std::vector<Eigen::Vector3d>& ends = kCornerEnds;
+  const Scene scene = WallCornerScene();
   ASSERT_EQ(scene.tracks.size(), 2u);
 
   TriangulationReport report;
@@ -146,24 +151,18 @@ TEST(TriangulateTracksTest, NoTrackNoLandmark) {
   EXPECT_TRUE(report.point_status.empty());
 }
 
-// Poses that drifted (the last two cameras turned 1 and 2 degrees about the vertical, as an
-// odometry's heading drifts) put the near corner's rays 8-16 px apart: on them its track fails
-// with kLargeReprojectionError (bound 4 px), the far one fails too. TriangulateMissingPoints on the true poses adds that
-// point (within 1e-9 m of the corner, with its five observations) and not the far corner (low
-// parallax on any poses); a second call adds nothing, the track having its point.
+// WallCornerScene on poses that drifted (the last two cameras turned 1 and 2 degrees about the
+// vertical, as an odometry's heading drifts): the near corner's rays 8-16 px apart fail its track
+// with kLargeReprojectionError (bound 4 px); the far one fails too. TriangulateMissingPoints on
+// the true poses adds the near point (within 1e-9 m, with its five observations), not the far one
+// (low parallax on any poses); a second call adds nothing, the track having its point.
 TEST(TriangulateMissingPointsTest, AddsThePointsOfTracksThatFailedOnDriftedPoses) {
-  const Eigen::Vector3d corner(5, 1.5, 1.8);
-  const std::vector<Eigen::Vector3d> ends = {corner + Eigen::Vector3d(1.5, 0, 0),
-                                             corner + Eigen::Vector3d(0, 0, -1.2),
-                                             corner + Eigen::Vector3d(0, -0.8, 0)};
-  const Eigen::Vector3d far_corner(80, -2, 2);
-  const Scene scene =
-      MakeScene(corner, ends, far_corner,
-                {far_corner + Eigen::Vector3d(0, 0, -1), far_corner + Eigen::Vector3d(0, 1, 0)});
+  const Scene scene = WallCornerScene();
   std::vector<Pose3> drifted = scene.cameras;
   for (int k = 3; k < 5; ++k) {
     const double yaw = (k - 2) * 3.14159265358979323846 / 180;
-    drifted[k].rotation = Eigen::Quaterniond(Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ())) * drifted[k].rotation;
+    drifted[k].rotation =
+        Eigen::Quaterniond(Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ())) * drifted[k].rotation;
   }
   TriangulationReport report;
   Landmarks landmarks =
@@ -177,7 +176,7 @@ TEST(TriangulateMissingPointsTest, AddsThePointsOfTracksThatFailedOnDriftedPoses
   EXPECT_EQ(TriangulateMissingPoints(TestK(), scene.cameras, scene.frames, scene.tracks, options, &landmarks), 1);
   ASSERT_EQ(landmarks.points.size(), 1u);
   EXPECT_EQ(landmarks.points[0].track_id, scene.tracks[0].id);
-  EXPECT_LT((landmarks.points[0].position - corner).norm(), 1e-9);
+  EXPECT_LT((landmarks.points[0].position - kCorner).norm(), 1e-9);
   EXPECT_EQ(landmarks.points[0].observations.size(), 5u);
   EXPECT_EQ(TriangulateMissingPoints(TestK(), scene.cameras, scene.frames, scene.tracks, options, &landmarks), 0);
   EXPECT_EQ(landmarks.points.size(), 1u);
