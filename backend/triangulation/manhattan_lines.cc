@@ -6,8 +6,8 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
-#include <optional>
 #include <limits>
+#include <optional>
 #include <set>
 #include <tuple>
 #include <unordered_map>
@@ -230,20 +230,22 @@ void PlaceManhattanLines(const Eigen::Matrix3d& K, const std::vector<Pose3>& wor
       } else {
         // The edge leaves the view in (nearly) every view: it reaches at least as far as the
         // second-farthest far end-point, the extent two views see.
-        std::vector<double> far;
         const Line3 line{P, direction};
-        for (const LineView& view : views) {
-          const std::optional<double> s_far = BackProjectOntoLine(K, view.world_T_camera, view.p1, line);
-          if (s_far) far.push_back(*s_far);
-        }
+        std::vector<std::optional<double>> far_of_view;
+        std::vector<double> far;
         double sum = 0;
-        for (const double s_far : far) sum += s_far;
-        const double sign = sum >= 0 ? 1 : -1;
-        for (double& s_far : far) s_far *= sign;
+        for (const LineView& view : views) {
+          far_of_view.push_back(BackProjectOntoLine(K, view.world_T_camera, view.p1, line));
+          if (!far_of_view.back()) continue;
+          far.push_back(*far_of_view.back());
+          sum += far.back();
+        }
         if (far.size() < 2) {
           ++local.unbounded;
           continue;
         }
+        const double sign = sum >= 0 ? 1 : -1;
+        for (double& s_far : far) s_far *= sign;
         std::nth_element(far.begin(), far.begin() + 1, far.end(), std::greater<double>());
         const double extent = far[1];
         if (!(extent > 0)) {
@@ -254,10 +256,10 @@ void PlaceManhattanLines(const Eigen::Matrix3d& K, const std::vector<Pose3>& wor
         seeing_end.clear();
         bool too_close = false;
         for (int i = 0; i < n; ++i) {
-          const std::optional<double> s_far = BackProjectOntoLine(K, views[i].world_T_camera, views[i].p1, line);
-          if (!s_far || sign * *s_far < extent) continue;
+          if (!far_of_view[i] || sign * *far_of_view[i] < extent) continue;
           seeing_end.push_back(segment_views[i]);
-          too_close = too_close || !((views[i].world_T_camera.Inverse() * segment.end1).z() >= options.line.min_depth_m);
+          const double depth = (views[i].world_T_camera.Inverse() * segment.end1).z();
+          too_close = too_close || !(depth >= options.line.min_depth_m);
         }
         if (too_close) {
           ++local.unbounded;
