@@ -227,12 +227,13 @@ Status MatchFramePairs(const Sequence& sequence, const PipelineOptions& options,
   bool rematch = false;
   MeasureOdometryNoise(sequence, options, pairs, *diagnostics, &rematch, result);
   result->initialization.rematched = rematch;
-  if (!rematch) VerifyPairsWhere(/*consecutive=*/false, pairs, *geometries, options, progress, result, diagnostics);
   if (rematch) {
     LOG(INFO) << "matching again with the measured odometry noise";
     std::vector<std::pair<int, int>> same_pairs;
     SFM_RETURN_IF_ERROR(OdometryPairGeometries(sequence, options.sequence_dir, result->initialization.used,
                                                &same_pairs, geometries));
+  } else {
+    VerifyPairsWhere(/*consecutive=*/false, pairs, *geometries, options, progress, result, diagnostics);
   }
   const std::vector<std::optional<Pose3>> keypoint_poses =
       KeypointPairPoses(*geometries, keypoint_matches, RefinementSettings(options.Matching()));
