@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <cstdlib>
 #include <optional>
 
@@ -331,15 +332,51 @@ std::vector<JunctionMatch> MatchJunctions(const Junctions& a, const TopologyGrap
 namespace {
 
 // Whether the median |Sampson distance| under `geometry`'s pose of the correspondences x1[k] <->
-// x2[k] with use[k] (all when use is empty) lies beyond kDisagreementBands guided bands; true
-// when none is used.
+// x2[k] lies beyond kDisagreementBands guided bands; true when there is none.
 bool MedianBeyondBands(const PairGeometry& geometry, const std::vector<Eigen::Vector2d>& x1,
-                       const std::vector<Eigen::Vector2d>& x2, const std::vector<bool>& use,
-                       const MatchingOptions& options) {
+                       const std::vector<Eigen::Vector2d>& x2, const MatchingOptions& options) {
   const Eigen::Matrix3d F = geometry.Fundamental();
   std::vector<double> distances;
+  for (size_t k = 0; k < x1.size(); ++k) distances.push_back(std::abs(SampsonDistance(F, x1[k], x2[k])));
+  if (distances.empty()) return true;
+  std::nth_element(distances.begin(), distances.begin() + distances.size() / 2, distances.end());
+  return distances[distances.size() / 2] >
+         kDisagreementBands * options.refine_gate_sigmas * options.location_sigma_px;
+}
+
+// The depth s along camera 1's ray `ray1` (K^-1 x1) of the point that camera2_T_camera1 sends
+// nearest to camera 2's ray through m2 (K^-1 x2): least squares on m2 x (s R ray1 + t) = 0.
+// NaN where the rays are parallel.
+double DepthAlongRay(const Eigen::Vector3d& ray1, const Eigen::Vector3d& m2, const Pose3& camera2_T_camera1) {
+  const Eigen::Vector3d across = m2.cross(camera2_T_camera1.rotation * ray1);
+  const double norm2 = across.squaredNorm();
+  if (!(norm2 > 0)) return std::numeric_limits<double>::quiet_NaN();
+  return -across.dot(m2.cross(camera2_T_camera1.translation)) / norm2;
+}
+
+}  // namespace
+
+bool HypothesisDisputed(const Pose3& hypothesis, const PairRefinement& verified, const std::vector<Eigen::Vector2d>& x1,
+                        const std::vector<Eigen::Vector2d>& x2, const MatchingOptions& options) {
+  if (!verified.Refined()) return true;
+  CHECK_EQ(x1.size(), x2.size());
+  CHECK_EQ(verified.inlier.size(), x1.size());
+  const Pose3& camera2_T_camera1 = verified.geometry.camera2_T_camera1;
+  // The scale, which two images cannot tell, taken from the verified pose.
+  Pose3 at_scale = hypothesis;
+  const double norm = hypothesis.translation.norm();
+  if (norm > 0) at_scale.translation *= camera2_T_camera1.translation.norm() / norm;
+  const Eigen::Matrix3d& K = verified.geometry.K;
+  const Eigen::Matrix3d K_inverse = K.inverse();
+  std::vector<double> distances;
   for (size_t k = 0; k < x1.size(); ++k) {
-    if (use.empty() || use[k]) distances.push_back(std::abs(SampsonDistance(F, x1[k], x2[k])));
+    if (!verified.inlier[k]) continue;
+    const Eigen::Vector3d ray1 = K_inverse * x1[k].homogeneous();
+    const double depth = DepthAlongRay(ray1, K_inverse * x2[k].homogeneous(), camera2_T_camera1);
+    if (!(depth > 0)) continue;
+    const Eigen::Vector3d in_camera2 = at_scale * (depth * ray1);
+    distances.push_back(in_camera2.z() > 0 ? ((K * in_camera2).hnormalized() - x2[k]).norm()
+                                           : std::numeric_limits<double>::infinity());
   }
   if (distances.empty()) return true;
   std::nth_element(distances.begin(), distances.begin() + distances.size() / 2, distances.end());
@@ -347,24 +384,12 @@ bool MedianBeyondBands(const PairGeometry& geometry, const std::vector<Eigen::Ve
          kDisagreementBands * options.refine_gate_sigmas * options.location_sigma_px;
 }
 
-// GuidedPassOrHypotheses' test: whether `hypothesis` and the verified pose disagree. x1, x2: the
-// first pass's matches, whose inliers at the verified pose are measured.
-bool Disagree(const Pose3& hypothesis, const PairRefinement& verified, const std::vector<Eigen::Vector2d>& x1,
-              const std::vector<Eigen::Vector2d>& x2, const MatchingOptions& options) {
-  if (!verified.Refined()) return true;
-  PairGeometry at_hypothesis = verified.geometry;
-  at_hypothesis.camera2_T_camera1 = hypothesis;
-  return MedianBeyondBands(at_hypothesis, x1, x2, verified.inlier, options);
-}
-
-}  // namespace
-
 bool MatchesDisagree(const Junctions& a, const Junctions& b, const std::vector<JunctionMatch>& matches,
                      const PairGeometry& geometry, const MatchingOptions& options) {
   if (matches.empty()) return false;
   std::vector<Eigen::Vector2d> x1, x2;
   MatchLocations(a, b, matches, &x1, &x2);
-  return MedianBeyondBands(geometry, x1, x2, {}, options);
+  return MedianBeyondBands(geometry, x1, x2, options);
 }
 
 std::vector<JunctionMatch> GuidedPassOrHypotheses(const Junctions& a, const TopologyGraph& graph_a, const Junctions& b,
@@ -377,7 +402,7 @@ std::vector<JunctionMatch> GuidedPassOrHypotheses(const Junctions& a, const Topo
     std::vector<Eigen::Vector2d> x1, x2;
     MatchLocations(a, b, first, &x1, &x2);
     for (const Pose3& hypothesis : hypotheses) {
-      disputed.push_back(Disagree(hypothesis, diagnostics->refinement, x1, x2, options));
+      disputed.push_back(HypothesisDisputed(hypothesis, diagnostics->refinement, x1, x2, options));
     }
   }
   std::vector<JunctionMatch> matches = GuidedPass(a, graph_a, b, graph_b, std::move(first), options, diagnostics);

@@ -60,16 +60,26 @@ std::vector<JunctionMatch> GuidedPass(const Junctions& a, const TopologyGraph& g
                                       const TopologyGraph& graph_b, std::vector<JunctionMatch> first,
                                       const MatchingOptions& options, MatchingDiagnostics* diagnostics);
 
-// GuidedPass, then each hypothesis that disagrees with the verified pose (its epipolar lines lie
-// more than kDisagreementBands guided bands, refine_gate_sigmas * location_sigma_px, from the median
-// verified match; every hypothesis where the pose was not verified): the two
+constexpr double kDisagreementBands = 2;
+
+// Whether `hypothesis` disputes the verified pose about where the first pass's verified inliers
+// (x1[k] <-> x2[k], verified.inlier[k]) go: each inlier's point, at its depth under the verified
+// pose, moved into camera 2 by the hypothesis (its translation scaled to the verified pose's, which
+// two images cannot tell), lands more than kDisagreementBands guided bands,
+// refine_gate_sigmas * location_sigma_px, from x2 at the median. Not the epipolar distance: a
+// repeated pattern matched one period off under a wrong pose fits the right pose's epipolar lines
+// too (the shift runs along them; entry-P10 at 3x, docs/real_results.md). True when the pose was
+// not verified or no inlier has a depth in front of camera 1.
+bool HypothesisDisputed(const Pose3& hypothesis, const PairRefinement& verified, const std::vector<Eigen::Vector2d>& x1,
+                        const std::vector<Eigen::Vector2d>& x2, const MatchingOptions& options);
+
+// GuidedPass, then each hypothesis that disputes the verified pose (HypothesisDisputed): the two
 // steps again with the gates centred on it (geometry's covariance). Such a pass replaces the best
 // so far, n matches, when it has kHypothesisMatchRatio n and n + kHypothesisExcessSigmas sqrt(n)
 // (the count's own spread is about sqrt(n) at either centre), and its matches refine under
 // geometry's own prior (the odometry, which also picks between the two poses a near-planar scene
 // allows); its matches and that refinement are returned, and diagnostics->recentred is set
 // (docs/matching.md, "Pose hypotheses").
-constexpr double kDisagreementBands = 2;
 constexpr double kHypothesisMatchRatio = 1.2;
 constexpr double kHypothesisExcessSigmas = 3;
 std::vector<JunctionMatch> GuidedPassOrHypotheses(const Junctions& a, const TopologyGraph& graph_a, const Junctions& b,
