@@ -16,7 +16,7 @@ namespace fs = std::filesystem;
 // Figures protected: with the odometry's rotation error moving the epipolar lines by about a pane,
 // the odometry-centred gates matched seven of the 17 pairs one pane off and the refined shape was
 // worse than the odometry's (Sim(3) ATE 0.319 m against 0.187 m). Centred on the hypotheses, at
-// least 4 pairs move (measured 6) and the refined Sim(3) ATE is at most 0.12 m (measured 0.090 m)
+// least 4 pairs move (measured 6) and the refined Sim(3) ATE is at most 0.12 m (measured 0.058 m)
 // and below the odometry's.
 TEST(PoseHypothesesTest, StrechaEntryP10AtThreeTimesTheOdometryNoise) {
   const std::string sequence = testing::ImportStrechaEntryAtThreeTimesTheNoise("pose_hypotheses_entry");
