@@ -344,16 +344,6 @@ bool MedianBeyondBands(const PairGeometry& geometry, const std::vector<Eigen::Ve
          kDisagreementBands * options.refine_gate_sigmas * options.location_sigma_px;
 }
 
-// The depth s along camera 1's ray `ray1` (K^-1 x1) of the point that camera2_T_camera1 sends
-// nearest to camera 2's ray through m2 (K^-1 x2): least squares on m2 x (s R ray1 + t) = 0.
-// NaN where the rays are parallel.
-double DepthAlongRay(const Eigen::Vector3d& ray1, const Eigen::Vector3d& m2, const Pose3& camera2_T_camera1) {
-  const Eigen::Vector3d across = m2.cross(camera2_T_camera1.rotation * ray1);
-  const double norm2 = across.squaredNorm();
-  if (!(norm2 > 0)) return std::numeric_limits<double>::quiet_NaN();
-  return -across.dot(m2.cross(camera2_T_camera1.translation)) / norm2;
-}
-
 }  // namespace
 
 bool HypothesisDisputed(const Pose3& hypothesis, const PairRefinement& verified, const std::vector<Eigen::Vector2d>& x1,
@@ -371,10 +361,13 @@ bool HypothesisDisputed(const Pose3& hypothesis, const PairRefinement& verified,
   std::vector<double> distances;
   for (size_t k = 0; k < x1.size(); ++k) {
     if (!verified.inlier[k]) continue;
-    const Eigen::Vector3d ray1 = K_inverse * x1[k].homogeneous();
-    const double depth = DepthAlongRay(ray1, K_inverse * x2[k].homogeneous(), camera2_T_camera1);
-    if (!(depth > 0)) continue;
-    const Eigen::Vector3d in_camera2 = at_scale * (depth * ray1);
+    // The depth as the guided pass's depth range reads it: x2's parallax along the epipolar line.
+    const ParallaxFrame frame = ParallaxFrameOf(verified.geometry, x1[k]);
+    if (!frame.tested) continue;
+    const double inverse_depth =
+        InverseDepthOfParallax(frame, camera2_T_camera1.translation.z(), (x2[k] - frame.v).dot(frame.direction));
+    if (!(inverse_depth > 0 && std::isfinite(inverse_depth))) continue;
+    const Eigen::Vector3d in_camera2 = at_scale * (K_inverse * x1[k].homogeneous() / inverse_depth);
     distances.push_back(in_camera2.z() > 0 ? ((K * in_camera2).hnormalized() - x2[k]).norm()
                                            : std::numeric_limits<double>::infinity());
   }
