@@ -172,9 +172,11 @@ WireframeFigures EvaluateWireframe(const std::vector<Eigen::Vector3d>& vertices,
         figures.covered_length_by_direction[k] += piece;
       }
       if (views == nullptr) continue;
-      bool in_view = false;
-      for (const auto& [t0, t1] : (*views)[e]) in_view = in_view || (t >= t0 && t <= t1);
-      if (!in_view) continue;
+      const auto& seen_parts = (*views)[e];
+      if (std::none_of(seen_parts.begin(), seen_parts.end(),
+                       [t](const std::pair<double, double>& part) { return t >= part.first && t <= part.second; })) {
+        continue;
+      }
       figures.in_view_length_m += piece;
       if (covered) figures.covered_in_view_length_m += piece;
     }

@@ -11,6 +11,7 @@
 #include <set>
 #include <tuple>
 #include <unordered_map>
+#include <utility>
 
 #include "backend/triangulation/line_triangulation.h"
 #include "backend/triangulation/wireframe_selection.h"
@@ -199,7 +200,7 @@ void PlaceManhattanLines(const Eigen::Matrix3d& K, const std::vector<Pose3>& wor
         num_clipped += clipped[i];
       }
       Segment3 segment;
-      std::vector<LineSegmentView> seeing_end = segment_views;  // the views that see end1
+      std::vector<LineSegmentView> seeing_end;  // the views that see end1
       if (n - num_clipped >= 2) {
         // Enough views end the edge in the image: they must agree on one end (clipped views
         // left out).
@@ -226,7 +227,7 @@ void PlaceManhattanLines(const Eigen::Matrix3d& K, const std::vector<Pose3>& wor
           ++local.ends_disagree;
           continue;
         }
-        seeing_end = ended_segments;
+        seeing_end = std::move(ended_segments);
       } else {
         // The edge leaves the view in (nearly) every view: it reaches at least as far as the
         // second-farthest far end-point, the extent two views see.
@@ -253,7 +254,6 @@ void PlaceManhattanLines(const Eigen::Matrix3d& K, const std::vector<Pose3>& wor
           continue;
         }
         segment = {P, P + sign * extent * direction};
-        seeing_end.clear();
         bool too_close = false;
         for (int i = 0; i < n; ++i) {
           if (!far_of_view[i] || sign * *far_of_view[i] < extent) continue;
