@@ -13,9 +13,10 @@
 namespace sfm {
 
 ceres::CostFunction* PointReprojectionCost::Create(const CameraModel& camera,
-                                                   const Eigen::Vector2d& observed_px) {
+                                                   const Eigen::Vector2d& observed_px,
+                                                   const Eigen::Matrix2d& sqrt_information) {
   return new ceres::AutoDiffCostFunction<PointReprojectionCost, 2, 4, 3, 3>(
-      new PointReprojectionCost(camera, observed_px));
+      new PointReprojectionCost(camera, observed_px, sqrt_information));
 }
 
 ceres::CostFunction* LineReprojectionCost::Create(const CameraModel& camera, const Eigen::Vector2d& p0_px,

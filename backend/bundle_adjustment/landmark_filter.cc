@@ -33,9 +33,10 @@ std::vector<Eigen::Vector3d> Centres(const std::vector<Pose3>& cameras) {
 }  // namespace
 
 bool LandmarkFilter::PointResiduals(const PointLandmark& point, const PointObservation& observation,
-                                    Eigen::Vector2d* r) const {
+                                    Eigen::Vector2d* r, bool whitened) const {
   const PoseParameters& pose = parameters_.poses[observation.frame];
-  return PointReprojectionCost(setup_.camera, observation.pixel)(
+  return PointReprojectionCost(setup_.camera, observation.pixel,
+                               whitened ? observation.sqrt_information : Eigen::Matrix2d::Identity())(
              pose.rotation.data(), pose.translation.data(), point.position.data(), r->data()) &&
          Finite(*r);
 }
@@ -174,7 +175,7 @@ void LandmarkFilter::ComputeRms() {
   int point_count = 0, line_count = 0;
   for (const PointLandmark& point : landmarks_->points) {
     for (const PointObservation& observation : point.observations) {
-      if (!PointResiduals(point, observation, &r)) continue;
+      if (!PointResiduals(point, observation, &r, /*whitened=*/false)) continue;
       point_sum += r.squaredNorm();
       ++point_count;
     }

@@ -44,8 +44,10 @@ class LandmarkFilter {
 
  private:
   // The residuals of one observation at the current parameters; false when it cannot be evaluated.
-  bool PointResiduals(const PointLandmark& point, const PointObservation& observation,
-                      Eigen::Vector2d* r) const;
+  // A point's are whitened by its sqrt_information as the solver sees them, or pixels (whitened
+  // false: the RMS the summary reports).
+  bool PointResiduals(const PointLandmark& point, const PointObservation& observation, Eigen::Vector2d* r,
+                      bool whitened = true) const;
   bool LineResiduals(const OrthonormalLine& line, const LineObservation& observation,
                      Eigen::Vector2d* r) const;
   // Removes the landmarks that `keep_point` / `keep_line` reject, renumbering point_landmark.

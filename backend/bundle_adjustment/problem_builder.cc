@@ -159,7 +159,7 @@ JointProblem::JointProblem(const AdjustmentSetup& setup, const FloorPriorState& 
     std::copy(point.position.data(), point.position.data() + 3, position);
     for (const PointObservation& observation : point.observations) {
       PoseParameters& pose = poses[observation.frame];
-      AddResidual(PointReprojectionCost::Create(setup.camera, observation.pixel), loss_.get(),
+      AddResidual(PointReprojectionCost::Create(setup.camera, observation.pixel, observation.sqrt_information), loss_.get(),
                   {pose.rotation.data(), pose.translation.data(), position});
     }
     cells.Add(point.observations);

@@ -13,6 +13,8 @@ struct PointObservation {
   int frame = -1;                                   // index into the sequence's frames
   int junction = -1;                                // index into that frame's Junctions
   Eigen::Vector2d pixel = Eigen::Vector2d::Zero();  // the junction location
+  // LocationSqrtInformation of the junction: whitens the reprojection error.
+  Eigen::Matrix2d sqrt_information = Eigen::Matrix2d::Identity();
 };
 
 // One view of a 3D line: a junction segment, from the junction location towards its end-point.

@@ -12,6 +12,7 @@
 #include <Eigen/Dense>
 
 #include "backend/triangulation/landmark_uncertainty.h"
+#include "frontend/junctions/location_information.h"
 
 namespace sfm {
 namespace {
@@ -260,7 +261,7 @@ class Extender {
     for (size_t k = 0; k < assign.size(); ++k) view.segments[assign[k]] = static_cast<int>(k);
     tracks_[t].views.push_back(view);
     owner_[f][j] = t;
-    landmarks_.points[p].observations.push_back({f, j, junction.location});
+    landmarks_.points[p].observations.push_back({f, j, junction.location, LocationSqrtInformation(junction)});
     point_changed_[p] = true;
     for (size_t k = 0; k < assign.size(); ++k) {
       const int l = line_of_[t][assign[k]];
@@ -339,7 +340,8 @@ class Extender {
       point_removed_[p2] = true;
     } else {
       for (const TrackView& v2 : tracks_[t2].views) {
-        point.observations.push_back({v2.frame, v2.junction, junctions_[v2.frame][v2.junction].location});
+        const Junction& junction = junctions_[v2.frame][v2.junction];
+        point.observations.push_back({v2.frame, v2.junction, junction.location, LocationSqrtInformation(junction)});
       }
     }
     point_changed_[p] = true;

@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <unordered_set>
 
+#include "frontend/junctions/location_information.h"
+
 namespace sfm {
 
 int TriangulationReport::Count(PointStatus status) const {
@@ -47,9 +49,9 @@ void TrackPointViews(const std::vector<Pose3>& world_T_camera, const std::vector
     CHECK(view.frame >= 0 && view.frame < static_cast<int>(frames.size()) && view.junction >= 0 &&
           view.junction < static_cast<int>(frames[view.frame].size()))
         << "track " << track.id << " views junction " << view.junction << " of frame " << view.frame;
-    const Eigen::Vector2d& location = frames[view.frame][view.junction].location;
-    views->push_back({world_T_camera[view.frame], location});
-    observations->push_back({view.frame, view.junction, location});
+    const Junction& junction = frames[view.frame][view.junction];
+    views->push_back({world_T_camera[view.frame], junction.location});
+    observations->push_back({view.frame, view.junction, junction.location, LocationSqrtInformation(junction)});
   }
 }
 

@@ -80,6 +80,18 @@ TEST(PointReprojectionCostTest, HandBuiltValues) {
   EXPECT_NEAR(r.y(), 0, 1e-12);
 }
 
+TEST(PointReprojectionCostTest, WhitenedBySqrtInformation) {
+  const PoseParameters pose = PoseParameters::FromPose(Pose3::Identity());
+  const double point[3] = {1, 2, 10};  // projects to (370, 320)
+  Eigen::Matrix2d sqrt_information;
+  sqrt_information << 2, 0.5, 0.5, 1;
+  std::unique_ptr<ceres::CostFunction> cost(PointReprojectionCost::Create(SimpleCamera(), {371, 318}, sqrt_information));
+  // Pixel error (-1, 2): whitened (2 * -1 + 0.5 * 2, 0.5 * -1 + 1 * 2) = (-1, 1.5).
+  const Eigen::Vector2d r = Residuals(*cost, {pose.rotation.data(), pose.translation.data(), point});
+  EXPECT_NEAR(r.x(), -1, 1e-12);
+  EXPECT_NEAR(r.y(), 1.5, 1e-12);
+}
+
 TEST(PointReprojectionCostTest, RigAndPoseZeroWhenSeenExactlyOnePixelOff) {
   const CameraModel camera = RigCamera();
   const Pose3 world_T_base(Eigen::Quaterniond(Eigen::AngleAxisd(0.7, Eigen::Vector3d::UnitZ())),
@@ -119,7 +131,13 @@ TEST(PointReprojectionCostTest, GradientCheck) {
                                        random.Uniform(1, 8));
     const Eigen::Vector3d point = (world_T_base * base_T_camera) * point_camera;
     const Eigen::Vector2d observed(random.Uniform(0, 640), random.Uniform(0, 480));
-    std::unique_ptr<ceres::CostFunction> cost(PointReprojectionCost::Create(camera, observed));
+    // A junction location's whitening (symmetric, positive definite), on every other trial.
+    Eigen::Matrix2d sqrt_information = Eigen::Matrix2d::Identity();
+    if (trial % 2 == 1) {
+      const double off = random.Uniform(-0.5, 0.5);
+      sqrt_information << random.Uniform(0.5, 2), off, off, random.Uniform(0.5, 2);
+    }
+    std::unique_ptr<ceres::CostFunction> cost(PointReprojectionCost::Create(camera, observed, sqrt_information));
     const PoseParameters pose = PoseParameters::FromPose(world_T_base);
     const double* parameters[] = {pose.rotation.data(), pose.translation.data(), point.data()};
     ceres::GradientChecker checker(cost.get(), &manifolds, RiddersOptions());
