@@ -159,8 +159,9 @@ JointProblem::JointProblem(const AdjustmentSetup& setup, const FloorPriorState& 
     std::copy(point.position.data(), point.position.data() + 3, position);
     for (const PointObservation& observation : point.observations) {
       PoseParameters& pose = poses[observation.frame];
-      AddResidual(PointReprojectionCost::Create(setup.camera, observation.pixel, observation.sqrt_information), loss_.get(),
-                  {pose.rotation.data(), pose.translation.data(), position});
+      AddResidual(
+          PointReprojectionCost::Create(setup.camera, observation.pixel, observation.sqrt_information),
+          loss_.get(), {pose.rotation.data(), pose.translation.data(), position});
     }
     cells.Add(point.observations);
     ordering_->AddElementToGroup(position, 0);

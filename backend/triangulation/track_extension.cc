@@ -341,7 +341,8 @@ class Extender {
     } else {
       for (const TrackView& v2 : tracks_[t2].views) {
         const Junction& junction = junctions_[v2.frame][v2.junction];
-        point.observations.push_back({v2.frame, v2.junction, junction.location, LocationSqrtInformation(junction)});
+        point.observations.push_back(
+            {v2.frame, v2.junction, junction.location, LocationSqrtInformation(junction)});
       }
     }
     point_changed_[p] = true;

@@ -51,7 +51,8 @@ void TrackPointViews(const std::vector<Pose3>& world_T_camera, const std::vector
         << "track " << track.id << " views junction " << view.junction << " of frame " << view.frame;
     const Junction& junction = frames[view.frame][view.junction];
     views->push_back({world_T_camera[view.frame], junction.location});
-    observations->push_back({view.frame, view.junction, junction.location, LocationSqrtInformation(junction)});
+    observations->push_back(
+        {view.frame, view.junction, junction.location, LocationSqrtInformation(junction)});
   }
 }
 

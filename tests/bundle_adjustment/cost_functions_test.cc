@@ -85,7 +85,8 @@ TEST(PointReprojectionCostTest, WhitenedBySqrtInformation) {
   const double point[3] = {1, 2, 10};  // projects to (370, 320)
   Eigen::Matrix2d sqrt_information;
   sqrt_information << 2, 0.5, 0.5, 1;
-  std::unique_ptr<ceres::CostFunction> cost(PointReprojectionCost::Create(SimpleCamera(), {371, 318}, sqrt_information));
+  std::unique_ptr<ceres::CostFunction> cost(
+      PointReprojectionCost::Create(SimpleCamera(), {371, 318}, sqrt_information));
   // Pixel error (-1, 2): whitened (2 * -1 + 0.5 * 2, 0.5 * -1 + 1 * 2) = (-1, 1.5).
   const Eigen::Vector2d r = Residuals(*cost, {pose.rotation.data(), pose.translation.data(), point});
   EXPECT_NEAR(r.x(), -1, 1e-12);
@@ -137,7 +138,8 @@ TEST(PointReprojectionCostTest, GradientCheck) {
       const double off = random.Uniform(-0.5, 0.5);
       sqrt_information << random.Uniform(0.5, 2), off, off, random.Uniform(0.5, 2);
     }
-    std::unique_ptr<ceres::CostFunction> cost(PointReprojectionCost::Create(camera, observed, sqrt_information));
+    std::unique_ptr<ceres::CostFunction> cost(
+        PointReprojectionCost::Create(camera, observed, sqrt_information));
     const PoseParameters pose = PoseParameters::FromPose(world_T_base);
     const double* parameters[] = {pose.rotation.data(), pose.translation.data(), point.data()};
     ceres::GradientChecker checker(cost.get(), &manifolds, RiddersOptions());
