@@ -7,6 +7,7 @@
 #include <cstdlib>
 #include <limits>
 #include <optional>
+#include <utility>
 
 #include "frontend/matching/depth_range.h"
 #include "frontend/matching/junction_similarity.h"
@@ -331,13 +332,9 @@ std::vector<JunctionMatch> MatchJunctions(const Junctions& a, const TopologyGrap
 
 namespace {
 
-// Whether the median |Sampson distance| under `geometry`'s pose of the correspondences x1[k] <->
-// x2[k] lies beyond kDisagreementBands guided bands; true when there is none.
-bool MedianBeyondBands(const PairGeometry& geometry, const std::vector<Eigen::Vector2d>& x1,
-                       const std::vector<Eigen::Vector2d>& x2, const MatchingOptions& options) {
-  const Eigen::Matrix3d F = geometry.Fundamental();
-  std::vector<double> distances;
-  for (size_t k = 0; k < x1.size(); ++k) distances.push_back(std::abs(SampsonDistance(F, x1[k], x2[k])));
+// Whether the median of `distances` (pixels) lies beyond kDisagreementBands guided bands,
+// refine_gate_sigmas * location_sigma_px; true when there is none.
+bool MedianBeyondBands(std::vector<double> distances, const MatchingOptions& options) {
   if (distances.empty()) return true;
   std::nth_element(distances.begin(), distances.begin() + distances.size() / 2, distances.end());
   return distances[distances.size() / 2] >
@@ -371,18 +368,19 @@ bool HypothesisDisputed(const Pose3& hypothesis, const PairRefinement& verified,
     distances.push_back(in_camera2.z() > 0 ? ((K * in_camera2).hnormalized() - x2[k]).norm()
                                            : std::numeric_limits<double>::infinity());
   }
-  if (distances.empty()) return true;
-  std::nth_element(distances.begin(), distances.begin() + distances.size() / 2, distances.end());
-  return distances[distances.size() / 2] >
-         kDisagreementBands * options.refine_gate_sigmas * options.location_sigma_px;
+  return MedianBeyondBands(std::move(distances), options);
 }
 
 bool MatchesDisagree(const Junctions& a, const Junctions& b, const std::vector<JunctionMatch>& matches,
                      const PairGeometry& geometry, const MatchingOptions& options) {
   if (matches.empty()) return false;
-  std::vector<Eigen::Vector2d> x1, x2;
-  MatchLocations(a, b, matches, &x1, &x2);
-  return MedianBeyondBands(geometry, x1, x2, options);
+  // The median |Sampson distance| of the matches under `geometry`'s pose.
+  const Eigen::Matrix3d F = geometry.Fundamental();
+  std::vector<double> distances;
+  for (const JunctionMatch& match : matches) {
+    distances.push_back(std::abs(SampsonDistance(F, a[match.index_a].location, b[match.index_b].location)));
+  }
+  return MedianBeyondBands(std::move(distances), options);
 }
 
 std::vector<JunctionMatch> GuidedPassOrHypotheses(const Junctions& a, const TopologyGraph& graph_a, const Junctions& b,
