@@ -413,10 +413,11 @@ TEST_F(BackendEndToEnd, EquidistantLensRoomReachesTheAteRatioBound) {
 }
 
 // Track extension (--extend_tracks, track_extension.h) on a generated 30-frame corridor (seed 2):
-// the same run without and with it. Figures protected: the point landmarks' mean views rise by at
-// least 6 % (measured: 4.70 -> 5.14, +9 %; 22 tracks merged, 66 junctions added; ATE 0.0032 ->
-// 0.0028 m), some tracks are merged and junctions added, the refined ATE does not get worse by
-// more than 10 %, and tracks.csv lists the extended tracks (its rows are the tracks' views).
+// the same run without and with it. Figures protected: at least 12 tracks merged and 30 junctions
+// added (measured: 24 and 65), the point landmarks' mean views not lower by more than 1 % (measured
+// 6.58 -> 6.58; 6.19 -> 6.57 before T and X observations were weighted by their bar only and the
+// floor: the run without the extension now keeps as many views), the refined ATE not worse by more than 10 % (0.0035 ->
+// 0.0034 m), and tracks.csv lists the extended tracks (its rows are the tracks' views).
 TEST_F(BackendEndToEnd, TrackExtensionLengthensThePointTracks) {
   GeneratorOptions generator;
   generator.trajectory.num_frames = 30;
@@ -446,9 +447,9 @@ TEST_F(BackendEndToEnd, TrackExtensionLengthensThePointTracks) {
               on.track_extension.observations_added, off.drift_refined->ate_m, on.drift_refined->ate_m);
   EXPECT_FALSE(off.track_extension.ran);
   EXPECT_TRUE(on.track_extension.ran);
-  EXPECT_GT(on.track_extension.tracks_merged, 0);
-  EXPECT_GT(on.track_extension.observations_added, 0);
-  EXPECT_GE(mean_views(on), 1.06 * mean_views(off));
+  EXPECT_GE(on.track_extension.tracks_merged, 12);
+  EXPECT_GE(on.track_extension.observations_added, 30);
+  EXPECT_GE(mean_views(on), 0.99 * mean_views(off));
   EXPECT_LE(on.drift_refined->ate_m, 1.1 * off.drift_refined->ate_m);
   size_t views = 0;
   for (const JunctionTrack& track : on.tracks) views += track.views.size();

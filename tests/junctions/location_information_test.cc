@@ -43,12 +43,28 @@ TEST(LocationSqrtInformationTest, ThirtyDegreeCornerIsWeakAlongItsBisector) {
   EXPECT_NEAR(std::sqrt(1 - std::cos(theta)), 0.3660, 1e-4);
 }
 
-// A T's bar is one detected line seen as two junction segments: it fixes the location across
-// itself once, so a T with a perpendicular stem is as well known as a right-angle corner.
-TEST(LocationSqrtInformationTest, TBarCountedOnce) {
-  const Eigen::Matrix2d W =
-      LocationSqrtInformation(JunctionWithSegments({0, kPi / 2, kPi}, /*lines=*/{7, 8, 7}));
-  EXPECT_TRUE(W.isApprox(Eigen::Matrix2d::Identity(), 1e-12)) << W;
+// A T may be an occlusion: only its bar (one detected line seen as two junction segments) fixes
+// the location, across itself; along the bar the information is the floor (0.01: a square root of
+// 0.1), whatever the stem. The bar found by its line segment, and by its opposite directions.
+TEST(LocationSqrtInformationTest, TIsKnownAcrossItsBarOnly) {
+  for (const std::vector<int>& lines : {std::vector<int>{7, 8, 7}, std::vector<int>{}}) {
+    Junction t = JunctionWithSegments({0.4, 0.4 + 1.2, 0.4 + kPi}, lines);
+    t.type = JunctionType::kT;
+    const Eigen::Matrix2d W = LocationSqrtInformation(t);
+    const Eigen::Vector2d along(std::cos(0.4), std::sin(0.4));
+    const Eigen::Vector2d across(-along.y(), along.x());
+    EXPECT_NEAR((W * across - across).norm(), 0, 1e-12) << W;
+    EXPECT_NEAR((W * along - 0.1 * along).norm(), 0, 1e-12) << W;
+  }
+}
+
+// An X may be two lines at different depths: its location has only the floor's information.
+TEST(LocationSqrtInformationTest, XHasOnlyTheFloor) {
+  Junction x = JunctionWithSegments({0, kPi / 2, kPi, 3 * kPi / 2}, {1, 2, 1, 2});
+  x.type = JunctionType::kX;
+  EXPECT_TRUE(LocationSqrtInformation(x).isApprox(0.1 * Eigen::Matrix2d::Identity(), 1e-12));
+  x.type = JunctionType::kN;  // the same lines read as a 3D junction: each once, the identity
+  EXPECT_TRUE(LocationSqrtInformation(x).isApprox(Eigen::Matrix2d::Identity(), 1e-12));
 }
 
 // The whitened error is the distances the location's move puts between it and each line:
