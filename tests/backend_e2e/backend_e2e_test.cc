@@ -414,10 +414,11 @@ TEST_F(BackendEndToEnd, EquidistantLensRoomReachesTheAteRatioBound) {
 
 // Track extension (--extend_tracks, track_extension.h) on a generated 30-frame corridor (seed 2):
 // the same run without and with it. Figures protected: at least 12 tracks merged and 30 junctions
-// added (measured: 24 and 65), the point landmarks' mean views not lower by more than 1 % (measured
-// 6.58 -> 6.58; 6.19 -> 6.57 before T and X observations were weighted by their bar only and the
-// floor: the run without the extension now keeps as many views), the refined ATE not worse by more than 10 % (0.0035 ->
-// 0.0034 m), and tracks.csv lists the extended tracks (its rows are the tracks' views).
+// added (measured: 24 and 65), the point landmarks' mean views not lower by more than 1 %
+// (measured 6.58 -> 6.58; 6.19 -> 6.57 before T and X observations were weighted by their bar
+// only and the floor: the run without the extension now keeps as many views), the refined ATE not
+// worse by more than 10 % (0.0035 -> 0.0034 m), and tracks.csv lists the extended tracks (its rows
+// are the tracks' views).
 TEST_F(BackendEndToEnd, TrackExtensionLengthensThePointTracks) {
   GeneratorOptions generator;
   generator.trajectory.num_frames = 30;
