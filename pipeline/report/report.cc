@@ -61,13 +61,17 @@ std::string Num(double value, const char* format = "%.3g") {
   return text;
 }
 
-std::string Img(const cv::Mat& image, const std::string& alt) {
-  return "<img src=\"" + PngDataUri(image) + "\" width=\"" + std::to_string(image.cols) + "\" height=\"" +
+enum class Encoding { kPlot, kPhoto };  // PNG, JPEG
+
+std::string Img(const cv::Mat& image, const std::string& alt, Encoding encoding = Encoding::kPlot) {
+  const std::string uri = encoding == Encoding::kPlot ? PngDataUri(image) : JpegDataUri(image);
+  return "<img src=\"" + uri + "\" width=\"" + std::to_string(image.cols) + "\" height=\"" +
          std::to_string(image.rows) + "\" alt=\"" + Html(alt) + "\">\n";
 }
 
-std::string Figure(const cv::Mat& image, const std::string& alt, const std::string& caption) {
-  return "<figure>\n" + Img(image, alt) + "<figcaption>" + caption + "</figcaption>\n</figure>\n";
+std::string Figure(const cv::Mat& image, const std::string& alt, const std::string& caption,
+                   Encoding encoding = Encoding::kPlot) {
+  return "<figure>\n" + Img(image, alt, encoding) + "<figcaption>" + caption + "</figcaption>\n</figure>\n";
 }
 
 std::string Note(const std::string& text) { return "<p class=\"note\">" + text + "</p>\n"; }
@@ -449,7 +453,8 @@ std::string MatchPictureSection(const Context& c, const std::vector<cv::Mat>& im
     figures[s] = Figure(picture, "matches between frames " + std::to_string(pair->frame_a) + " and " + std::to_string(pair->frame_b),
                         "Frames " + std::to_string(pair->frame_a) + " (left) and " + std::to_string(pair->frame_b) +
                             " (right): " + std::to_string(pair->matches.size()) + " matches of " + std::to_string(a.size()) +
-                            " and " + std::to_string(b.size()) + " junctions.");
+                            " and " + std::to_string(b.size()) + " junctions.",
+                        Encoding::kPhoto);
   });
   for (const std::string& figure : figures) html += figure;
   return html;
@@ -777,6 +782,13 @@ std::string PngDataUri(const cv::Mat& image) {
   CHECK(cv::imencode(".png", image, png)) << "PNG encoding failed";
   return "data:image/png;base64," +
          Base64Encode(std::string_view(reinterpret_cast<const char*>(png.data()), png.size()));
+}
+
+std::string JpegDataUri(const cv::Mat& image) {
+  std::vector<uchar> jpeg;
+  CHECK(cv::imencode(".jpg", image, jpeg, {cv::IMWRITE_JPEG_QUALITY, kPhotoJpegQuality})) << "JPEG encoding failed";
+  return "data:image/jpeg;base64," +
+         Base64Encode(std::string_view(reinterpret_cast<const char*>(jpeg.data()), jpeg.size()));
 }
 
 Eigen::Vector3d UpDirection(const std::vector<Pose3>& world_T_camera, const Pose3& base_T_camera) {

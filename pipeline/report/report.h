@@ -35,8 +35,12 @@ std::string ReportHtml(const Sequence& sequence, const PipelineResult& result,
                        const std::vector<cv::Mat>& undistorted_images_or_empty,
                        const std::vector<cv::Mat>& stored_images_or_empty = {});
 
-// "data:image/png;base64,..." of an 8-bit image (grey or BGR).
+// "data:image/png;base64,..." of an 8-bit image (grey or BGR): for plots, lossless.
 std::string PngDataUri(const cv::Mat& image);
+// "data:image/jpeg;base64,..." of an 8-bit image at JPEG quality kPhotoJpegQuality: for pictures
+// of the frames, which PNG stores at about ten times the size and encodes several times slower.
+inline constexpr int kPhotoJpegQuality = 92;
+std::string JpegDataUri(const cv::Mat& image);
 
 // The world axis (0 x, 1 y, 2 z) taken as vertical for the views from above and from the side: z
 // (the generator's worlds have z up) when the camera positions spread least along it or by at most

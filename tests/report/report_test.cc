@@ -143,16 +143,17 @@ std::string PercentDecoded(const std::string& text) {
   return decoded;
 }
 
-// Decodes every data URI of the page; returns how many there were (test fails on a bad one).
-int CheckEmbeddedImages(const std::string& html) {
-  const std::string prefix = "data:image/png;base64,";
+// Decodes every data URI of the page of the given type (png: the plots, jpeg: the match
+// pictures); returns how many there were (test fails on a bad one).
+int CheckEmbeddedImages(const std::string& html, const std::string& type = "png") {
+  const std::string prefix = "data:image/" + type + ";base64,";
   int count = 0;
   for (size_t at = html.find(prefix); at != std::string::npos; at = html.find(prefix, at + 1)) {
     const size_t begin = at + prefix.size(), end = html.find('"', begin);
     EXPECT_NE(end, std::string::npos);
-    std::string png;
-    EXPECT_TRUE(Base64Decode(html.substr(begin, end - begin), &png)) << "image " << count;
-    const cv::Mat image = cv::imdecode(std::vector<uchar>(png.begin(), png.end()), cv::IMREAD_UNCHANGED);
+    std::string encoded;
+    EXPECT_TRUE(Base64Decode(html.substr(begin, end - begin), &encoded)) << "image " << count;
+    const cv::Mat image = cv::imdecode(std::vector<uchar>(encoded.begin(), encoded.end()), cv::IMREAD_UNCHANGED);
     EXPECT_FALSE(image.empty()) << "image " << count;
     ++count;
   }
@@ -179,8 +180,9 @@ TEST(ReportTest, WritesASelfContainedPageWithEverySection) {
                            "Frames 0 (left) and 1 (right): 3 matches of 3 and 3 junctions"}) {
     EXPECT_NE(html.find(text), std::string::npos) << text;
   }
-  // Trajectories, 2 error plots, junctions, matches, 3 match pictures, 2 wireframe views.
-  EXPECT_EQ(CheckEmbeddedImages(html), 10);
+  // PNG: trajectories, 2 error plots, junctions, matches, 2 wireframe views; JPEG: 3 match pictures.
+  EXPECT_EQ(CheckEmbeddedImages(html, "png"), 7);
+  EXPECT_EQ(CheckEmbeddedImages(html, "jpeg"), 3);
   // Nothing fetched: every src is a data: URI, no stylesheet link, no CSS url(). Three scripts: the
   // 3D view's scene, the import map that inlines three.js, the viewer.
   for (size_t at = html.find(" src="); at != std::string::npos; at = html.find(" src=", at + 1)) {
@@ -235,8 +237,9 @@ TEST(ReportTest, SaysSoWhenThereIsNoGroundTruthAndNoImage) {
   EXPECT_NE(html.find("no ground truth"), std::string::npos);
   EXPECT_EQ(html.find("position error per frame"), std::string::npos);
   EXPECT_NE(html.find("the image could not be read"), std::string::npos);
-  // Trajectories, junctions, matches, 2 wireframe views.
-  EXPECT_EQ(CheckEmbeddedImages(html), 5);
+  // Trajectories, junctions, matches, 2 wireframe views; no match picture.
+  EXPECT_EQ(CheckEmbeddedImages(html, "png"), 5);
+  EXPECT_EQ(CheckEmbeddedImages(html, "jpeg"), 0);
 }
 
 TEST(ReportTest, EmptyResultStillGivesAPage) {
@@ -278,15 +281,15 @@ TEST(ReportTest, MatchPicturesOfLargeFramesAreShrunk) {
     const std::string html = as_stored ? ReportHtml(run.sequence, run.result, {}, run.images)
                                        : ReportHtml(run.sequence, run.result, run.images);
     EXPECT_LT(html.size(), 8u << 20) << "as stored: " << as_stored;
-    const std::string prefix = "data:image/png;base64,";
+    const std::string prefix = "data:image/jpeg;base64,";  // the match pictures
     int pictures = 0;
     for (size_t at = html.find(prefix); at != std::string::npos; at = html.find(prefix, at + 1)) {
       const size_t begin = at + prefix.size(), end = html.find('"', begin);
-      std::string png;
-      ASSERT_TRUE(Base64Decode(html.substr(begin, end - begin), &png));
-      const cv::Mat image = cv::imdecode(std::vector<uchar>(png.begin(), png.end()), cv::IMREAD_UNCHANGED);
+      std::string jpeg;
+      ASSERT_TRUE(Base64Decode(html.substr(begin, end - begin), &jpeg));
+      const cv::Mat image = cv::imdecode(std::vector<uchar>(jpeg.begin(), jpeg.end()), cv::IMREAD_UNCHANGED);
       EXPECT_LE(image.cols, 2 * 960 + 40);
-      pictures += image.cols > 1000;  // the plots are 800 wide
+      pictures += image.cols > 1000;
     }
     EXPECT_GE(pictures, 1) << "the match pictures are there";
   }
