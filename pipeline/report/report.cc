@@ -777,18 +777,23 @@ constexpr char kStyle[] =
 
 }  // namespace
 
-std::string PngDataUri(const cv::Mat& image) {
-  std::vector<uchar> png;
-  CHECK(cv::imencode(".png", image, png)) << "PNG encoding failed";
-  return "data:image/png;base64," +
-         Base64Encode(std::string_view(reinterpret_cast<const char*>(png.data()), png.size()));
+namespace {
+
+// "data:image/<type>;base64,..." of the image encoded by OpenCV as `extension` with `parameters`.
+std::string EncodedDataUri(const cv::Mat& image, const char* extension, const char* type,
+                           const std::vector<int>& parameters = {}) {
+  std::vector<uchar> bytes;
+  CHECK(cv::imencode(extension, image, bytes, parameters)) << type << " encoding failed";
+  return std::string("data:image/") + type + ";base64," +
+         Base64Encode(std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
 }
 
+}  // namespace
+
+std::string PngDataUri(const cv::Mat& image) { return EncodedDataUri(image, ".png", "png"); }
+
 std::string JpegDataUri(const cv::Mat& image) {
-  std::vector<uchar> jpeg;
-  CHECK(cv::imencode(".jpg", image, jpeg, {cv::IMWRITE_JPEG_QUALITY, kPhotoJpegQuality})) << "JPEG encoding failed";
-  return "data:image/jpeg;base64," +
-         Base64Encode(std::string_view(reinterpret_cast<const char*>(jpeg.data()), jpeg.size()));
+  return EncodedDataUri(image, ".jpg", "jpeg", {cv::IMWRITE_JPEG_QUALITY, kPhotoJpegQuality});
 }
 
 Eigen::Vector3d UpDirection(const std::vector<Pose3>& world_T_camera, const Pose3& base_T_camera) {
