@@ -110,15 +110,6 @@ std::vector<JunctionMatch> Match(const Junctions& a, const TopologyGraph& graph_
   return SelectMatches(candidates, num_a, num_b, options.tau1, options.tau2, AlliedRivalsFor(a, b));
 }
 
-// Partial correspondence among the junctions `full` left unmatched (docs/matching.md, "Partial
-// correspondence"): candidates are the leftover pairs with segment counts k and k + 1
-// (PartialRho) and, as their competitors, the leftover pairs with equal counts (Rho: each lost the
-// full pass's rule (38) or had no admissible shift, so it stays out of the result, but a junction
-// with an equal-count rival as close as its partial partner is ambiguous). Rule (38) both ways on
-// rho (topology's sigma needs equal counts at both ends of an edge). depth_range (may be null): as
-// in the full pass, a pair it rejects is no candidate, partial or competitor (an occlusion T read
-// as a Y or an L against a real L elsewhere on the epipolar line is a partner at another depth than
-// the verified matches around it). Returns the partial matches.
 // True when segment segment_a of junction i (image 1) has a topology edge to a junction that
 // `full` matches (match_of_a: index into full, or -1), and segment segment_b of junction j
 // (image 2) an edge to that junction's partner, arriving through the segment the match pairs with
@@ -151,22 +142,33 @@ bool SharedSegmentSupported(int i, int segment_a, int j, int segment_b, const Ju
   return false;
 }
 
-// supporting: the matches whose junctions may support a one-common-segment pair (SharedSegmentSupported):
-// `full` and, in the later rounds of MatchJunctions' fixed point, the partial matches of the round
-// before.
-std::vector<JunctionMatch> MatchPartial(const Junctions& a, const TopologyGraph& graph_a, const Junctions& b,
-                                        const TopologyGraph& graph_b, const JunctionSimilarity& similarity,
-                                        const std::vector<JunctionMatch>& full,
-                                        const std::vector<JunctionMatch>& supporting,
-                                        const MatchingOptions& options, const LocalDepthRange* depth_range) {
+// A candidate of the partial pass; `one_common`: a pair of L's sharing one segment, a candidate
+// only while SharedSegmentSupported holds (which depends on the round's supporting matches).
+struct PartialCandidate {
+  JunctionMatch match;
+  bool one_common = false;
+};
+
+// Partial correspondence among the junctions `full` left unmatched (docs/matching.md, "Partial
+// correspondence"): candidates are the leftover pairs with segment counts k and k + 1
+// (PartialRho) and, as their competitors, the leftover pairs with equal counts (Rho: each lost the
+// full pass's rule (38) or had no admissible shift, so it stays out of the result, but a junction
+// with an equal-count rival as close as its partial partner is ambiguous). Rule (38) both ways on
+// rho (topology's sigma needs equal counts at both ends of an edge). depth_range (may be null): as
+// in the full pass, a pair it rejects is no candidate, partial or competitor (an occlusion T read
+// as a Y or an L against a real L elsewhere on the epipolar line is a partner at another depth than
+// the verified matches around it). In the order of a's junctions and of their partners: the scan
+// of every round of GuidedPass's fixed point, computed once (its tests depend on `full` only).
+std::vector<PartialCandidate> PartialCandidates(const Junctions& a, const Junctions& b,
+                                                const JunctionSimilarity& similarity,
+                                                const std::vector<JunctionMatch>& full,
+                                                const MatchingOptions& options, const LocalDepthRange* depth_range) {
   std::vector<char> matched_a(a.size(), 0), matched_b(b.size(), 0);
   for (const JunctionMatch& match : full) {
     matched_a[match.index_a] = 1;
     matched_b[match.index_b] = 1;
   }
-  std::vector<int> match_of_a(a.size(), -1);
-  for (size_t m = 0; m < supporting.size(); ++m) match_of_a[supporting[m].index_a] = static_cast<int>(m);
-  std::vector<JunctionMatch> candidates;
+  std::vector<PartialCandidate> candidates;
   std::vector<int> partners;
   for (int i = 0; i < static_cast<int>(a.size()); ++i) {
     if (matched_a[i]) continue;
@@ -188,24 +190,48 @@ std::vector<JunctionMatch> MatchPartial(const Junctions& a, const TopologyGraph&
         const PairSimilarity rho = similarity.Rho(i, j);
         // missing_a = missing_b = -1 and the flag below: a competitor only.
         if (passes_depth(rho)) {
-          candidates.push_back({i, j, rho.rho, -1, -1, -1});
+          candidates.push_back({{i, j, rho.rho, -1, -1, -1}, false});
         } else if (!rho.Matched() && n_a == 2) {
           // Two L's with no admissible shift: perhaps two corners of one vertex sharing a segment.
           const PairSimilarity one = similarity.OneCommonRho(i, j);
-          if (passes_depth(one) && SharedSegmentSupported(i, 1 - one.missing_a, j, 1 - one.missing_b, a,
-                                                          graph_a, b, graph_b, supporting, match_of_a)) {
-            candidates.push_back({i, j, one.rho, one.shift, one.missing_a, one.missing_b});
-          }
+          if (passes_depth(one)) candidates.push_back({{i, j, one.rho, one.shift, one.missing_a, one.missing_b}, true});
         }
       } else if (std::abs(n_a - n_b) == 1) {
         const PairSimilarity rho = similarity.PartialRho(i, j);
-        if (passes_depth(rho)) candidates.push_back({i, j, rho.rho, rho.shift, rho.missing_a, rho.missing_b});
+        if (passes_depth(rho)) {
+          candidates.push_back({{i, j, rho.rho, rho.shift, rho.missing_a, rho.missing_b}, false});
+        }
       }
     }
   }
+  return candidates;
+}
+
+// The partial matches rule (38) selects among `candidates` (PartialCandidates), a one-common pair
+// taking part when `supporting` (the matches whose junctions may support it: `full` and, in the
+// later rounds of GuidedPass's fixed point, the partial matches of the round before) shows its
+// shared segment as one edge in both frames.
+std::vector<JunctionMatch> MatchPartial(const Junctions& a, const TopologyGraph& graph_a, const Junctions& b,
+                                        const TopologyGraph& graph_b,
+                                        const std::vector<PartialCandidate>& candidates,
+                                        const std::vector<JunctionMatch>& supporting,
+                                        const MatchingOptions& options) {
+  std::vector<int> match_of_a(a.size(), -1);
+  for (size_t m = 0; m < supporting.size(); ++m) match_of_a[supporting[m].index_a] = static_cast<int>(m);
+  std::vector<JunctionMatch> taking_part;
+  taking_part.reserve(candidates.size());
+  for (const PartialCandidate& candidate : candidates) {
+    const JunctionMatch& match = candidate.match;
+    if (candidate.one_common &&
+        !SharedSegmentSupported(match.index_a, 1 - match.missing_a, match.index_b, 1 - match.missing_b, a, graph_a,
+                                b, graph_b, supporting, match_of_a)) {
+      continue;
+    }
+    taking_part.push_back(match);
+  }
   std::vector<JunctionMatch> partial;
   for (const JunctionMatch& match :
-       SelectMatches(candidates, static_cast<int>(a.size()), static_cast<int>(b.size()), options.tau1,
+       SelectMatches(taking_part, static_cast<int>(a.size()), static_cast<int>(b.size()), options.tau1,
                      options.tau2, AlliedRivalsFor(a, b))) {
     if (match.Partial()) partial.push_back(match);
   }
@@ -295,17 +321,16 @@ std::vector<JunctionMatch> GuidedPass(const Junctions& a, const TopologyGraph& g
       Match(a, graph_a, b, graph_b, similarity, guided, depth_range ? &*depth_range : nullptr);
   // Only here: in the refined band (about 1.8 px) a partial pair has few rivals; in the odometry's
   // band the weaker, k/(k+1)-scaled support would compete with many wrong full-count partners.
-  const LocalDepthRange* range = depth_range ? &*depth_range : nullptr;
-  std::vector<JunctionMatch> partial =
-      MatchPartial(a, graph_a, b, graph_b, similarity, matches, matches, guided, range);
+  const std::vector<PartialCandidate> partial_candidates =
+      PartialCandidates(a, b, similarity, matches, guided, depth_range ? &*depth_range : nullptr);
+  std::vector<JunctionMatch> partial = MatchPartial(a, graph_a, b, graph_b, partial_candidates, matches, guided);
   // One common segment: a pair's support may also be a partial match (a chain of corners along one
   // edge); again with the full and partial matches of the round before as neighbours, until the
   // partial matches stop changing (a few rounds; capped, as a selection by (38) need not be monotone).
   for (int round = 0; round < kOneCommonRounds; ++round) {
     std::vector<JunctionMatch> supporting = matches;
     supporting.insert(supporting.end(), partial.begin(), partial.end());
-    std::vector<JunctionMatch> next =
-        MatchPartial(a, graph_a, b, graph_b, similarity, matches, supporting, guided, range);
+    std::vector<JunctionMatch> next = MatchPartial(a, graph_a, b, graph_b, partial_candidates, supporting, guided);
     const bool same =
         next.size() == partial.size() && std::equal(next.begin(), next.end(), partial.begin(),
                                                     [](const JunctionMatch& x, const JunctionMatch& y) {
