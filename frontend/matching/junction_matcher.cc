@@ -162,7 +162,8 @@ struct PartialCandidate {
 std::vector<PartialCandidate> PartialCandidates(const Junctions& a, const Junctions& b,
                                                 const JunctionSimilarity& similarity,
                                                 const std::vector<JunctionMatch>& full,
-                                                const MatchingOptions& options, const LocalDepthRange* depth_range) {
+                                                const MatchingOptions& options,
+                                                const LocalDepthRange* depth_range) {
   std::vector<char> matched_a(a.size(), 0), matched_b(b.size(), 0);
   for (const JunctionMatch& match : full) {
     matched_a[match.index_a] = 1;
@@ -194,7 +195,8 @@ std::vector<PartialCandidate> PartialCandidates(const Junctions& a, const Juncti
         } else if (!rho.Matched() && n_a == 2) {
           // Two L's with no admissible shift: perhaps two corners of one vertex sharing a segment.
           const PairSimilarity one = similarity.OneCommonRho(i, j);
-          if (passes_depth(one)) candidates.push_back({{i, j, one.rho, one.shift, one.missing_a, one.missing_b}, true});
+          if (passes_depth(one))
+            candidates.push_back({{i, j, one.rho, one.shift, one.missing_a, one.missing_b}, true});
         }
       } else if (std::abs(n_a - n_b) == 1) {
         const PairSimilarity rho = similarity.PartialRho(i, j);
@@ -223,8 +225,8 @@ std::vector<JunctionMatch> MatchPartial(const Junctions& a, const TopologyGraph&
   for (const PartialCandidate& candidate : candidates) {
     const JunctionMatch& match = candidate.match;
     if (candidate.one_common &&
-        !SharedSegmentSupported(match.index_a, 1 - match.missing_a, match.index_b, 1 - match.missing_b, a, graph_a,
-                                b, graph_b, supporting, match_of_a)) {
+        !SharedSegmentSupported(match.index_a, 1 - match.missing_a, match.index_b, 1 - match.missing_b, a,
+                                graph_a, b, graph_b, supporting, match_of_a)) {
       continue;
     }
     taking_part.push_back(match);
@@ -323,14 +325,16 @@ std::vector<JunctionMatch> GuidedPass(const Junctions& a, const TopologyGraph& g
   // band the weaker, k/(k+1)-scaled support would compete with many wrong full-count partners.
   const std::vector<PartialCandidate> partial_candidates =
       PartialCandidates(a, b, similarity, matches, guided, depth_range ? &*depth_range : nullptr);
-  std::vector<JunctionMatch> partial = MatchPartial(a, graph_a, b, graph_b, partial_candidates, matches, guided);
+  std::vector<JunctionMatch> partial =
+      MatchPartial(a, graph_a, b, graph_b, partial_candidates, matches, guided);
   // One common segment: a pair's support may also be a partial match (a chain of corners along one
   // edge); again with the full and partial matches of the round before as neighbours, until the
   // partial matches stop changing (a few rounds; capped, as a selection by (38) need not be monotone).
   for (int round = 0; round < kOneCommonRounds; ++round) {
     std::vector<JunctionMatch> supporting = matches;
     supporting.insert(supporting.end(), partial.begin(), partial.end());
-    std::vector<JunctionMatch> next = MatchPartial(a, graph_a, b, graph_b, partial_candidates, supporting, guided);
+    std::vector<JunctionMatch> next =
+        MatchPartial(a, graph_a, b, graph_b, partial_candidates, supporting, guided);
     const bool same =
         next.size() == partial.size() && std::equal(next.begin(), next.end(), partial.begin(),
                                                     [](const JunctionMatch& x, const JunctionMatch& y) {
