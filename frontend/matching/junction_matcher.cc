@@ -142,12 +142,11 @@ bool SharedSegmentSupported(int i, int segment_a, int j, int segment_b, const Ju
   return false;
 }
 
-// A candidate of the partial pass; `one_common`: a pair of L's sharing one segment, a candidate
-// only while SharedSegmentSupported holds (which depends on the round's supporting matches).
-struct PartialCandidate {
-  JunctionMatch match;
-  bool one_common = false;
-};
+// A partial pass candidate pairing two junctions of equal segment counts with a segment missing:
+// two L's sharing one segment (OneCommonRho), a candidate only while SharedSegmentSupported holds.
+bool OneCommon(const JunctionMatch& match, const Junctions& a, const Junctions& b) {
+  return match.Partial() && a[match.index_a].NumSegments() == b[match.index_b].NumSegments();
+}
 
 // Partial correspondence among the junctions `full` left unmatched (docs/matching.md, "Partial
 // correspondence"): candidates are the leftover pairs with segment counts k and k + 1
@@ -159,17 +158,17 @@ struct PartialCandidate {
 // as a Y or an L against a real L elsewhere on the epipolar line is a partner at another depth than
 // the verified matches around it). In the order of a's junctions and of their partners: the scan
 // of every round of GuidedPass's fixed point, computed once (its tests depend on `full` only).
-std::vector<PartialCandidate> PartialCandidates(const Junctions& a, const Junctions& b,
-                                                const JunctionSimilarity& similarity,
-                                                const std::vector<JunctionMatch>& full,
-                                                const MatchingOptions& options,
-                                                const LocalDepthRange* depth_range) {
+std::vector<JunctionMatch> PartialCandidates(const Junctions& a, const Junctions& b,
+                                             const JunctionSimilarity& similarity,
+                                             const std::vector<JunctionMatch>& full,
+                                             const MatchingOptions& options,
+                                             const LocalDepthRange* depth_range) {
   std::vector<char> matched_a(a.size(), 0), matched_b(b.size(), 0);
   for (const JunctionMatch& match : full) {
     matched_a[match.index_a] = 1;
     matched_b[match.index_b] = 1;
   }
-  std::vector<PartialCandidate> candidates;
+  std::vector<JunctionMatch> candidates;
   std::vector<int> partners;
   for (int i = 0; i < static_cast<int>(a.size()); ++i) {
     if (matched_a[i]) continue;
@@ -191,40 +190,37 @@ std::vector<PartialCandidate> PartialCandidates(const Junctions& a, const Juncti
         const PairSimilarity rho = similarity.Rho(i, j);
         // missing_a = missing_b = -1 and the flag below: a competitor only.
         if (passes_depth(rho)) {
-          candidates.push_back({{i, j, rho.rho, -1, -1, -1}, false});
+          candidates.push_back({i, j, rho.rho, -1, -1, -1});
         } else if (!rho.Matched() && n_a == 2) {
           // Two L's with no admissible shift: perhaps two corners of one vertex sharing a segment.
           const PairSimilarity one = similarity.OneCommonRho(i, j);
           if (passes_depth(one))
-            candidates.push_back({{i, j, one.rho, one.shift, one.missing_a, one.missing_b}, true});
+            candidates.push_back({i, j, one.rho, one.shift, one.missing_a, one.missing_b});
         }
       } else if (std::abs(n_a - n_b) == 1) {
         const PairSimilarity rho = similarity.PartialRho(i, j);
-        if (passes_depth(rho)) {
-          candidates.push_back({{i, j, rho.rho, rho.shift, rho.missing_a, rho.missing_b}, false});
-        }
+        if (passes_depth(rho)) candidates.push_back({i, j, rho.rho, rho.shift, rho.missing_a, rho.missing_b});
       }
     }
   }
   return candidates;
 }
 
-// The partial matches rule (38) selects among `candidates` (PartialCandidates), a one-common pair
+// The partial matches rule (38) selects among `candidates` (PartialCandidates), a OneCommon pair
 // taking part when `supporting` (the matches whose junctions may support it: `full` and, in the
 // later rounds of GuidedPass's fixed point, the partial matches of the round before) shows its
 // shared segment as one edge in both frames.
 std::vector<JunctionMatch> MatchPartial(const Junctions& a, const TopologyGraph& graph_a, const Junctions& b,
                                         const TopologyGraph& graph_b,
-                                        const std::vector<PartialCandidate>& candidates,
+                                        const std::vector<JunctionMatch>& candidates,
                                         const std::vector<JunctionMatch>& supporting,
                                         const MatchingOptions& options) {
   std::vector<int> match_of_a(a.size(), -1);
   for (size_t m = 0; m < supporting.size(); ++m) match_of_a[supporting[m].index_a] = static_cast<int>(m);
   std::vector<JunctionMatch> taking_part;
   taking_part.reserve(candidates.size());
-  for (const PartialCandidate& candidate : candidates) {
-    const JunctionMatch& match = candidate.match;
-    if (candidate.one_common &&
+  for (const JunctionMatch& match : candidates) {
+    if (OneCommon(match, a, b) &&
         !SharedSegmentSupported(match.index_a, 1 - match.missing_a, match.index_b, 1 - match.missing_b, a,
                                 graph_a, b, graph_b, supporting, match_of_a)) {
       continue;
@@ -323,7 +319,7 @@ std::vector<JunctionMatch> GuidedPass(const Junctions& a, const TopologyGraph& g
       Match(a, graph_a, b, graph_b, similarity, guided, depth_range ? &*depth_range : nullptr);
   // Only here: in the refined band (about 1.8 px) a partial pair has few rivals; in the odometry's
   // band the weaker, k/(k+1)-scaled support would compete with many wrong full-count partners.
-  const std::vector<PartialCandidate> partial_candidates =
+  const std::vector<JunctionMatch> partial_candidates =
       PartialCandidates(a, b, similarity, matches, guided, depth_range ? &*depth_range : nullptr);
   std::vector<JunctionMatch> partial =
       MatchPartial(a, graph_a, b, graph_b, partial_candidates, matches, guided);
